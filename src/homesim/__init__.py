@@ -1,0 +1,40 @@
+"""homesim: simulate household activities described as programs.
+
+>>> import homesim
+>>> p = homesim.parse_program("[Walk] <sofa> (1)")
+>>> str(p.steps[0])
+'[Walk] <sofa> (1)'
+"""
+
+from homesim.errors import (
+    ArityError,
+    DataError,
+    ExecutionError,
+    GraphError,
+    HomesimError,
+    ProgramError,
+    UnknownActionError,
+)
+from homesim.program import ObjectRef, Program, Step, parse_program
+from homesim.sim import ExecutionResult, execute
+from homesim.world import EnvironmentGraph, load_home
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "ArityError",
+    "DataError",
+    "EnvironmentGraph",
+    "ExecutionError",
+    "ExecutionResult",
+    "GraphError",
+    "HomesimError",
+    "ObjectRef",
+    "Program",
+    "ProgramError",
+    "Step",
+    "UnknownActionError",
+    "execute",
+    "load_home",
+    "parse_program",
+]

@@ -1,0 +1,53 @@
+"""Shared pieces of the command line: the console and input loading with clear errors."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from rich.console import Console
+
+from homesim.errors import HomesimError
+from homesim.program.model import Program
+from homesim.program.parse import parse_program
+from homesim.world.graph import EnvironmentGraph
+from homesim.world.homes import load_home
+
+console = Console(highlight=False)
+err_console = Console(stderr=True, highlight=False)
+
+MAX_PROGRAM_BYTES = 1024 * 1024
+"""Largest program file the CLI reads (real programs are under 2 KB)."""
+
+
+def read_program(path: str) -> Program:
+    """Read a program file (or ``-`` for standard input)."""
+    if path == "-":
+        text = sys.stdin.read(MAX_PROGRAM_BYTES + 1)
+        source = "<stdin>"
+    else:
+        p = Path(path)
+        try:
+            if p.stat().st_size > MAX_PROGRAM_BYTES:
+                raise HomesimError(f"{path}: file is over the {MAX_PROGRAM_BYTES // 1024} KiB "
+                                   "limit for a program")
+            text = p.read_text(encoding="utf-8")
+        except UnicodeDecodeError:
+            raise HomesimError(f"{path}: not UTF-8 text") from None
+        except OSError as e:
+            raise HomesimError(f"{path}: cannot read program ({e.strerror})") from None
+        source = path
+    if len(text) > MAX_PROGRAM_BYTES:
+        raise HomesimError(f"{source}: over the {MAX_PROGRAM_BYTES // 1024} KiB limit")
+    return parse_program(text, source=source)
+
+
+def read_graph(graph: str | None, home: str | None,
+               default_home: str) -> tuple[EnvironmentGraph, str]:
+    """The graph named by ``--graph FILE`` or ``--home NAME``, and a name for it."""
+    if graph and home:
+        raise HomesimError("give either --graph or --home, not both")
+    if graph:
+        return EnvironmentGraph.load(graph), graph
+    name = home or default_home
+    return load_home(name), name

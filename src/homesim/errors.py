@@ -1,0 +1,51 @@
+"""The one error family of homesim.
+
+Every error a user can cause (a bad program, a broken graph, a missing data set) is a
+`HomesimError` whose message names where and why in one line. The CLI and the web API
+catch `HomesimError` and print that line; any other exception is a bug of ours.
+"""
+
+from __future__ import annotations
+
+
+class HomesimError(Exception):
+    """Base class of every error homesim raises on bad input."""
+
+
+class ProgramError(HomesimError):
+    """A program text that cannot be parsed.
+
+    Attributes:
+        line: 1-based line number in the text (0 when unknown).
+        text: the offending line.
+        expected: what a valid line would have had there.
+        source: file name or other origin of the text, if known.
+    """
+
+    def __init__(self, line: int, text: str, expected: str, source: str | None = None):
+        self.line = line
+        self.text = text
+        self.expected = expected
+        self.source = source
+        where = f"{source}:" if source else ""
+        super().__init__(f"{where}line {line}: {text.strip()!r}: {expected}")
+
+
+class UnknownActionError(ProgramError):
+    """A step names an action that is not in the catalog."""
+
+
+class ArityError(ProgramError):
+    """A step has the wrong number of arguments for its action."""
+
+
+class GraphError(HomesimError):
+    """An environment graph that is malformed (dangling edge, duplicate id, bad types)."""
+
+
+class ExecutionError(HomesimError):
+    """A program cannot be executed on a graph at all (e.g. no character in the graph)."""
+
+
+class DataError(HomesimError):
+    """A data set or resource that is missing, corrupt or of the wrong shape."""

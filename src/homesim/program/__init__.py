@@ -1,0 +1,28 @@
+"""Program language: parse, print and describe programs (`[Walk] <television> (1)`)."""
+
+from homesim.program.actions import (
+    ACTIONS,
+    ANIMATED,
+    ActionSpec,
+    Category,
+    actions_in,
+    lookup_action,
+)
+from homesim.program.model import ObjectRef, Program, Step, normalize_name
+from homesim.program.parse import parse_program, parse_step, parse_steps
+
+__all__ = [
+    "ACTIONS",
+    "ANIMATED",
+    "ActionSpec",
+    "Category",
+    "ObjectRef",
+    "Program",
+    "Step",
+    "actions_in",
+    "lookup_action",
+    "normalize_name",
+    "parse_program",
+    "parse_step",
+    "parse_steps",
+]

@@ -1,0 +1,67 @@
+import json
+
+import pytest
+
+from homesim.cli.main import main
+
+
+def test_demo_runs_and_succeeds(capsys):
+    assert main(["run"]) == 0
+    out = capsys.readouterr().out
+    assert "[SwitchOn] <tv> (1.410)" in out and "tv 410: OFF → ON" in out
+    assert "executable" in out
+
+
+def test_json_output(capsys):
+    assert main(["run", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["executable"] is True and len(data["steps"]) == 5
+    assert data["steps"][1]["changes"]["states"] == [[410, ["OFF"], ["ON"]]]
+
+
+def test_failing_program_exits_1_with_reason(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Walk] <tv> (1.410)\n[Grab] <tv> (1.410)\n")
+    assert main(["run", str(p), "--home", "scene1"]) == 1
+    out = capsys.readouterr().out
+    assert "✗" in out and "tv 410 cannot be grabbed" in out
+
+
+@pytest.mark.parametrize(
+    ("content", "args", "pattern"),
+    [
+        ("[Wlak] <tv> (1)\n", [], "unknown action 'Wlak' (did you mean Walk?)"),
+        ("[Walk] <tv>\n", [], "expected an id"),
+        ("[Walk] <tv> (1.410)\n", ["--home", "nowhere"], "unknown home 'nowhere'"),
+        ("[Walk] <tv> (1.410)\n", ["--graph", "missing.json"], "cannot read graph file"),
+        ("Title\nDesc\n\n", [], "the program has no steps"),
+        (b"\xff\xfe\xfa", [], "not UTF-8"),
+    ],
+)
+def test_bad_input_gives_one_line_and_no_traceback(tmp_path, capsys, content, args, pattern):
+    p = tmp_path / "p.txt"
+    if isinstance(content, bytes):
+        p.write_bytes(content)
+    else:
+        p.write_text(content)
+    assert main(["run", str(p), *args]) == 2
+    err = capsys.readouterr().err
+    assert pattern in " ".join(err.split())
+    assert "Traceback" not in err
+
+
+def test_broken_graph_file(tmp_path, capsys):
+    g = tmp_path / "g.json"
+    g.write_text('{"nodes": [{"id": 1}], "edges": []}')
+    assert main(["run", "--graph", str(g)]) == 2
+    assert "'class_name' must be a non-empty string" in " ".join(capsys.readouterr().err.split())
+
+
+def test_missing_program_file(capsys):
+    assert main(["run", "no-such-file.txt"]) == 2
+    assert "cannot read program" in capsys.readouterr().err
+
+
+def test_homes_lists_built_ins(capsys):
+    assert main(["homes"]) == 0
+    assert "scene1_trimmed" in capsys.readouterr().out

@@ -1,0 +1,106 @@
+import gzip
+import json
+
+import pytest
+
+from homesim.errors import GraphError
+from homesim.world.graph import EnvironmentGraph
+from tests.conftest import tiny_home_dict
+
+
+def test_indexes_by_id_class_and_relation(tiny_home):
+    assert tiny_home.node(12).class_name == "cup"
+    assert [n.id for n in tiny_home.nodes_of_class("tv")] == [14]
+    assert tiny_home.targets(12, "INSIDE") == {11, 1}
+    assert tiny_home.sources(13, "ON") == {16}
+    assert tiny_home.character_id == 10
+    assert tiny_home.room_ids == {1, 2}
+    assert tiny_home.room_of(12) == 1
+    assert tiny_home.room_of(1) == 1
+
+
+def test_round_trip_dict_and_files(tiny_home, tmp_path):
+    again = EnvironmentGraph.from_dict(tiny_home.to_dict())
+    assert again == tiny_home
+    for name in ("g.json", "g.json.gz"):
+        tiny_home.save(tmp_path / name)
+        assert EnvironmentGraph.load(tmp_path / name) == tiny_home
+    assert gzip.decompress((tmp_path / "g.json.gz").read_bytes()).startswith(b"{")
+
+
+def test_unknown_node_keys_are_kept():
+    d = tiny_home_dict()
+    d["nodes"][0]["obj_transform"] = {"position": [1, 2, 3]}
+    d["extra_top"] = 7
+    out = EnvironmentGraph.from_dict(d).to_dict()
+    assert out["nodes"][0]["obj_transform"] == {"position": [1, 2, 3]}
+    assert out["extra_top"] == 7
+
+
+def broken(mutate):
+    d = tiny_home_dict()
+    mutate(d)
+    return d
+
+
+@pytest.mark.parametrize(
+    ("data", "pattern"),
+    [
+        ([], r"must be a JSON object"),
+        ({"nodes": []}, r"'edges' must be a list"),
+        (broken(lambda d: d["nodes"].append({"id": 12, "class_name": "x"})),
+         r"nodes\[9\]: duplicate node id 12"),
+        (broken(lambda d: d["edges"].append({"from_id": 12, "relation_type": "ON",
+                                             "to_id": 99})),
+         r"edges\[14\] \(12 ON 99\): to_id 99 is not a node"),
+        (broken(lambda d: d["edges"].append({"from_id": 12, "relation_type": "NEAR",
+                                             "to_id": 13})),
+         r"edges\[14\]: unknown relation 'NEAR'"),
+        (broken(lambda d: d["nodes"][3].update(id="11")), r"nodes\[3\]: 'id' must be an integer"),
+        (broken(lambda d: d["nodes"][3].update(id=True)), r"'id' must be an integer"),
+        (broken(lambda d: d["nodes"][3].update(states="OPEN")),
+         r"nodes\[3\] \(id 11\): 'states' must be a list of strings"),
+        (broken(lambda d: d["nodes"][3].update(class_name="")), r"'class_name' must be a non-empty"),
+        (broken(lambda d: d["nodes"][3].update(bounding_box={"center": [0, 0], "size": [1, 1, 1]})),
+         r"bounding_box 'center' must be 3 finite numbers"),
+        (broken(lambda d: d["edges"].append("12 ON 13")), r"an edge must be a JSON object"),
+    ],
+)
+def test_broken_graphs_name_the_fault(data, pattern):
+    with pytest.raises(GraphError, match=pattern):
+        EnvironmentGraph.from_dict(data, source="g.json")
+
+
+def test_broken_files(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"nodes": [}')
+    with pytest.raises(GraphError, match=r"bad.json: invalid JSON at line 1 column 12"):
+        EnvironmentGraph.load(bad)
+    with pytest.raises(GraphError, match=r"cannot read graph file"):
+        EnvironmentGraph.load(tmp_path / "missing.json")
+    big = tmp_path / "big.json"
+    big.write_text(json.dumps(tiny_home_dict()))
+    with pytest.raises(GraphError, match=r"over the 0 MiB limit"):
+        EnvironmentGraph.load(big, max_bytes=10)
+    binary = tmp_path / "bin.json"
+    binary.write_bytes(b"\xff\xfe\x00garbage")
+    with pytest.raises(GraphError, match=r"bin.json: "):
+        EnvironmentGraph.load(binary)
+
+
+def test_missing_node_lookup_is_a_graph_error(tiny_home):
+    with pytest.raises(GraphError, match="no node 999"):
+        tiny_home.node(999)
+
+
+def test_loads_the_ten_shared_scenes(shared_data):
+    paths = sorted((shared_data / "scenes").glob("scene*.json"))
+    assert len(paths) == 10
+    for path in paths:
+        g = EnvironmentGraph.load(path)
+        raw = json.loads(path.read_text())
+        assert len(g) == len(raw["nodes"])
+        assert g.num_edges() == len({(e["from_id"], e["relation_type"], e["to_id"])
+                                     for e in raw["edges"]})
+        assert g.character_id is not None and g.room_of(g.character_id) in g.room_ids
+        assert EnvironmentGraph.from_dict(g.to_dict()) == g
