@@ -17,7 +17,8 @@ def run(home, text):
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("[Grab] <cup> (12)", "step 1 [Grab] <cup> (12): the character is not close to cup 12"),
+        ("[Grab] <plate> (16)", "step 1 [Grab] <plate> (16): the character is not close to plate 16"),
+        ("[Grab] <cup> (12)", "step 1 [Grab] <cup> (12): cup 12 is inside closed fridge 11"),
         ("[Walk] <fridge> (11)\n[Grab] <cup> (12)",
          "step 2 [Grab] <cup> (12): cup 12 is inside closed fridge 11"),
         ("[Walk] <fridge> (11)\n[Close] <fridge> (11)", "fridge 11 is not open"),

@@ -71,12 +71,16 @@ class Step:
 
     action: ActionSpec
     args: tuple[ObjectRef, ...] = ()
+    nodes: tuple[int, ...] = field(init=False, repr=False, compare=False, hash=False)
+    """The node ids of the objects when no grounding is given (see `ObjectRef.node`)."""
 
     def __post_init__(self) -> None:
         if len(self.args) != self.action.arity:
             raise ValueError(
                 f"[{self.action.name}] takes {self.action.arity} object(s), got {len(self.args)}"
             )
+        # Cached because the simulator reads it on every step.
+        object.__setattr__(self, "nodes", tuple(ref.node for ref in self.args))
 
     @classmethod
     def parse(cls, line: str) -> Step:

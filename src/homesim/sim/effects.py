@@ -151,21 +151,23 @@ def _inside_closed(st: SimState, n: int) -> str | None:
 @effect("WALK", "RUN")
 def walk(st: SimState, n: int) -> str | None:
     c = st.char
-    posture = _posture(st)
-    if posture:
-        return f"the character is {posture}; it must stand up first"
+    char_states = st.states(c)
+    if S_SITTING in char_states or S_LYING in char_states:
+        return f"the character is {_posture(st)}; it must stand up first"
     room = st.room_of(n)
     if room is None:
         return f"{st.label(n)} is not in any room"
     char_room = st.room_of(c)
     if char_room is None:
         return "the character is not in any room"
-    in_hands = held(st)
+    right, left = st.targets(c, HOLDS_RH), st.targets(c, HOLDS_LH)
+    in_hands = [*right, *left] if right or left else ()
     st.detach(c, _WALK_CLEARS)
     st.add_edge(c, INSIDE, room)
     # Close to the target, to what contains it and to the body parts (also for a room).
+    rooms = st.rooms
     for x in st.targets(n, INSIDE):
-        if x not in st.rooms:
+        if x not in rooms:
             st.add_pair(c, CLOSE, x)
     for x in st.body_parts:
         st.add_pair(c, CLOSE, x)
@@ -269,7 +271,7 @@ def grab(st: SimState, n: int) -> str | None:
     if GRABBABLE not in st.properties(n) and st.class_name(n) not in ("water", "child"):
         return f"{st.label(n)} cannot be grabbed (not GRABBABLE)"
     if not is_close(st, n):
-        return _not_close(st, n)
+        return _inside_closed(st, n) or _not_close(st, n)
     holding = holding_hand(st, n)
     if holding is not None:
         # Grabbing what one hand holds takes it in both hands (as the stored graphs show).

@@ -14,7 +14,8 @@
 >>> r = execute(parse_program("[Walk] <fridge> (3)\\n[Grab] <cup> (4)"), g)
 >>> r.executable, r.message
 (False, 'step 2 [Grab] <cup> (4): cup 4 is inside closed fridge 3')
->>> r = execute(parse_program("[Walk] <fridge> (3)\\n[Open] <fridge> (3)\\n[Grab] <cup> (4)"), g)
+>>> text = "[Walk] <fridge> (3)\\n[Open] <fridge> (3)\\n[Find] <cup> (4)\\n[Grab] <cup> (4)"
+>>> r = execute(parse_program(text), g)
 >>> r.executable, sorted(r.final_graph.node(3).states)
 (True, ['OPEN'])
 """
@@ -111,11 +112,7 @@ def node_ids(step: Step, bindings: Bindings | None = None) -> tuple[int, ...]:
     instance number, as the reference simulator reads ``(417)``.
     """
     if bindings is None:
-        args = step.args
-        # Unrolled for the usual 0-2 arguments: this runs on every step.
-        if len(args) == 1:
-            return (args[0].node,)
-        return tuple([ref.node for ref in args])
+        return step.nodes
     return tuple([bindings.get(ref.key, ref.node) for ref in step.args])
 
 
@@ -156,9 +153,11 @@ def execute_on(program: Program, st: SimState, trace: bool = False,
     journal = st.journal
     effects = EFFECTS
     base_nodes, new_nodes = st._base_nodes, st._new_nodes
+    mark = 0
     for index, step in enumerate(program.steps):
-        ids = node_ids(step, bindings)
-        mark = len(journal)
+        ids = step.nodes if bindings is None else node_ids(step, bindings)
+        if records is not None:
+            mark = len(journal)
         for nid in ids:
             if nid not in base_nodes and nid not in new_nodes:
                 reason = _missing(st, step, ids)

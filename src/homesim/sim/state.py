@@ -18,7 +18,7 @@ from typing import Any
 
 from homesim.errors import ExecutionError
 from homesim.world.graph import EnvironmentGraph, Node, room_of
-from homesim.world.vocab import BODY_PART, INSIDE, RELATIONS
+from homesim.world.vocab import BODY_PART, CLOSE, INSIDE, RELATIONS
 
 _EMPTY: frozenset[int] = frozenset()
 
@@ -28,6 +28,8 @@ DEL_EDGE = 1
 SET_STATES = 2
 ADD_NODE = 3
 SET_MEMORY = 4
+DEL_OUT = 5  # (DEL_OUT, node, relation, ids): edges node -> each id removed at once
+DEL_IN = 6  # (DEL_IN, node, relation, ids): edges each id -> node removed at once
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,6 +58,10 @@ class SimState:
     __slots__ = ("_base_in", "_base_nodes", "_base_out", "_in", "_new_nodes", "_out",
                  "_states", "body_parts", "char", "graph", "journal", "memory", "rooms")
 
+    # Writes keep both indexes right. When a relation shares one overlay for both
+    # directions (CLOSE, see __init__), writing a -> b also writes b -> a, and the
+    # journal records both edges.
+
     def __init__(self, graph: EnvironmentGraph):
         char = graph.character_id
         if char is None:
@@ -67,6 +73,10 @@ class SimState:
         self._base_in = graph._in
         self._out: dict[str, dict[int, set[int]]] = {r: {} for r in RELATIONS}
         self._in: dict[str, dict[int, set[int]]] = {r: {} for r in RELATIONS}
+        if _close_is_symmetric(graph):
+            # CLOSE is symmetric in VirtualHome graphs and every effect keeps it so: one
+            # shared overlay serves both directions and halves the work of a walk.
+            self._in[CLOSE] = self._out[CLOSE]
         self._states: dict[int, frozenset[str]] = {}
         self._new_nodes: dict[int, Node] = {}
         self.memory: dict[int, tuple[int, str]] = {}
@@ -147,6 +157,8 @@ class SimState:
             t = inn[b] = set(self._base_in[relation].get(b, _EMPTY))
         t.add(a)
         self.journal.append((ADD_EDGE, a, relation, b))
+        if inn is out and a != b:
+            self.journal.append((ADD_EDGE, b, relation, a))
 
     def remove_edge(self, a: int, relation: str, b: int) -> None:
         out = self._out[relation]
@@ -165,60 +177,55 @@ class SimState:
             t = inn[b] = set(self._base_in[relation].get(b, _EMPTY))
         t.discard(a)
         self.journal.append((DEL_EDGE, a, relation, b))
+        if inn is out and a != b:
+            self.journal.append((DEL_EDGE, b, relation, a))
 
     def add_pair(self, a: int, relation: str, b: int) -> None:
         """Add the edge both ways (CLOSE is symmetric); no self-loops."""
-        # Inlined twice-over add_edge: CLOSE pairs are most of what a walk writes.
         if a == b:
             return
-        out, inn = self._out[relation], self._in[relation]
-        base_out, base_in = self._base_out[relation], self._base_in[relation]
-        for x, y in ((a, b), (b, a)):
-            s = out.get(x)
-            if s is None:
-                s = out[x] = set(base_out.get(x, _EMPTY))
-            if y in s:
-                continue
-            s.add(y)
-            t = inn.get(y)
-            if t is None:
-                t = inn[y] = set(base_in.get(y, _EMPTY))
-            t.add(x)
-            self.journal.append((ADD_EDGE, x, relation, y))
+        self.add_edge(a, relation, b)
+        if self._in[relation] is not self._out[relation]:
+            self.add_edge(b, relation, a)
 
     def detach(self, node_id: int, relations: Iterable[str]) -> None:
         """Remove every edge of these relations that starts or ends at `node_id`."""
-        # Bulk version of remove_edge: it runs on every walk, the hottest step.
+        # Bulk version of remove_edge, journaled as one entry per direction: it runs on
+        # every walk, the hottest step.
         journal = self.journal
         for r in relations:
             out, inn = self._out[r], self._in[r]
-            base_out, base_in = self._base_out[r], self._base_in[r]
             mine = out.get(node_id)
             if mine is None:
-                mine = base_out.get(node_id, _EMPTY)
-                if mine:
-                    mine = out[node_id] = set(mine)
-            for x in mine:
-                t = inn.get(x)
-                if t is None:
-                    t = inn[x] = set(base_in[x])
-                t.discard(node_id)
-                journal.append((DEL_EDGE, node_id, r, x))
+                mine = self._base_out[r].get(node_id)
             if mine:
-                mine.clear()
+                base_in = self._base_in[r]
+                ids = tuple(mine)
+                out[node_id] = set()
+                for x in ids:
+                    t = inn.get(x)
+                    if t is None:
+                        t = inn[x] = set(base_in[x])
+                    t.discard(node_id)
+                journal.append((DEL_OUT, node_id, r, ids))
+                if inn is out:  # the shared overlay removed the reverse edges too
+                    if node_id in mine:
+                        ids = tuple(x for x in ids if x != node_id)
+                    journal.append((DEL_IN, node_id, r, ids))
+                    continue
             theirs = inn.get(node_id)
             if theirs is None:
-                theirs = base_in.get(node_id, _EMPTY)
-                if theirs:
-                    theirs = inn[node_id] = set(theirs)
-            for x in theirs:
-                t = out.get(x)
-                if t is None:
-                    t = out[x] = set(base_out[x])
-                t.discard(node_id)
-                journal.append((DEL_EDGE, x, r, node_id))
+                theirs = self._base_in[r].get(node_id)
             if theirs:
-                theirs.clear()
+                base_out = self._base_out[r]
+                ids = tuple(theirs)
+                inn[node_id] = set()
+                for x in ids:
+                    t = out.get(x)
+                    if t is None:
+                        t = out[x] = set(base_out[x])
+                    t.discard(node_id)
+                journal.append((DEL_IN, node_id, r, ids))
 
     def set_states(self, node_id: int, states: frozenset[str]) -> None:
         old = self.states(node_id)
@@ -273,6 +280,16 @@ class SimState:
                 _, a, r, b = entry
                 self._out[r][a].add(b)
                 self._in[r][b].add(a)
+            elif kind == DEL_OUT:
+                _, a, r, ids = entry
+                self._out[r][a].update(ids)
+                for b in ids:
+                    self._in[r][b].add(a)
+            elif kind == DEL_IN:
+                _, b, r, ids = entry
+                self._in[r][b].update(ids)
+                for a in ids:
+                    self._out[r][a].add(b)
             elif kind == SET_STATES:
                 self._states[entry[1]] = entry[2]
             elif kind == SET_MEMORY:
@@ -295,6 +312,11 @@ class SimState:
             if kind in (ADD_EDGE, DEL_EDGE):
                 key = entry[1:]
                 edges[key] = edges.get(key, 0) + (1 if kind == ADD_EDGE else -1)
+            elif kind in (DEL_OUT, DEL_IN):
+                _, n, r, ids = entry
+                for x in ids:
+                    key = (n, r, x) if kind == DEL_OUT else (x, r, n)
+                    edges[key] = edges.get(key, 0) - 1
             elif kind == SET_STATES:
                 states.setdefault(entry[1], [entry[2], entry[3]])[1] = entry[3]
             elif kind == ADD_NODE:
@@ -335,6 +357,14 @@ class SimState:
         return EnvironmentGraph._from_indexes(
             nodes, merge(base._out, self._out), merge(base._in, self._in), base.meta
         )
+
+
+def _close_is_symmetric(graph: EnvironmentGraph) -> bool:
+    cache = graph._derived
+    symmetric = cache.get("close_symmetric")
+    if symmetric is None:
+        symmetric = cache["close_symmetric"] = graph._out[CLOSE] == graph._in[CLOSE]
+    return symmetric
 
 
 def _body_parts(graph: EnvironmentGraph) -> frozenset[int]:
