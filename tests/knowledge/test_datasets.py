@@ -175,3 +175,11 @@ def test_real_dataset(real_data):
     assert init.character_id is not None and final.character_id == init.character_id
     splits = ds.split(seed=0)
     assert {k: len(v) for k, v in splits.items()} == {"train": 414, "val": 52, "test": 52}
+
+
+@pytest.mark.dataset
+def test_every_real_program_round_trips_through_jsonl(real_data, tmp_path):
+    ds = ActivityDataset.load(real_data)
+    back = ActivityDataset.load(ds.to_jsonl(tmp_path / "real.jsonl"))
+    assert [(p.id, p.program, p.graph_path) for p in back] == [
+        (p.id, p.program, p.graph_path) for p in ds]

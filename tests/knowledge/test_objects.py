@@ -99,6 +99,7 @@ def test_kb_agrees_with_the_simulator_home(kb):
     assert states_ok / len(objects) > 0.95
 
 
+@pytest.mark.dataset
 def test_every_real_program_object_is_known(kb, real_data):
     from homesim.knowledge import real_programs
 

@@ -292,6 +292,11 @@ class ActivityDataset(Sequence[ActivityProgram]):
 _REQUIRED = ("title", "description", "program")
 
 
+def _one_line(text: str) -> str:
+    """Join wrapped lines as the ActivityPrograms parser does; keep spacing within a line."""
+    return " ".join(line.strip() for line in text.splitlines() if line.strip())
+
+
 def _from_record(line: str, where: str, base: Path) -> ActivityProgram:
     try:
         record = json.loads(line)
@@ -310,7 +315,7 @@ def _from_record(line: str, where: str, base: Path) -> ActivityProgram:
     title, description = record["title"], record["description"]
     if not isinstance(title, str) or not isinstance(description, str):
         raise DataError(f"{where}: 'title' and 'description' must be strings")
-    title, description = " ".join(title.split()), " ".join(description.split())
+    title, description = _one_line(title), _one_line(description)
     if not title:
         raise DataError(f"{where}: no title")
     parsed = parse_steps(steps, source=where)

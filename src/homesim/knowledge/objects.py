@@ -81,9 +81,10 @@ class ObjectKB:
 
     def __init__(self, classes: dict[str, _ClassFacts], equivalences: dict[str, list[str]]):
         self._classes = classes
-        self._by_squash: dict[str, str] = {}
+        # Spellings that differ only in underscores, indexed once (lookups are hot in grounding).
+        self._spellings: dict[str, list[str]] = {}
         for name in sorted(classes):  # sorted: the same name wins on every load
-            self._by_squash.setdefault(_squash(name), name)
+            self._spellings.setdefault(_squash(name), []).append(name)
         self._equivalences = equivalences
         self._script_names: dict[str, list[str]] = {}
         for script, scene_classes in equivalences.items():
@@ -136,7 +137,8 @@ class ObjectKB:
         name = normalize_name(cls)
         if name in self._classes:
             return name
-        return self._by_squash.get(_squash(name))
+        spellings = self._spellings.get(_squash(name))
+        return spellings[0] if spellings else None
 
     def __contains__(self, cls: object) -> bool:
         return isinstance(cls, str) and self.resolve(cls) is not None
@@ -191,8 +193,7 @@ class ObjectKB:
         listed = self._equivalences.get(name)
         if listed is None:
             listed = self._equivalences.get(f"food_{name}", [])
-        out = [name, *listed]
-        out.extend(c for c in self._classes if _squash(c) == _squash(name))
+        out = [name, *listed, *self._spellings.get(_squash(name), [])]
         return list(dict.fromkeys(out))
 
     def script_names(self, cls: str) -> list[str]:
@@ -202,8 +203,7 @@ class ObjectKB:
         ['sofa', 'couch', 'love_seat']
         """
         cls = normalize_name(cls)
-        out = [cls, *self._script_names.get(cls, [])]
-        out.extend(c for c in self._classes if _squash(c) == _squash(cls))
+        out = [cls, *self._script_names.get(cls, []), *self._spellings.get(_squash(cls), [])]
         return list(dict.fromkeys(out))
 
     # -- placement and size --------------------------------------------------------------------
