@@ -21,6 +21,8 @@ Choices made here (each one line in the report this prints):
   ``address_book``).
 - placements: ``IN`` becomes INSIDE; the few ``NEARBY`` entries are dropped (not a relation
   objects are put in); the room ``"null"`` becomes null; duplicates are removed, order kept.
+- spellings that differ only in underscores (``cutlery_fork``, ``cutleryfork``) share
+  facts: a field one lacks is taken from another.
 - size: the per-axis median of the sizes (metres, Unity frame, y up) of the class's
   prefabs in ``prefabs_dims.json``, the class's prefabs listed in ``PrefabClass.json``.
 
@@ -64,6 +66,27 @@ def _load(resources: Path, name: str):
 def _state(name: str) -> str:
     name = name.strip().lower()
     return _STATE_NAMES.get(name, name.upper())
+
+
+def _share_between_spellings(classes: dict[str, dict]) -> int:
+    """Fill a class's empty fields from spellings that differ only in underscores.
+
+    ``cutlery_fork`` has a 3D model but no properties; ``cutleryfork`` has properties but
+    no model: both end up with both. The first spelling in sorted order that has a field
+    gives it. Returns how many fields were filled.
+    """
+    spellings: dict[str, list[str]] = {}
+    for name in sorted(classes):
+        spellings.setdefault(squash(name), []).append(name)
+    filled = 0
+    for names in spellings.values():
+        for key in ("properties", "states", "placements", "size"):
+            donor = next((classes[n][key] for n in names if classes[n][key]), None)
+            for n in names:
+                if donor and not classes[n][key]:
+                    classes[n][key] = donor
+                    filled += 1
+    return filled
 
 
 def convert(resources: Path) -> tuple[dict, list[str]]:
@@ -123,7 +146,9 @@ def convert(resources: Path) -> tuple[dict, list[str]]:
             states.update(_IMPLIED_STATES.get(prop, ()))
         classes[cls] = {"properties": props, "states": sorted(states),
                         "placements": placements.get(cls, []), "size": sizes.get(cls)}
-    report.append(f"classes: {len(classes)} in all")
+    filled = _share_between_spellings(classes)
+    report.append(f"classes: {len(classes)} in all ({filled} empty fields filled from another "
+                  "spelling)")
     equiv = {k.lower(): [v.lower() for v in vs] for k, vs in sorted(equivalences.items())}
     report.append(f"equivalences: {len(equiv)} script names")
     return {"format": FORMAT, "classes": classes, "equivalences": equiv}, report
