@@ -128,3 +128,10 @@ def test_bad_files_name_the_file(tmp_path):
         ObjectKB.load(path)
     with pytest.raises(DataError, match=r"missing\.json"):
         ObjectKB.load(tmp_path / "missing.json")
+
+
+def test_spellings_share_facts(kb):
+    # cutlery_fork has only a 3D model in the source, cutleryfork only properties
+    assert kb.properties("cutlery_fork") == kb.properties("cutleryfork") >= {"GRABBABLE"}
+    assert kb.prefab_size("cutleryfork") == kb.prefab_size("cutlery_fork") is not None
+    assert kb.placements("wineglass") == kb.placements("wine_glass") != []
