@@ -36,7 +36,7 @@ from homesim.errors import GroundingError
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.kbtypes import ObjectKnowledge, class_names_for, default_kb
-from homesim.sim.prepare import first_use, instances_of
+from homesim.sim.prepare import Prepared, first_use, instances_of, prepare
 from homesim.sim.standing import FloorPlan, Spot, has_geometry
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
@@ -326,3 +326,38 @@ def unground(program: Program) -> Program:
 
     return program.with_steps([Step(s.action, tuple(renumber(r) for r in s.args))
                                for s in program.steps])
+
+
+def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
+                       kb: ObjectKnowledge | None = None, repairs: int = 3,
+                       budget: int = DEFAULT_BUDGET) -> tuple[Prepared, Grounding]:
+    """Prepare the home for `program`, then ground it; add instances when that fails.
+
+    When grounding fails at a step because no instance of one of its objects can be used
+    there (every phone of the home is far from the table the program grabs it at), a
+    fresh instance of that object is added where the program needs it and the search
+    runs again, at most `repairs` times.
+
+    Returns:
+        (the preparation, the grounding in the prepared home).
+
+    Raises:
+        GroundingError: the last failure, when preparing or every attempt fails.
+    """
+    kb = kb or default_kb()
+    extra: list[Key] = []
+    rooms = {n.class_name for n in graph.rooms()}
+    while True:
+        prepared = prepare(program, graph, seed=seed, kb=kb, extra=extra)
+        try:
+            return prepared, ground(program, prepared.graph, seed=seed, kb=kb, budget=budget)
+        except GroundingError as e:
+            if repairs <= 0 or not e.step:
+                raise
+            step = program.steps[e.step - 1]
+            new = [ref.key for ref in step.args if ref.key not in extra
+                   and not rooms.intersection(class_names_for(ref.name, kb))]
+            if not new:
+                raise
+            extra += new
+            repairs -= 1

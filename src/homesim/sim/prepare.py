@@ -31,7 +31,7 @@ Two things are prepared, on a copy of the home (the input graph is never changed
 from __future__ import annotations
 
 import random
-from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from homesim.errors import GroundingError
@@ -44,6 +44,7 @@ from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.vocab import (
     CHARACTER_CLASS,
     CLOSE,
+    CONTAINERS,
     HAS_PLUG,
     HAS_SWITCH,
     INSIDE,
@@ -56,6 +57,7 @@ from homesim.world.vocab import (
     S_PLUGGED_IN,
     S_PLUGGED_OUT,
     S_SITTING,
+    SURFACES,
 )
 
 DEFAULT_SIZE = (0.15, 0.15, 0.15)
@@ -72,6 +74,13 @@ _GROUPS = {"switch": (S_ON, S_OFF), "door": (S_OPEN, S_CLOSED),
 # Character posture before a step that needs one: (state, set when first seen).
 _POSTURE_NEEDED = {"STANDUP": S_SITTING, "WAKEUP": S_LYING, "SLEEP": S_LYING}
 _POSTURE_SET = frozenset({"SIT", "LIE", "WALK", "RUN"})
+MOVES = frozenset({"WALK", "RUN", "FIND"})
+"""Steps that take the agent to their object."""
+NEEDS_REACH = frozenset({
+    "GRAB", "TOUCH", "OPEN", "CLOSE", "SWITCHON", "SWITCHOFF", "PLUGIN", "PLUGOUT", "PUSH",
+    "PULL", "MOVE", "SQUEEZE", "PUTBACK", "PUTIN", "POUR", "TYPE", "SIT", "LIE", "WIPE",
+    "WASH", "RINSE", "SCRUB", "EAT", "CUT"})
+"""Steps whose (last) object must be within the agent's reach."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -126,7 +135,8 @@ def instances_of(graph: EnvironmentGraph, classes: list[str]) -> list[int]:
 
 
 def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
-            kb: ObjectKnowledge | None = None) -> Prepared:
+            kb: ObjectKnowledge | None = None,
+            extra: Sequence[tuple[str, int]] = ()) -> Prepared:
     """Add the objects `program` needs and set the initial states it presupposes.
 
     Args:
@@ -134,6 +144,9 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         graph: the home; never modified.
         seed: breaks ties between equally good destinations and picks spots on them.
         kb: the object knowledge base (default: `homesim.knowledge.load_kb()`).
+        extra: program objects (class name, instance) to add a new instance for even
+            when the home has enough (grounding asks for these when the home's
+            instances are all out of reach; see `prepare_and_ground`).
 
     Returns:
         `Prepared`: the new graph, the additions and the state changes.
@@ -145,11 +158,12 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
     kb = kb or default_kb()
     rng = random.Random(seed)
     context = _Context(program, graph, kb)
-    missing: list[ObjectRef] = []
-    for name, refs in context.refs_by_name.items():
-        have = len(instances_of(graph, context.names[name]))
-        missing += refs[have:]
-    states = _initial_states(program, graph, context, kb)
+    missing = context.missing + [ref for refs in context.refs_by_name.values() for ref in refs
+                                 if ref.key in extra and ref not in context.missing]
+    context.find_anchors({ref.key for ref in missing})
+    missing = _anchors_first(missing, context)
+    required, posture = _presupposed(program)
+    states = _initial_states(graph, context, required, posture)
     if not missing and not states:
         return Prepared(graph, [])
     st = SimState(graph)
@@ -160,13 +174,33 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
             st.set_states(node_id, new)
             changed.append((node_id, old, new))
     plan = FloorPlan(graph) if has_geometry(graph) else None
-    added = [_add(st, ref, program, context, kb, rng, plan) for ref in missing]
+    added: list[Addition] = []
+    by_key: dict[Key, int] = {}
+    for ref in missing:
+        addition = _add(st, ref, program, context, kb, rng, plan, added, by_key)
+        added.append(addition)
+        by_key[ref.key] = addition.node_id
+        groups = required.get(_first_of_class(required, ref.name), {})
+        node = st.node(addition.node_id)
+        new = _apply(node.states, node.properties, groups)
+        if new != node.states:
+            st.set_states(addition.node_id, new)
     return Prepared(st.to_graph(), added, changed)
 
 
+Key = tuple[str, int]
+
+
 class _Context:
-    """What the program uses: per class name its refs and home class names, the rooms
-    it names, and which classes it uses and opens before each object's first use."""
+    """What the program uses and where it needs each object to be.
+
+    Anchors: the program moves the agent to objects and acts on objects within reach,
+    so it implies which objects start near which. The context follows where each object
+    is (near the object it was put on or in, or where it started) and where the agent is;
+    when a step needs an object within reach and the agent is elsewhere, an object still
+    to be added is anchored to the other place (walk to the freezer, find the food, open
+    the freezer: the food starts near the freezer).
+    """
 
     def __init__(self, program: Program, graph: EnvironmentGraph, kb: ObjectKnowledge):
         self.refs_by_name: dict[str, list[ObjectRef]] = {}
@@ -177,24 +211,83 @@ class _Context:
                 self.names[ref.name] = class_names_for(ref.name, kb)
         classes = {c for names in self.names.values() for c in names}
         self.rooms = [r.id for r in graph.rooms() if r.class_name in classes]
-        self.used_before: dict[tuple[str, int], set[str]] = {}
-        self.opened_before: dict[tuple[str, int], set[str]] = {}
+        self.missing: list[ObjectRef] = []
+        for name, refs in self.refs_by_name.items():
+            have = len(instances_of(graph, self.names[name]))
+            self.missing += refs[have:]
+        room_classes = {r.class_name for r in graph.rooms()}
+        self.is_room = {n: bool(room_classes.intersection(c)) for n, c in self.names.items()}
+        self.used_before: dict[Key, set[str]] = {}
+        self.opened_before: dict[Key, set[str]] = {}
+        self.anchor: dict[Key, Key] = {}
+        self._program = program
+
+    def find_anchors(self, free: set[Key]) -> None:
+        """Anchor each object of `free` (to be added) where the program needs it."""
+        parent: dict[Key, Key] = {}
+        held: set[Key] = set()
+        first_at: dict[Key, Key] = {}
         used: set[str] = set()
         opened: set[str] = set()
-        for step in program.steps:
+        agent: Key | None = None  # where the agent is: near this object's place
+
+        def root(k: Key) -> Key:
+            seen = {k}
+            while k in parent and parent[k] not in seen:
+                k = parent[k]
+                seen.add(k)
+            return k
+
+        def is_free(k: Key) -> bool:
+            return k in free and k not in self.anchor
+
+        for step in self._program.steps:
+            key = step.action.key
             for ref in step.args:
                 self.used_before.setdefault(ref.key, set(used))
                 self.opened_before.setdefault(ref.key, set(opened))
+                if agent is not None and agent != ref.key:
+                    first_at.setdefault(ref.key, agent)
+            if key in MOVES and step.args:
+                ref = step.args[0]
+                if self.is_room[ref.name]:
+                    agent = None
+                elif ref.key not in held:
+                    agent = root(ref.key)
+            if key in NEEDS_REACH and step.args:
+                target = step.args[-1]
+                if (target.key not in held and not self.is_room[target.name]
+                        and agent is not None):
+                    there = root(target.key)
+                    if there != agent:
+                        if is_free(there):
+                            self.anchor[there] = parent[there] = agent
+                        elif is_free(agent):
+                            self.anchor[agent] = parent[agent] = there
+                            agent = there
             for ref in step.args:
                 used.update(self.names[ref.name])
-                if step.action.key == "OPEN":
+                if key == "OPEN":
                     opened.update(self.names[ref.name])
+            if key == "GRAB" and step.args:
+                held.add(step.args[0].key)
+            elif key in ("PUTBACK", "PUTIN") and len(step.args) == 2:
+                held.discard(step.args[0].key)
+                parent[step.args[0].key] = root(step.args[1].key)
+            elif key in ("DROP", "RELEASE", "PUTOBJBACK") and step.args:
+                held.discard(step.args[0].key)
+                if agent is not None:
+                    parent[step.args[0].key] = agent
+        # Otherwise: near what the agent was at when the program first names it.
+        for k, at in first_at.items():
+            if k in free and k not in self.anchor and root(at) != k:
+                self.anchor[k] = root(at)
 
 
-def _initial_states(program: Program, graph: EnvironmentGraph, context: _Context,
-                    kb: ObjectKnowledge) -> dict[int, frozenset[str]]:
-    """Node id -> the states the program presupposes for it (only nodes that change)."""
-    required: dict[tuple[str, int], dict[str, str]] = {}
+def _presupposed(program: Program) -> tuple[dict[Key, dict[str, str]], str | None]:
+    """Per program object, the state of each group (switch, door, plug) its first steps
+    presuppose; and the posture the character must start in, if any."""
+    required: dict[Key, dict[str, str]] = {}
     posture: str | None = None
     posture_known = False
     for step in program.steps:
@@ -216,28 +309,48 @@ def _initial_states(program: Program, graph: EnvironmentGraph, context: _Context
             groups.setdefault("plug?", S_PLUGGED_IN)
         if key == "OPEN":
             groups.setdefault("switch?", S_OFF)
+    return required, posture
+
+
+def _first_of_class(required: dict[Key, dict[str, str]], name: str) -> Key | None:
+    return next((k for k in required if k[0] == name), None)
+
+
+def _apply(states: frozenset[str], properties: frozenset[str],
+           groups: dict[str, str]) -> frozenset[str]:
+    out = set(states)
+    for group, state in groups.items():
+        if group == "plug?":
+            if HAS_PLUG not in properties or "plug" in groups:
+                continue
+            group = "plug"
+        elif group == "switch?":
+            if HAS_SWITCH not in properties or "switch" in groups:
+                continue
+            group = "switch"
+        out.difference_update(_GROUPS[group])
+        out.add(state)
+    return frozenset(out)
+
+
+def _initial_states(graph: EnvironmentGraph, context: _Context,
+                    required: dict[Key, dict[str, str]],
+                    posture: str | None) -> dict[int, frozenset[str]]:
+    """Node id -> the states the program presupposes for it (only nodes that change).
+
+    Set on every instance of the object's classes; when one class has several program
+    objects, the first one decides."""
     out: dict[int, frozenset[str]] = {}
     done: set[str] = set()
     for (name, _), groups in required.items():
-        if name in done:  # one class, several objects: the first one decides
+        if name in done:
             continue
         done.add(name)
         for node_id in instances_of(graph, context.names[name]):
             node = graph.nodes[node_id]
-            states = set(out.get(node_id, node.states))
-            for group, state in groups.items():
-                if group == "plug?":
-                    if HAS_PLUG not in node.properties or "plug" in groups:
-                        continue
-                    group = "plug"
-                elif group == "switch?":
-                    if HAS_SWITCH not in node.properties or "switch" in groups:
-                        continue
-                    group = "switch"
-                states.difference_update(_GROUPS[group])
-                states.add(state)
-            if frozenset(states) != node.states:
-                out[node_id] = frozenset(states)
+            new = _apply(out.get(node_id, node.states), node.properties, groups)
+            if new != node.states:
+                out[node_id] = new
     char = graph.character_id
     if posture is not None and char is not None:
         states = graph.nodes[char].states
@@ -246,8 +359,28 @@ def _initial_states(program: Program, graph: EnvironmentGraph, context: _Context
     return out
 
 
+def _anchors_first(refs: list[ObjectRef], context: _Context) -> list[ObjectRef]:
+    """Order the objects to add so that an object's anchor is added before it."""
+    pending = list(refs)
+    ordered: list[ObjectRef] = []
+    while pending:
+        keys = {r.key for r in pending}
+        ready = next((r for r in pending if context.anchor.get(r.key) not in keys), pending[0])
+        pending.remove(ready)
+        ordered.append(ready)
+    return ordered
+
+
+def _instances(st: SimState, classes: list[str], added: list[Addition]) -> list[int]:
+    """Instances of `classes` in the home, including the objects added so far."""
+    ids = instances_of(st.graph, classes)
+    ids += [a.node_id for a in added if a.class_name in classes]
+    return ids
+
+
 def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
-         kb: ObjectKnowledge, rng: random.Random, plan: FloorPlan | None) -> Addition:
+         kb: ObjectKnowledge, rng: random.Random, plan: FloorPlan | None,
+         added: list[Addition], by_key: dict[Key, int], no_anchor: bool = False) -> Addition:
     graph = st.graph
     name = ref.name
     step_no, step_text = first_use(program, ref.key)
@@ -264,26 +397,53 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             break
     used = context.used_before.get(ref.key, set())
     opened = context.opened_before.get(ref.key, set())
+    # Where the agent is when the program needs the object: put it within reach.
+    anchors: list[int] = []
+    anchor = None if no_anchor else context.anchor.get(ref.key)
+    if anchor is not None:
+        exact = by_key.get(anchor)
+        anchors = [exact] if exact is not None else _instances(st, context.names[anchor[0]],
+                                                               added)
     options = []
     for p in placements:
         relation = INSIDE if p.relation.upper() in ("IN", INSIDE) else ON
         room_classes = set(class_names_for(p.room, kb)) if p.room else None
-        for dest in instances_of(graph, class_names_for(p.destination, kb)):
-            room = graph.room_of(dest)
+        for dest in _instances(st, class_names_for(p.destination, kb), added):
+            room = st.room_of(dest)
             if room is None or dest == room:
                 continue
             if room_classes is not None and graph.nodes[room].class_name not in room_classes:
                 continue
-            cls = graph.nodes[dest].class_name
+            cls = st.class_name(dest)
             hidden = relation == INSIDE and S_CLOSED in st.states(dest) and cls not in opened
-            score = (hidden, cls not in used, room not in context.rooms, rng.random())
+            near = 0 if dest in anchors else (
+                1 if not st.targets(dest, CLOSE).isdisjoint(anchors) else 2)
+            score = (hidden, near, cls not in used, room not in context.rooms, rng.random())
             options.append((score, dest, relation, room))
+    # The program's own evidence beats the knowledge base: it walks to the coffee table
+    # and grabs the novel there, so the novel may lie on the coffee table.
+    listed = {(o[1], o[2]) for o in options}
+    for a in anchors:
+        room = st.room_of(a)
+        if room is None or a == room:
+            continue
+        props = st.properties(a)
+        hidden = S_CLOSED in st.states(a) and st.class_name(a) not in opened
+        for relation, prop, blocked in ((ON, SURFACES, False), (INSIDE, CONTAINERS, hidden)):
+            if prop in props and not blocked and (a, relation) not in listed:
+                options.append(((False, 0, False, room not in context.rooms, rng.random()),
+                                a, relation, room))
     options.sort()
     size = _size(names, kb) if plan is not None else None
+    if anchors and (not options or options[0][0][1] == 2):
+        options = [o for o in options if o[0][1] < 2]  # within reach beats a far shelf
+        far = True
+    else:
+        far = False
     for _, dest, relation, room in options:
         box = None
         if size is not None:
-            dest_box = graph.nodes[dest].bounding_box
+            dest_box = st.node(dest).bounding_box
             if dest_box is None:
                 continue
             others = [b for b in (st.node(x).bounding_box for x in st.sources(dest, relation))
@@ -291,33 +451,50 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             box = place_box(size, dest_box, relation, others, rng)
             if box is None:
                 continue
-        return _put(st, ref, names, kb, box, dest, relation, room)
-    # No destination in the home (or none with space): stand it on the floor of a room.
-    rooms = context.rooms or sorted(graph.room_ids)
-    rooms = sorted(rooms, key=lambda r: (r not in context.rooms, rng.random()))
-    for room in rooms:
+        near = [a for a in anchors if a == dest or a in st.targets(dest, CLOSE)]
+        return _put(st, ref, names, kb, box, dest, relation, room, near)
+    # No destination in the home (or none with space): stand it on the floor, next to
+    # where the agent is then if it is known, else in a room the program names.
+    spots: list[tuple[int, list[int]]] = [(a, [a]) for a in anchors
+                                          if st.room_of(a) not in (None, a)]
+    if not far:
+        rooms = sorted(context.rooms or graph.room_ids,
+                       key=lambda r: (r not in context.rooms, rng.random()))
+        spots += [(r, []) for r in rooms]
+    for target, near in spots:
+        room = st.room_of(target)
+        assert room is not None
         box = None
         if plan is not None and size is not None:
-            spot = plan.free_floor(room, size[0], size[2], rng)
+            target_box = st.node(target).bounding_box
+            if near and target_box is not None:
+                spot = plan.free_floor_near(room, target_box, size[0], size[2])
+            else:
+                spot = plan.free_floor(room, size[0], size[2], rng)
             if spot is None:
                 continue
             box = BoundingBox((spot[0], size[1] / 2, spot[1]), size)
             plan.add_obstacle(room, box)
-        return _put(st, ref, names, kb, box, room, INSIDE, room)
-    tried = ", ".join(sorted({graph.nodes[d].class_name for _, d, _, _ in options}))
+        return _put(st, ref, names, kb, box, room, INSIDE, room, near)
+    if far:  # nothing within reach of the anchor: fall back to the far options
+        return _add(st, ref, program, context, kb, rng, plan, added, by_key, no_anchor=True)
+    tried = ", ".join(sorted({st.class_name(d) for _, d, _, _ in options}))
     raise GroundingError(f"{where}{lacks}, and there is no free space for one on or in "
                          f"{tried or 'any destination'} or on the floor of any room",
                          step_no, str(ref), tried)
 
 
 def _put(st: SimState, ref: ObjectRef, names: list[str], kb: ObjectKnowledge,
-         box: BoundingBox | None, dest: int, relation: str, room: int) -> Addition:
+         box: BoundingBox | None, dest: int, relation: str, room: int,
+         near: list[int]) -> Addition:
     node_id = max(st.next_node_id(), 1000)  # as the real data numbers added objects
     st.add_node(_new_node(node_id, ref.name, names, kb, box))
     st.add_edge(node_id, INSIDE, room)
     if dest != room:
         st.add_edge(node_id, relation, dest)
         st.add_pair(node_id, CLOSE, dest)
+    for a in near:
+        st.add_pair(node_id, CLOSE, a)
     return Addition(node_id, ref.name, dest, relation, room)
 
 

@@ -102,6 +102,14 @@ class FloorPlan:
                 return (x, z)
         return None
 
+    def free_floor_near(self, room: int, box: BoundingBox, size_x: float,
+                        size_z: float) -> Spot | None:
+        """The nearest spot around `box` where a footprint of this size fits, or None."""
+        for x, z in self._ring_spots(box, max(size_x, size_z)):
+            if self.is_free(room, x, z, size_x, size_z):
+                return (x, z)
+        return None
+
     def add_obstacle(self, room: int, box: BoundingBox) -> None:
         """Count a new object's box as an obstacle (scene preparation adds objects)."""
         self._room_parts(room)[1].append(box)
@@ -124,7 +132,7 @@ class FloorPlan:
         self._spots[node_id] = spot
         return spot
 
-    def _ring_spots(self, box: BoundingBox) -> Iterator[Spot]:
+    def _ring_spots(self, box: BoundingBox, width: float = AGENT_SIZE) -> Iterator[Spot]:
         hx, hz = box.size[0] / 2, box.size[2] / 2
         for ring in _RINGS:
             for k in range(_DIRECTIONS):
@@ -133,7 +141,7 @@ class FloorPlan:
                 # Distance from the centre to the footprint's edge along (dx, dz).
                 edge = min(hx / abs(dx) if abs(dx) > 1e-9 else math.inf,
                            hz / abs(dz) if abs(dz) > 1e-9 else math.inf)
-                r = edge + AGENT_SIZE / 2 + ring
+                r = edge + width / 2 + ring
                 yield (box.center[0] + r * dx, box.center[2] + r * dz)
 
     def _room_spot(self, room: int, box: BoundingBox) -> Spot | None:
