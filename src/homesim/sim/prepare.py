@@ -45,6 +45,7 @@ from homesim.world.vocab import (
     CHARACTER_CLASS,
     CLOSE,
     CONTAINERS,
+    GRABBABLE,
     HAS_PLUG,
     HAS_SWITCH,
     INSIDE,
@@ -220,68 +221,80 @@ class _Context:
         self.used_before: dict[Key, set[str]] = {}
         self.opened_before: dict[Key, set[str]] = {}
         self.anchor: dict[Key, Key] = {}
+        self.room_before: dict[Key, list[str]] = {}
         self._program = program
 
     def find_anchors(self, free: set[Key]) -> None:
-        """Anchor each object of `free` (to be added) where the program needs it."""
+        """Anchor each object of `free` (to be added) where the program needs it.
+
+        Places are the starting places of the program's objects; `parent` joins a place
+        to the place it must be near. An object is at its starting place until the
+        program puts it somewhere else."""
         parent: dict[Key, Key] = {}
+        pos: dict[Key, Key] = {}  # object -> the starting place it is at now
         held: set[Key] = set()
         first_at: dict[Key, Key] = {}
         used: set[str] = set()
         opened: set[str] = set()
-        agent: Key | None = None  # where the agent is: near this object's place
+        agent: Key | None = None  # the place the agent is at
+        room: list[str] = []  # classes of the room the agent last walked into
 
-        def root(k: Key) -> Key:
-            seen = {k}
-            while k in parent and parent[k] not in seen:
-                k = parent[k]
-                seen.add(k)
-            return k
-
-        def is_free(k: Key) -> bool:
-            return k in free and k not in self.anchor
+        def place(k: Key) -> Key:
+            p = pos.get(k, k)
+            while p in parent:
+                p = parent[p]
+            return p
 
         for step in self._program.steps:
             key = step.action.key
             for ref in step.args:
                 self.used_before.setdefault(ref.key, set(used))
                 self.opened_before.setdefault(ref.key, set(opened))
+                self.room_before.setdefault(ref.key, room)
                 if agent is not None and agent != ref.key:
                     first_at.setdefault(ref.key, agent)
             if key in MOVES and step.args:
                 ref = step.args[0]
                 if self.is_room[ref.name]:
-                    agent = None
+                    agent, room = None, self.names[ref.name]
                 elif ref.key not in held:
-                    agent = root(ref.key)
-            if key in NEEDS_REACH and step.args:
+                    agent = place(ref.key)
+            if key in NEEDS_REACH and step.args and agent is not None:
                 target = step.args[-1]
-                if (target.key not in held and not self.is_room[target.name]
-                        and agent is not None):
-                    there = root(target.key)
+                if target.key not in held and not self.is_room[target.name]:
+                    there = place(target.key)
                     if there != agent:
-                        if is_free(there):
-                            self.anchor[there] = parent[there] = agent
-                        elif is_free(agent):
+                        # Only a starting place of an object still to be added can move.
+                        # Prefer moving the place the agent went to (the detergent it
+                        # walked to goes near the washing machine it pours into).
+                        if agent in free and agent not in self.anchor:
                             self.anchor[agent] = parent[agent] = there
                             agent = there
+                        elif there in free and there not in self.anchor:
+                            self.anchor[there] = parent[there] = agent
             for ref in step.args:
                 used.update(self.names[ref.name])
                 if key == "OPEN":
                     opened.update(self.names[ref.name])
             if key == "GRAB" and step.args:
+                if step.args[0].key not in pos:
+                    pos[step.args[0].key] = place(step.args[0].key)
                 held.add(step.args[0].key)
             elif key in ("PUTBACK", "PUTIN") and len(step.args) == 2:
                 held.discard(step.args[0].key)
-                parent[step.args[0].key] = root(step.args[1].key)
+                pos[step.args[0].key] = place(step.args[1].key)
             elif key in ("DROP", "RELEASE", "PUTOBJBACK") and step.args:
                 held.discard(step.args[0].key)
                 if agent is not None:
-                    parent[step.args[0].key] = agent
+                    pos[step.args[0].key] = agent
         # Otherwise: near what the agent was at when the program first names it.
         for k, at in first_at.items():
-            if k in free and k not in self.anchor and root(at) != k:
-                self.anchor[k] = root(at)
+            if k in free and k not in self.anchor and k not in parent:
+                p = at
+                while p in parent:
+                    p = parent[p]
+                if p != k:
+                    self.anchor[k] = p
 
 
 def _presupposed(program: Program) -> tuple[dict[Key, dict[str, str]], str | None]:
@@ -398,6 +411,14 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     used = context.used_before.get(ref.key, set())
     opened = context.opened_before.get(ref.key, set())
     # Where the agent is when the program needs the object: put it within reach.
+    walked_into = context.room_before.get(ref.key, [])
+
+    def room_rank(room: int) -> int:
+        """0: the room the agent walked into before; 1: a room the program names."""
+        if graph.nodes[room].class_name in walked_into:
+            return 0
+        return 1 if room in context.rooms else 2
+
     anchors: list[int] = []
     anchor = None if no_anchor else context.anchor.get(ref.key)
     if anchor is not None:
@@ -418,12 +439,13 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             hidden = relation == INSIDE and S_CLOSED in st.states(dest) and cls not in opened
             near = 0 if dest in anchors else (
                 1 if not st.targets(dest, CLOSE).isdisjoint(anchors) else 2)
-            score = (hidden, near, cls not in used, room not in context.rooms, rng.random())
+            score = (hidden, near, cls not in used, room_rank(room), rng.random())
             options.append((score, dest, relation, room))
     # The program's own evidence beats the knowledge base: it walks to the coffee table
     # and grabs the novel there, so the novel may lie on the coffee table.
     listed = {(o[1], o[2]) for o in options}
-    for a in anchors:
+    small = any(GRABBABLE in kb.properties(c) for c in names)
+    for a in anchors if small else ():
         room = st.room_of(a)
         if room is None or a == room:
             continue
@@ -431,12 +453,13 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
         hidden = S_CLOSED in st.states(a) and st.class_name(a) not in opened
         for relation, prop, blocked in ((ON, SURFACES, False), (INSIDE, CONTAINERS, hidden)):
             if prop in props and not blocked and (a, relation) not in listed:
-                options.append(((False, 0, False, room not in context.rooms, rng.random()),
+                options.append(((False, 0, False, room_rank(room), rng.random()),
                                 a, relation, room))
     options.sort()
     size = _size(names, kb) if plan is not None else None
-    if anchors and (not options or options[0][0][1] == 2):
-        options = [o for o in options if o[0][1] < 2]  # within reach beats a far shelf
+    if anchors and (not options or options[0][0][0] or options[0][0][1] == 2):
+        # Within reach beats a far shelf; hidden in a closed container reaches nothing.
+        options = [o for o in options if o[0][1] < 2 and not o[0][0]]
         far = True
     else:
         far = False
@@ -458,8 +481,7 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     spots: list[tuple[int, list[int]]] = [(a, [a]) for a in anchors
                                           if st.room_of(a) not in (None, a)]
     if not far:
-        rooms = sorted(context.rooms or graph.room_ids,
-                       key=lambda r: (r not in context.rooms, rng.random()))
+        rooms = sorted(graph.room_ids, key=lambda r: (room_rank(r), rng.random()))
         spots += [(r, []) for r in rooms]
     for target, near in spots:
         room = st.room_of(target)
