@@ -347,17 +347,24 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     kb = kb or default_kb()
     extra: list[Key] = []
     rooms = {n.class_name for n in graph.rooms()}
+    failure: GroundingError | None = None
     while True:
-        prepared = prepare(program, graph, seed=seed, kb=kb, extra=extra)
+        try:
+            prepared = prepare(program, graph, seed=seed, kb=kb, extra=extra)
+        except GroundingError:
+            if failure is None:
+                raise
+            raise failure from None  # the extra instance did not fit: report the search
         try:
             return prepared, ground(program, prepared.graph, seed=seed, kb=kb, budget=budget)
         except GroundingError as e:
+            failure = failure or e
             if repairs <= 0 or not e.step:
-                raise
+                raise failure from None
             step = program.steps[e.step - 1]
             new = [ref.key for ref in step.args if ref.key not in extra
                    and not rooms.intersection(class_names_for(ref.name, kb))]
             if not new:
-                raise
+                raise failure from None
             extra += new
             repairs -= 1

@@ -33,6 +33,7 @@ from __future__ import annotations
 import random
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.program.model import ObjectRef, Program
@@ -211,6 +212,7 @@ class _Context:
             if ref.name not in self.names:
                 self.names[ref.name] = class_names_for(ref.name, kb)
         classes = {c for names in self.names.values() for c in names}
+        self.classes = classes
         self.rooms = [r.id for r in graph.rooms() if r.class_name in classes]
         self.missing: list[ObjectRef] = []
         for name, refs in self.refs_by_name.items():
@@ -237,6 +239,7 @@ class _Context:
         used: set[str] = set()
         opened: set[str] = set()
         agent: Key | None = None  # the place the agent is at
+        sitting = False  # a seated agent's Find does not walk: it needs reach
         room: list[str] = []  # classes of the room the agent last walked into
 
         def place(k: Key) -> Key:
@@ -253,13 +256,18 @@ class _Context:
                 self.room_before.setdefault(ref.key, room)
                 if agent is not None and agent != ref.key:
                     first_at.setdefault(ref.key, agent)
-            if key in MOVES and step.args:
+            reach = key in NEEDS_REACH or (key == "FIND" and sitting)
+            if key in ("SIT", "LIE"):
+                sitting = True
+            elif key in ("STANDUP", "WALK", "RUN"):
+                sitting = False
+            if key in MOVES and step.args and not reach:
                 ref = step.args[0]
                 if self.is_room[ref.name]:
                     agent, room = None, self.names[ref.name]
                 elif ref.key not in held:
                     agent = place(ref.key)
-            if key in NEEDS_REACH and step.args and agent is not None:
+            if reach and step.args and agent is not None:
                 target = step.args[-1]
                 if target.key not in held and not self.is_room[target.name]:
                     there = place(target.key)
@@ -393,7 +401,7 @@ def _instances(st: SimState, classes: list[str], added: list[Addition]) -> list[
 
 def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
          kb: ObjectKnowledge, rng: random.Random, plan: FloorPlan | None,
-         added: list[Addition], by_key: dict[Key, int], no_anchor: bool = False) -> Addition:
+         added: list[Addition], by_key: dict[Key, int]) -> Addition:
     graph = st.graph
     name = ref.name
     step_no, step_text = first_use(program, ref.key)
@@ -420,11 +428,14 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
         return 1 if room in context.rooms else 2
 
     anchors: list[int] = []
-    anchor = None if no_anchor else context.anchor.get(ref.key)
+    anchor = context.anchor.get(ref.key)
     if anchor is not None:
         exact = by_key.get(anchor)
-        anchors = [exact] if exact is not None else _instances(st, context.names[anchor[0]],
-                                                               added)
+        if exact is not None:
+            anchors = [exact]
+        else:
+            anchors = _best_anchor(st, _instances(st, context.names[anchor[0]], added),
+                                   context, room_rank, rng)
     options = []
     for p in placements:
         relation = INSIDE if p.relation.upper() in ("IN", INSIDE) else ON
@@ -457,36 +468,35 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
                                 a, relation, room))
     options.sort()
     size = _size(names, kb) if plan is not None else None
-    if anchors and (not options or options[0][0][0] or options[0][0][1] == 2):
-        # Within reach beats a far shelf; hidden in a closed container reaches nothing.
-        options = [o for o in options if o[0][1] < 2 and not o[0][0]]
-        far = True
-    else:
-        far = False
-    for _, dest, relation, room in options:
+    visible = [o for o in options if not o[0][0]]
+    hidden = [o for o in options if o[0][0]]  # a last resort: grabbing it will fail
+    floor_near = [(a, [a]) for a in anchors if st.room_of(a) not in (None, a)]
+    floor_any = [(r, []) for r in sorted(graph.room_ids, key=lambda r: (room_rank(r),
+                                                                      rng.random()))]
+    # Within reach of the anchor beats a far shelf; a shelf beats the bare floor.
+    attempts: list[tuple[str, Any]] = [("dest", o) for o in visible if o[0][1] < 2]
+    attempts += [("floor", f) for f in floor_near]
+    attempts += [("dest", o) for o in visible if o[0][1] == 2]
+    attempts += [("floor", f) for f in floor_any]
+    attempts += [("dest", o) for o in hidden]
+    for kind, attempt in attempts:
         box = None
-        if size is not None:
-            dest_box = st.node(dest).bounding_box
-            if dest_box is None:
-                continue
-            others = [b for b in (st.node(x).bounding_box for x in st.sources(dest, relation))
-                      if b is not None]
-            box = place_box(size, dest_box, relation, others, rng)
-            if box is None:
-                continue
-        near = [a for a in anchors if a == dest or a in st.targets(dest, CLOSE)]
-        return _put(st, ref, names, kb, box, dest, relation, room, near)
-    # No destination in the home (or none with space): stand it on the floor, next to
-    # where the agent is then if it is known, else in a room the program names.
-    spots: list[tuple[int, list[int]]] = [(a, [a]) for a in anchors
-                                          if st.room_of(a) not in (None, a)]
-    if not far:
-        rooms = sorted(graph.room_ids, key=lambda r: (room_rank(r), rng.random()))
-        spots += [(r, []) for r in rooms]
-    for target, near in spots:
+        if kind == "dest":
+            _, dest, relation, room = attempt
+            if size is not None:
+                dest_box = st.node(dest).bounding_box
+                if dest_box is None:
+                    continue
+                others = [b for b in (st.node(x).bounding_box
+                                      for x in st.sources(dest, relation)) if b is not None]
+                box = place_box(size, dest_box, relation, others, rng)
+                if box is None:
+                    continue
+            near = [a for a in anchors if a == dest or a in st.targets(dest, CLOSE)]
+            return _put(st, ref, names, kb, box, dest, relation, room, near)
+        target, near = attempt
         room = st.room_of(target)
         assert room is not None
-        box = None
         if plan is not None and size is not None:
             target_box = st.node(target).bounding_box
             if near and target_box is not None:
@@ -498,12 +508,22 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             box = BoundingBox((spot[0], size[1] / 2, spot[1]), size)
             plan.add_obstacle(room, box)
         return _put(st, ref, names, kb, box, room, INSIDE, room, near)
-    if far:  # nothing within reach of the anchor: fall back to the far options
-        return _add(st, ref, program, context, kb, rng, plan, added, by_key, no_anchor=True)
     tried = ", ".join(sorted({st.class_name(d) for _, d, _, _ in options}))
     raise GroundingError(f"{where}{lacks}, and there is no free space for one on or in "
                          f"{tried or 'any destination'} or on the floor of any room",
                          step_no, str(ref), tried)
+
+
+def _best_anchor(st: SimState, candidates: list[int], context: _Context,
+                 room_rank: Any, rng: random.Random) -> list[int]:
+    """The one instance of the anchor's class grounding is likely to choose: the one
+    close to most objects of the program's classes (the chair at the computer), in the
+    room the agent walked into."""
+    classes = context.classes
+    best = sorted(candidates, key=lambda n: (
+        -sum(1 for x in st.targets(n, CLOSE) if st.class_name(x) in classes),
+        room_rank(st.room_of(n)), rng.random()))
+    return best[:1]
 
 
 def _put(st: SimState, ref: ObjectRef, names: list[str], kb: ObjectKnowledge,

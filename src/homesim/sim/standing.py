@@ -26,6 +26,8 @@ AGENT_SIZE = 0.4
 """Side (m) of the agent's square footprint."""
 _RINGS = (0.25, 0.45, 0.7, 1.0)
 """Distances (m) from the object's footprint edge to the agent's centre, tried in turn."""
+_FLOOR_RINGS = (0.05, 0.2, 0.4, 0.6, 0.8, 1.0)
+"""Distances (m) from an anchor's footprint at which a new object may stand on the floor."""
 _DIRECTIONS = 16
 _BODY_LOW, _BODY_HIGH = 0.1, 1.5
 """Boxes lower than this (rugs) or starting above that (shelves on walls) do not block."""
@@ -105,7 +107,7 @@ class FloorPlan:
     def free_floor_near(self, room: int, box: BoundingBox, size_x: float,
                         size_z: float) -> Spot | None:
         """The nearest spot around `box` where a footprint of this size fits, or None."""
-        for x, z in self._ring_spots(box, max(size_x, size_z)):
+        for x, z in self._ring_spots(box, max(size_x, size_z), _FLOOR_RINGS):
             if self.is_free(room, x, z, size_x, size_z):
                 return (x, z)
         return None
@@ -132,9 +134,10 @@ class FloorPlan:
         self._spots[node_id] = spot
         return spot
 
-    def _ring_spots(self, box: BoundingBox, width: float = AGENT_SIZE) -> Iterator[Spot]:
+    def _ring_spots(self, box: BoundingBox, width: float = AGENT_SIZE,
+                    rings: tuple[float, ...] = _RINGS) -> Iterator[Spot]:
         hx, hz = box.size[0] / 2, box.size[2] / 2
-        for ring in _RINGS:
+        for ring in rings:
             for k in range(_DIRECTIONS):
                 a = 2 * math.pi * ((k + self.rotation) % _DIRECTIONS) / _DIRECTIONS
                 dx, dz = math.cos(a), math.sin(a)
