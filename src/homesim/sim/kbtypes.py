@@ -8,6 +8,7 @@ and resolves program class names to the class names a home uses.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import lru_cache
 from typing import Any, Protocol
 
 
@@ -48,8 +49,15 @@ def class_names_for(name: str, kb: ObjectKnowledge) -> list[str]:
     >>> class_names_for("television", _KB()), class_names_for("tv", _KB())
     (['television', 'tv'], ['tv', 'television'])
     """
+    return list(_class_names(kb, name))
+
+
+@lru_cache(maxsize=8192)
+def _class_names(kb: ObjectKnowledge, name: str) -> tuple[str, ...]:
+    # Cached: the knowledge base's name lookups scan its classes, and grounding asks for
+    # the same few names over and over (the knowledge base is read-only).
     out = [name]
     for other in (*kb.equivalents(name), *kb.script_names(name)):
         if other not in out:
             out.append(other)
-    return out
+    return tuple(out)
