@@ -62,6 +62,10 @@ from homesim.world.vocab import (
     SURFACES,
 )
 
+ROOM_NAMES = frozenset({
+    "bathroom", "bedroom", "kitchen", "livingroom", "living_room", "dining_room",
+    "home_office", "office", "garage", "hallway", "entrance_hall", "kids_bedroom"})
+"""Room classes of VirtualHome programs and homes: a home lacking one cannot get it."""
 DEFAULT_SIZE = (0.15, 0.15, 0.15)
 """Box size (m) for an added object whose class has no prefab dimensions."""
 
@@ -408,9 +412,13 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     where = f"step {step_no} {step_text}: " if step_no else ""
     names = context.names[name]
     lacks = f"the home has too few {' or '.join(names)} for <{name}> ({ref.instance})"
-    if name == CHARACTER_CLASS or any(n.is_room for c in names for n in graph.nodes_of_class(c)):
+    if (name == CHARACTER_CLASS or ROOM_NAMES.intersection(names)
+            or any(n.is_room for c in names for n in graph.nodes_of_class(c))):
         raise GroundingError(f"{where}{lacks}; rooms and characters cannot be added",
                              step_no, str(ref), "rooms")
+    if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c) for c in names):
+        raise GroundingError(f"{where}{lacks}, and the knowledge base does not know "
+                             f"{name!r}, so none can be added", step_no, str(ref), "")
     placements = []
     for c in names:
         placements = list(kb.placements(c))
