@@ -152,6 +152,10 @@ class _Search:
             if key not in result:
                 return result  # backjump: this object's choice is not to blame
             blame |= result
+        if self.owner.keys() >= set(self.domains[key]) and i >= self.deepest[0]:
+            taken = len(self.domains[key])
+            self.deepest = (i, f"all {taken} instances of <{ref.name}> in the home are "
+                               "bound to other objects of the program")
         blame.discard(key)
         return blame
 
