@@ -36,7 +36,7 @@ from homesim.errors import GroundingError
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.kbtypes import ObjectKnowledge, class_names_for, default_kb
-from homesim.sim.prepare import Prepared, first_use, instances_of, prepare
+from homesim.sim.prepare import NEEDS, Prepared, first_use, instances_of, prepare
 from homesim.sim.standing import FloorPlan, Spot, has_geometry
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
@@ -71,6 +71,8 @@ class _OutOfBudget(Exception):
     pass
 
 
+
+
 class _Search:
     """One backtracking search; see the module docstring."""
 
@@ -90,6 +92,12 @@ class _Search:
         self.tried: dict[Key, list[int]] = {}
         self.deepest: tuple[int, str] = (-1, "")
         self.plan = FloorPlan(graph, rotation=seed) if geometry else None
+        self.needs: dict[Key, list[frozenset[str]]] = {}
+        for step in program.steps:
+            for pos, ref in enumerate(step.args):
+                need = NEEDS.get((step.action.key, pos))
+                if need is not None:
+                    self.needs.setdefault(ref.key, []).append(need)
         self.spots: list[Spot | None] = [None] * len(self.steps)
         for ref in program.object_refs():
             classes = class_names_for(ref.name, kb)
@@ -174,7 +182,8 @@ class _Search:
 
     # ------------------------------------------------------------------ preference
     def order(self, key: Key) -> list[int]:
-        """Candidates for `key`, best first (see the module docstring)."""
+        """Candidates for `key`, best first (see the module docstring); those lacking a
+        property the program's steps need come last."""
         st = self.st
         char_room = st.room_of(st.char)
         bound = [n for n in self.assign.values() if n not in st.rooms]
@@ -182,7 +191,10 @@ class _Search:
         boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
                              if n in self.graph.nodes) if b is not None]
         scored = []
+        needs = self.needs.get(key, ())
         for node in self.domains[key]:
+            props = st.properties(node)
+            lacking = sum(1 for need in needs if props.isdisjoint(need))
             related = 0
             if bound:
                 near = st.targets(node, CLOSE)
@@ -200,7 +212,7 @@ class _Search:
             tie = self.tie.get(node)
             if tie is None:
                 tie = self.tie[node] = self.rng.random()
-            scored.append((-related, room_rank, dist, tie, node))
+            scored.append((lacking, -related, room_rank, dist, tie, node))
         scored.sort()
         return [s[-1] for s in scored]
 
@@ -333,7 +345,7 @@ def unground(program: Program) -> Program:
 
 
 def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
-                       kb: ObjectKnowledge | None = None, repairs: int = 3,
+                       kb: ObjectKnowledge | None = None, repairs: int = 4,
                        budget: int = DEFAULT_BUDGET) -> tuple[Prepared, Grounding]:
     """Prepare the home for `program`, then ground it; add instances when that fails.
 

@@ -80,6 +80,21 @@ _GROUPS = {"switch": (S_ON, S_OFF), "door": (S_OPEN, S_CLOSED),
 # Character posture before a step that needs one: (state, set when first seen).
 _POSTURE_NEEDED = {"STANDUP": S_SITTING, "WAKEUP": S_LYING, "SLEEP": S_LYING}
 _POSTURE_SET = frozenset({"SIT", "LIE", "WALK", "RUN"})
+# (action key, argument position) -> properties of which the object needs one. Mirrors the
+# property checks of homesim.sim.effects, which has a few exceptions by class name (water
+# can be grabbed, a desk opened): grounding only orders candidates by it (those lacking a
+# needed property last) and never rejects one; the simulator stays the judge.
+NEEDS: dict[tuple[str, int], frozenset[str]] = {
+    (k, i): frozenset(v.split()) for k, i, v in (
+        ("GRAB", 0, "GRABBABLE"), ("SWITCHON", 0, "HAS_SWITCH"), ("SWITCHOFF", 0, "HAS_SWITCH"),
+        ("SIT", 0, "SITTABLE"), ("LIE", 0, "LIEABLE"), ("OPEN", 0, "CAN_OPEN"),
+        ("CLOSE", 0, "CAN_OPEN"), ("WATCH", 0, "LOOKABLE"), ("READ", 0, "READABLE"),
+        ("PLUGIN", 0, "HAS_PLUG"), ("PLUGOUT", 0, "HAS_PLUG"), ("PUTON", 0, "CLOTHES"),
+        ("PUTOFF", 0, "CLOTHES"), ("DRINK", 0, "DRINKABLE RECIPIENT"),
+        ("POUR", 0, "POURABLE DRINKABLE"), ("POUR", 1, "RECIPIENT"), ("GREET", 0, "PERSON"),
+        ("CUT", 0, "CUTTABLE"), ("PUTBACK", 0, "GRABBABLE"), ("PUTIN", 0, "GRABBABLE"))}
+
+
 MOVES = frozenset({"WALK", "RUN", "FIND"})
 """Steps that take the agent to their object."""
 NEEDS_REACH = frozenset({
@@ -524,13 +539,13 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
 
 def _best_anchor(st: SimState, candidates: list[int], context: _Context,
                  room_rank: Any, rng: random.Random) -> list[int]:
-    """The one instance of the anchor's class grounding is likely to choose: the one
-    close to most objects of the program's classes (the chair at the computer), in the
-    room the agent walked into."""
+    """The one instance of the anchor's class grounding is likely to choose: in the room
+    the agent walked into, close to most objects of the program's classes (the chair at
+    the computer)."""
     classes = context.classes
     best = sorted(candidates, key=lambda n: (
-        -sum(1 for x in st.targets(n, CLOSE) if st.class_name(x) in classes),
-        room_rank(st.room_of(n)), rng.random()))
+        room_rank(st.room_of(n)),
+        -sum(1 for x in st.targets(n, CLOSE) if st.class_name(x) in classes), rng.random()))
     return best[:1]
 
 

@@ -29,6 +29,8 @@ _RINGS = (0.25, 0.45, 0.7, 1.0)
 _FLOOR_RINGS = (0.05, 0.2, 0.4, 0.6, 0.8, 1.0)
 """Distances (m) from an anchor's footprint at which a new object may stand on the floor."""
 _DIRECTIONS = 16
+_COMPOSITE = 2.5
+"""A box wider than this (m) is taken for a composite piece (L-shaped counter or sofa)."""
 _BODY_LOW, _BODY_HIGH = 0.1, 1.5
 """Boxes lower than this (rugs) or starting above that (shelves on walls) do not block."""
 _NOT_OBSTACLES = frozenset({"Rooms", "Floor", "Floors", "Ceiling", "Walls", "Doors",
@@ -75,7 +77,7 @@ class FloorPlan:
         return floors, self._obstacles[room]
 
     def is_free(self, room: int, x: float, z: float, size_x: float = AGENT_SIZE,
-                size_z: float = AGENT_SIZE) -> bool:
+                size_z: float = AGENT_SIZE, ignore: list[BoundingBox] | None = None) -> bool:
         """Whether a footprint (default: the agent's) centred at (x, z) lies on the room's
         free floor."""
         floors, obstacles = self._room_parts(room)
@@ -85,6 +87,8 @@ class FloorPlan:
                        <= f.size[2] / 2 for f in floors):
                 return False
         for o in obstacles:
+            if ignore and any(o is i for i in ignore):
+                continue
             if (abs(x - o.center[0]) * 2 < o.size[0] + size_x
                     and abs(z - o.center[2]) * 2 < o.size[2] + size_z):
                 return False
@@ -130,7 +134,15 @@ class FloorPlan:
             if node_id == room:
                 spot = self._room_spot(room, box)
             else:
-                spot = next((s for s in self._ring_spots(box) if self.is_free(room, *s)), None)
+                # A composite piece (an L-shaped counter) has a box far larger than itself
+                # that covers the floor in front of what is built into it (a dishwasher):
+                # near such a piece, its box does not block.
+                skip = [o for o in self._room_parts(room)[1]
+                        if max(o.size[0], o.size[2]) > _COMPOSITE
+                        and abs(box.center[0] - o.center[0]) * 2 < o.size[0]
+                        and abs(box.center[2] - o.center[2]) * 2 < o.size[2]]
+                spot = next((s for s in self._ring_spots(box)
+                             if self.is_free(room, *s, ignore=skip)), None)
         self._spots[node_id] = spot
         return spot
 
