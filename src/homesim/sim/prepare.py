@@ -242,6 +242,10 @@ class _Context:
                 need = NEEDS.get((step.action.key, pos))
                 if need is not None:
                     needs.setdefault(ref.name, set()).add(need)
+        # Objects on a seat take its place (the simulator counts them), so nothing is put
+        # on what the program sits or lies on.
+        self.seats = {c for step in program.steps if step.action.key in ("SIT", "LIE")
+                      for ref in step.args for c in self.names[ref.name]}
         self.missing: list[ObjectRef] = []
         for name, refs in self.refs_by_name.items():
             ids = instances_of(graph, self.names[name])
@@ -483,6 +487,8 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             if room_classes is not None and graph.nodes[room].class_name not in room_classes:
                 continue
             cls = st.class_name(dest)
+            if relation == ON and cls in context.seats:
+                continue
             hidden = relation == INSIDE and S_CLOSED in st.states(dest) and cls not in opened
             near = 0 if dest in anchors else (
                 1 if not st.targets(dest, CLOSE).isdisjoint(anchors) else 2)
@@ -498,7 +504,8 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             continue
         props = st.properties(a)
         hidden = S_CLOSED in st.states(a) and st.class_name(a) not in opened
-        for relation, prop, blocked in ((ON, SURFACES, False), (INSIDE, CONTAINERS, hidden)):
+        seat = st.class_name(a) in context.seats
+        for relation, prop, blocked in ((ON, SURFACES, seat), (INSIDE, CONTAINERS, hidden)):
             if prop in props and not blocked and (a, relation) not in listed:
                 options.append(((False, 0, False, room_rank(room), rng.random()),
                                 a, relation, room))
