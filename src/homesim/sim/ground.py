@@ -92,7 +92,7 @@ class _Search:
         self.tried: dict[Key, list[int]] = {}
         self.deepest: tuple[int, str] = (-1, "")
         self.deepest_bindings: dict[Key, int] = {}
-        self.plan = FloorPlan(graph, rotation=seed) if geometry else None
+        self.plan = FloorPlan.for_graph(graph, rotation=seed) if geometry else None
         self.needs: dict[Key, list[frozenset[str]]] = {}
         for step in program.steps:
             for pos, ref in enumerate(step.args):
@@ -129,10 +129,11 @@ class _Search:
             raise _OutOfBudget
         st = self.st
         mark = st.mark()
-        holding_before = set(st.targets(st.char, HOLDS_RH)) | set(st.targets(st.char, HOLDS_LH))
-        reason = run_step(st, step, ids)
-        if reason is None and self.plan is not None:
-            reason = self.stand(i, step, ids, holding_before)
+        if self.plan is None:
+            reason = run_step(st, step, ids)
+        else:
+            held = set(st.targets(st.char, HOLDS_RH)) | set(st.targets(st.char, HOLDS_LH))
+            reason = run_step(st, step, ids) or self.stand(i, ids, held)
         if reason is not None:
             if i > self.deepest[0]:
                 self.deepest = (i, reason)
@@ -223,8 +224,7 @@ class _Search:
         return [s[-1] for s in scored]
 
     # ------------------------------------------------------------------ standing
-    def stand(self, i: int, step: Step, ids: tuple[int, ...],
-              holding_before: set[int]) -> str | None:
+    def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:
         """Choose where the agent stands for step i; a reason if there is no free floor."""
         previous = self.spots[i - 1] if i > 0 else None
         if not ids:
@@ -235,8 +235,6 @@ class _Search:
         if target in holding_before or target == st.char or target in st.body_parts:
             self.spots[i] = previous
             return None
-        plan = self.plan
-        assert plan is not None
         spot = self._spot(target)
         if spot is None:
             return f"no free floor next to {st.label(target)} for the agent to stand on"

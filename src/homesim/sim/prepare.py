@@ -33,6 +33,7 @@ from __future__ import annotations
 import random
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
@@ -209,7 +210,12 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         new = _apply(node.states, node.properties, groups)
         if new != node.states:
             st.set_states(addition.node_id, new)
-    return Prepared(st.to_graph(), added, changed)
+    prepared = st.to_graph()
+    if plan is not None:
+        # Let standing spots of the prepared home reuse those of this one (see FloorPlan).
+        floor_rooms = frozenset(a.room for a in added if a.destination_id == a.room)
+        prepared._derived["prepared_from"] = (graph, floor_rooms)
+    return Prepared(prepared, added, changed)
 
 
 Key = tuple[str, int]
@@ -584,6 +590,12 @@ def _put(st: SimState, ref: ObjectRef, names: list[str], kb: ObjectKnowledge,
 
 
 def _size(names: list[str], kb: ObjectKnowledge) -> tuple[float, float, float]:
+    return _size_cached(kb, tuple(names))
+
+
+@lru_cache(maxsize=4096)
+def _size_cached(kb: ObjectKnowledge, names: tuple[str, ...]) -> tuple[float, float, float]:
+    # Cached: the knowledge base's size lookup scans its classes for equivalent names.
     for c in names:
         size = kb.prefab_size(c)
         if size is not None:
