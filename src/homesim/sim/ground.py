@@ -24,7 +24,7 @@ Grounding finds node ids for them under which every step executes:
 >>> p = parse_program("[Walk] <television> (1)\\n[SwitchOn] <television> (1)")
 >>> g = ground(p, load_home("scene1_trimmed"))
 >>> str(g.program.steps[1])
-'[SwitchOn] <television> (1.247)'
+'[SwitchOn] <television> (1.409)'
 """
 
 from __future__ import annotations
