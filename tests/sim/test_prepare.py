@@ -5,7 +5,7 @@ import pytest
 from homesim.errors import GroundingError
 from homesim.knowledge import load_kb
 from homesim.program import parse_program
-from homesim.sim import prepare
+from homesim.sim import execute, ground, prepare
 from homesim.sim.placement import overlaps_xz, overlaps_y
 from homesim.world import load_home
 
@@ -126,3 +126,16 @@ def test_an_unknown_object_cannot_be_placed():
                        "home has too few flux_capacitor.*does not know 'flux_capacitor'"):
         prepare(parse_program("[Walk] <dining_room> (1)\n[Grab] <flux_capacitor> (1)"),
                 load_home("scene1_trimmed"))
+
+
+def test_clothes_taken_off_first_are_worn():
+    p = parse_program("[Walk] <bedroom> (1)\n[Walk] <clothes_pants> (1)\n"
+                      "[PutOff] <clothes_pants> (1)\n[Find] <clothes_shirt> (1)\n"
+                      "[PutOff] <clothes_shirt> (1)")
+    home = load_home("scene1_trimmed")
+    prep = prepare(p, home)
+    g = prep.graph
+    worn = [a for a in prep.added if a.destination_id == g.character_id]
+    assert {a.class_name for a in worn} == {"clothes_pants", "clothes_shirt"}
+    assert all(a.relation == "ON" and g.node(a.room).class_name == "bedroom" for a in worn)
+    assert execute(ground(p, g).program, g).executable

@@ -232,7 +232,9 @@ class _Search:
             return None
         target = ids[-1]
         st = self.st
-        if target in holding_before or target == st.char or target in st.body_parts:
+        if (target in holding_before or target == st.char or target in st.body_parts
+                or st.char in st.targets(target, ON)  # worn
+                or self.graph.nodes[target].bounding_box is None):
             self.spots[i] = previous
             return None
         spot = self._spot(target)

@@ -96,6 +96,7 @@ NEEDS: dict[tuple[str, int], frozenset[str]] = {
         ("CUT", 0, "CUTTABLE"), ("PUTBACK", 0, "GRABBABLE"), ("PUTIN", 0, "GRABBABLE"))}
 
 
+_LOOKING = frozenset({"WALK", "RUN", "FIND", "TURNTO", "LOOKAT", "POINTAT", "WATCH"})
 MOVES = frozenset({"WALK", "RUN", "FIND"})
 """Steps that take the agent to their object."""
 NEEDS_REACH = frozenset({
@@ -252,6 +253,17 @@ class _Context:
         # on what the program sits or lies on.
         self.seats = {c for step in program.steps if step.action.key in ("SIT", "LIE")
                       for ref in step.args for c in self.names[ref.name]}
+        # Clothes the program takes off before doing anything else with them (but walk
+        # to them, look at them) are worn.
+        self.worn: set[Key] = set()
+        seen: set[Key] = set()
+        for step in program.steps:
+            if step.action.key in _LOOKING:
+                continue
+            for ref in step.args:
+                if ref.key not in seen and step.action.key == "PUTOFF":
+                    self.worn.add(ref.key)
+                seen.add(ref.key)
         self.missing: list[ObjectRef] = []
         for name, refs in self.refs_by_name.items():
             ids = instances_of(graph, self.names[name])
@@ -259,7 +271,10 @@ class _Context:
             if wanted and not any(all(not graph.nodes[i].properties.isdisjoint(w)
                                       for w in wanted) for i in ids):
                 ids = []  # none can do what the program does with it (folded clothes)
-            self.missing += refs[len(ids):]
+            self.missing += [r for r in refs[len(ids):] if r.key not in self.worn]
+        # A fresh instance of each, worn by the character (none of the home's is worn).
+        self.missing += [r for refs in self.refs_by_name.values() for r in refs
+                         if r.key in self.worn]
         room_classes = {r.class_name for r in graph.rooms()}
         self.is_room = {n: bool(room_classes.intersection(c)) for n, c in self.names.items()}
         self.used_before: dict[Key, set[str]] = {}
@@ -473,6 +488,15 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             return 0
         return 1 if room in context.rooms else 2
 
+    char = graph.character_id
+    if ref.key in context.worn and char is not None and st.room_of(char) is not None:
+        # Worn: ON the character, in the room the program takes it off in, and within
+        # reach of the other clothes it wears (finding one finds the others).
+        rooms = [r for r in graph.room_ids if room_rank(r) == 0]
+        room = min(rooms) if rooms else st.room_of(char)
+        assert room is not None
+        others = [by_key[k] for k in context.worn if k in by_key]
+        return _put(st, ref, names, kb, None, char, ON, room, others)
     anchors: list[int] = []
     anchor = context.anchor.get(ref.key)
     if anchor is not None:
