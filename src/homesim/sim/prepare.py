@@ -341,6 +341,8 @@ class _Context:
                 used.update(self.names[ref.name])
                 if key == "OPEN":
                     opened.update(self.names[ref.name])
+                elif key == "CLOSE":  # open when the object is needed, not just once
+                    opened.difference_update(self.names[ref.name])
             if key == "GRAB" and step.args:
                 if step.args[0].key not in pos:
                     pos[step.args[0].key] = place(step.args[0].key)
