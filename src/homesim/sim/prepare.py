@@ -7,7 +7,8 @@ Two things are prepared, on a copy of the home (the input graph is never changed
    class's equivalent names), the missing ones are added at a destination the placement
    knowledge base allows for the class (``cup``: ON a table, INSIDE a cupboard, ...).
    Destinations are preferred in this order: not hidden inside a closed container the
-   program does not open first; one the program uses before it needs the object (it walks
+   program has not opened by the time it needs the object; near its anchor (where the
+   program needs it, see `_Context`); one the program uses before it needs the object (it walks
    to the counter, then grabs the cup); one in a room the program names; ties are broken
    by the seed. A class the knowledge base has no destination for (appliances, lamps,
    body parts) is stood on the floor of a room the program names (else of a room drawn
