@@ -1,0 +1,99 @@
+"""`Renderer`: the offscreen GL context, drawing RGB + metric depth and geom ids.
+
+Two draws per frame: one in colour, and one in MuJoCo's segmentation mode from which
+`mjr_readPixels` reads both the geom ids and the depth buffer (so depth and ids agree
+pixel for pixel). Use it as a context manager so the GL
+context is freed: ``with Renderer(scene, 640, 480) as r: ...``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from homesim.errors import HomesimError
+from homesim.render.gl import BACKEND, mujoco
+from homesim.render.scene import SceneModel
+
+
+class Renderer:
+    """Draws a `SceneModel` from its fixed cameras at one resolution."""
+
+    def __init__(self, scene: SceneModel, width: int, height: int):
+        model = scene.model
+        if width > model.vis.global_.offwidth or height > model.vis.global_.offheight:
+            raise HomesimError(f"{width}x{height} is larger than the scene was built for "
+                               f"({model.vis.global_.offwidth}x{model.vis.global_.offheight})")
+        self.scene, self.width, self.height = scene, width, height
+        try:
+            self._gl = mujoco.GLContext(width, height)
+            self._gl.make_current()
+        except Exception as e:
+            raise HomesimError(f"cannot create an OpenGL context with MUJOCO_GL={BACKEND} "
+                               f"({e}); on Debian install libosmesa6") from None
+        self._con = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_100)
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self._con)
+        self._con.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR  # reversed Z
+        self._scn = mujoco.MjvScene(model, maxgeom=model.ngeom + 200)
+        self._opt = mujoco.MjvOption()
+        self._cam = mujoco.MjvCamera()
+        self._cam.type = mujoco.mjtCamera.mjCAMERA_FIXED
+        self._rect = mujoco.MjrRect(0, 0, width, height)
+        self._rgb = np.empty((height, width, 3), np.uint8)
+        self._depth = np.empty((height, width), np.float32)
+        extent = model.stat.extent
+        self.znear = float(model.vis.map.znear * extent)
+        self.zfar = float(model.vis.map.zfar * extent)
+
+    def __enter__(self) -> Renderer:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Free the GL resources (safe to call twice)."""
+        if getattr(self, "_gl", None) is not None:
+            self._con.free()
+            self._gl.free()
+            self._gl = None
+
+    def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool) -> None:
+        self._gl.make_current()
+        self._cam.fixedcamid = camera_id
+        mujoco.mjv_updateScene(self.scene.model, data, self._opt, None, self._cam,
+                               mujoco.mjtCatBit.mjCAT_ALL, self._scn)
+        self._scn.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = segment
+        self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
+        mujoco.mjr_render(self._rect, self._scn, self._con)
+
+    def rgb(self, data: mujoco.MjData, camera_id: int) -> np.ndarray:
+        """(H, W, 3) uint8 colour image."""
+        self._draw(data, camera_id, segment=False)
+        mujoco.mjr_readPixels(self._rgb, None, self._rect, self._con)
+        return self._rgb[::-1].copy()  # GL rows start at the bottom
+
+    def ids_depth(self, data: mujoco.MjData, camera_id: int) -> tuple[np.ndarray, np.ndarray]:
+        """(H, W) int32 geom id per pixel (-1: none) and (H, W) float32 depth in metres
+        along the camera's view axis."""
+        self._draw(data, camera_id, segment=True)
+        mujoco.mjr_readPixels(self._rgb, self._depth, self._rect, self._con)
+        depth = self._metric_depth(self._depth[::-1])
+        px = self._rgb[::-1].astype(np.int32)
+        seg = px[..., 0] + (px[..., 1] << 8) + (px[..., 2] << 16)  # segid + 1, 0 = none
+        n = self._scn.ngeom
+        lut = np.full(n + 2, -1, np.int32)
+        for i in range(n):
+            g = self._scn.geoms[i]
+            if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
+                lut[g.segid + 1] = g.objid
+        return lut[np.clip(seg, 0, n + 1)], depth
+
+    def _metric_depth(self, raw: np.ndarray) -> np.ndarray:
+        # MuJoCo draws with reversed Z: the buffer holds near/z scaled between the
+        # clip planes. Invert the projection in float64, as the depth is hyperbolic.
+        n, f = np.float32(self.znear), np.float32(self.zfar)
+        c = -(f + n) / (f - n)
+        d = -(np.float32(2) * f * n) / (f - n)
+        c = np.float32(-0.5) * c - np.float32(0.5)
+        d = np.float32(-0.5) * d
+        return (d / (raw.astype(np.float64) + c)).astype(np.float32)
