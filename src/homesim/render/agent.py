@@ -156,8 +156,8 @@ def agent_mjcf(shape: AgentShape, pos: tuple[float, float] = (0.0, 0.0)) -> str:
   <body name="agent" pos="{pos[0]:.3f} {pos[1]:.3f} {s.pelvis_height:.3f}">
     <freejoint name="a:root"/>
     <site name="j:pelvis" size="0.01"/>
-    <geom name="agent:pelvis" type="capsule" fromto="0 {s.hip + 0.03:.3f} 0 0 {-s.hip - 0.03:.3f} 0"
-          size="{s.girth * 0.85:.3f}" rgba="{_rgb(s.pants)}"/>
+    <geom name="agent:pelvis" type="capsule"
+          fromto="0 {s.hip + 0.03:.3f} 0 0 {-s.hip - 0.03:.3f} 0" size="{s.girth * 0.85:.3f}" rgba="{_rgb(s.pants)}"/>
     <body name="a:torso" pos="0 0 0.05">
       {_j("spine_pitch", "0 1 0", -0.5, 1.4)}
       {_j("spine_yaw", "0 0 1", -0.8, 0.8)}

@@ -49,8 +49,8 @@ def look_at(pos: np.ndarray, target: np.ndarray) -> tuple[np.ndarray, np.ndarray
 def room_cameras(layout: Layout, seed: int = 0) -> list[CameraSpec]:
     """8 cameras per room (4 corners, 4 edge middles), randomised by `seed`."""
     rng = np.random.default_rng(seed)
-    blockers = [b for p in layout.parts if p.class_name not in ("floor", "ceiling")
-                for b in p.boxes]
+    blockers = [b for p in layout.parts
+                if p.class_name not in ("floor", "ceiling", "wall", "doorjamb") for b in p.boxes]
     cams: list[CameraSpec] = []
     for rid in sorted(layout.room_floors):
         box = layout.room_floors[rid]
@@ -65,7 +65,7 @@ def room_cameras(layout: Layout, seed: int = 0) -> list[CameraSpec]:
             pos[:2] = np.clip(pos[:2], lo, hi)
             target = np.array([mid[0], mid[1], 0.7]) + np.r_[rng.uniform(-0.6, 0.6, 2),
                                                              rng.uniform(-0.2, 0.3)]
-            if any(np.all(np.abs(pos - b.center) < b.half + 0.25) for b in blockers):
+            if any(np.all(np.abs(pos - b.center) < b.half + 0.1) for b in blockers):
                 continue  # inside furniture: this camera would see nothing
             xa, ya = look_at(pos, target)
             fovy = float(rng.uniform(55.0, 75.0))

@@ -272,7 +272,7 @@ def build_layout(graph: EnvironmentGraph) -> Layout:
             if part.hinge is None:
                 continue
         elif cls in HINGED_CLASSES and CAN_OPEN in node.properties:
-            toward = rooms[room].center if room in rooms else box.center + [0, 1, 0]
+            toward = rooms[room].center if room in rooms else [*box.center, 0, 1, 0]
             axis, sign = _front_axis(box, toward)
             part.boxes, part.hinge = _hollow(box, axis, sign)
         elif GRABBABLE in node.properties:
@@ -280,7 +280,7 @@ def build_layout(graph: EnvironmentGraph) -> Layout:
         else:
             part.boxes.append(_flat(box))
             if cls in SCREEN_CLASSES:
-                toward = rooms[room].center if room in rooms else box.center + [0, 1, 0]
+                toward = rooms[room].center if room in rooms else [*box.center, 0, 1, 0]
                 thin = 0 if box.half[0] < box.half[1] else 1
                 sign = 1.0 if toward[thin] >= box.center[thin] else -1.0
                 c = box.center.copy()

@@ -126,8 +126,8 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
   <default><geom contype="0" conaffinity="0"/></default>
   <asset>{"".join(assets)}</asset>
   <worldbody>
-{chr(10).join(body)}
 {agent_mjcf(agent, (float(layout.start[0]), float(layout.start[1])))}
+{chr(10).join(body)}
   </worldbody>
 </mujoco>"""
 
@@ -193,6 +193,8 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
             scene.hinge_open[n] = part.hinge.open_angle
         if part.lamp:
             scene.lamp_light[n] = mujoco.mj_name2id(model, obj.mjOBJ_LIGHT, f"light{n}")
+    if model.jnt_qposadr[model.joint("a:root").id] != 0:
+        raise AssertionError("the agent's free joint must come first in qpos")
     scene.joint_qpos = {h: int(model.jnt_qposadr[model.joint(f"a:{h}").id]) for h in HINGES}
     scene.joint_sites = np.array([model.site(f"j:{j}").id for j in JOINTS], int)
     scene.hand_sites = {s: model.site(f"{s}_hand").id for s in ("l", "r")}
