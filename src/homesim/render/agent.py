@@ -157,7 +157,8 @@ def agent_mjcf(shape: AgentShape, pos: tuple[float, float] = (0.0, 0.0)) -> str:
     <freejoint name="a:root"/>
     <site name="j:pelvis" size="0.01"/>
     <geom name="agent:pelvis" type="capsule"
-          fromto="0 {s.hip + 0.03:.3f} 0 0 {-s.hip - 0.03:.3f} 0" size="{s.girth * 0.85:.3f}" rgba="{_rgb(s.pants)}"/>
+          fromto="0 {s.hip + 0.03:.3f} 0 0 {-s.hip - 0.03:.3f} 0"
+          size="{s.girth * 0.85:.3f}" rgba="{_rgb(s.pants)}"/>
     <body name="a:torso" pos="0 0 0.05">
       {_j("spine_pitch", "0 1 0", -0.5, 1.4)}
       {_j("spine_yaw", "0 0 1", -0.8, 0.8)}
@@ -165,7 +166,8 @@ def agent_mjcf(shape: AgentShape, pos: tuple[float, float] = (0.0, 0.0)) -> str:
       <geom name="agent:torso" type="capsule" fromto="0 0 0.05 0 0 {s.torso - 0.08:.3f}"
             size="{s.girth:.3f}" rgba="{_rgb(s.shirt)}"/>
       <geom name="agent:chest" type="capsule"
-            fromto="0 {s.shoulder - 0.03:.3f} {s.torso - 0.06:.3f} 0 {-s.shoulder + 0.03:.3f} {s.torso - 0.06:.3f}"
+            fromto="0 {s.shoulder - 0.03:.3f} {s.torso - 0.06:.3f}
+                    0 {-s.shoulder + 0.03:.3f} {s.torso - 0.06:.3f}"
             size="{s.girth * 0.6:.3f}" rgba="{_rgb(s.shirt)}"/>
       <body name="a:head" pos="0 0 {s.torso:.3f}">
         {_j("neck_yaw", "0 0 1", -1.3, 1.3)}

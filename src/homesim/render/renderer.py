@@ -57,14 +57,27 @@ class Renderer:
             self._gl.free()
             self._gl = None
 
-    def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool) -> None:
+    def probe(self, data: mujoco.MjData, camera_id: int, node_id: int,
+              size: tuple[int, int] = (80, 60)) -> float:
+        """Share of a small (w, h) view covered by one graph node (cheap visibility)."""
+        w, h = size
+        rect = mujoco.MjrRect(0, 0, w, h)
+        self._draw(data, camera_id, segment=True, rect=rect)
+        buf = np.empty((h, w, 3), np.uint8)
+        mujoco.mjr_readPixels(buf, None, rect, self._con)
+        ids = self._decode(buf)
+        hit = ids >= 0
+        return float(np.count_nonzero(self.scene.geom_node[ids[hit]] == node_id)) / ids.size
+
+    def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
+              rect: mujoco.MjrRect | None = None) -> None:
         self._gl.make_current()
         self._cam.fixedcamid = camera_id
         mujoco.mjv_updateScene(self.scene.model, data, self._opt, None, self._cam,
                                mujoco.mjtCatBit.mjCAT_ALL, self._scn)
         self._scn.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = segment
         self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
-        mujoco.mjr_render(self._rect, self._scn, self._con)
+        mujoco.mjr_render(rect or self._rect, self._scn, self._con)
 
     def rgb(self, data: mujoco.MjData, camera_id: int) -> np.ndarray:
         """(H, W, 3) uint8 colour image."""
@@ -78,7 +91,10 @@ class Renderer:
         self._draw(data, camera_id, segment=True)
         mujoco.mjr_readPixels(self._rgb, self._depth, self._rect, self._con)
         depth = self._metric_depth(self._depth[::-1])
-        px = self._rgb[::-1].astype(np.int32)
+        return self._decode(self._rgb), depth
+
+    def _decode(self, buf: np.ndarray) -> np.ndarray:
+        px = buf[::-1].astype(np.int32)
         seg = px[..., 0] + (px[..., 1] << 8) + (px[..., 2] << 16)  # segid + 1, 0 = none
         n = self._scn.ngeom
         lut = np.full(n + 2, -1, np.int32)
@@ -86,7 +102,7 @@ class Renderer:
             g = self._scn.geoms[i]
             if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
                 lut[g.segid + 1] = g.objid
-        return lut[np.clip(seg, 0, n + 1)], depth
+        return lut[np.clip(seg, 0, n + 1)]
 
     def _metric_depth(self, raw: np.ndarray) -> np.ndarray:
         # MuJoCo draws with reversed Z: the buffer holds near/z scaled between the

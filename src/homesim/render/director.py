@@ -1,0 +1,53 @@
+"""Camera switching: keep a camera while it sees the agent, then cut to the best one.
+
+Visibility comes from segmentation: the share of pixels whose geom belongs to the
+agent. Candidates are probed at a small resolution to keep switching cheap.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from homesim.render.layout import room_of_point
+
+MIN_VISIBLE = 0.002
+"""Least share of the image the agent must cover for a camera to keep it."""
+MAX_RANGE = 7.0
+"""Metres: beyond this the current camera is left for a closer one."""
+MIN_HOLD = 15
+"""Frames a camera is kept at least (no flicker between two views)."""
+
+
+@dataclass
+class Director:
+    """Chooses a camera per frame; `probe(camera_index)` returns agent-pixel share."""
+
+    scene: object  # SceneModel
+    current: int = -1
+    held: int = 0
+
+    def candidates(self, agent_xy: np.ndarray) -> list[int]:
+        room = room_of_point(self.scene.layout, agent_xy)
+        cams = [i for i, c in enumerate(self.scene.cameras) if c.room_id == room]
+        return cams or list(range(len(self.scene.cameras)))
+
+    def choose(self, agent_pos: np.ndarray, visible_now: float | None, probe) -> int:
+        """The camera for this frame. `visible_now`: agent share seen by the current one."""
+        self.held += 1
+        if self.current >= 0 and visible_now is not None:
+            cam = self.scene.cameras[self.current]
+            in_range = np.linalg.norm(cam.pos - agent_pos) <= MAX_RANGE
+            if self.held < MIN_HOLD or (visible_now >= MIN_VISIBLE and in_range):
+                return self.current
+        best, best_score = None, -1.0
+        for i in self.candidates(agent_pos[:2]):
+            share = probe(i)
+            dist = float(np.linalg.norm(self.scene.cameras[i].pos - agent_pos))
+            score = share - 0.001 * dist  # prefer the closer of two equal views
+            if score > best_score:
+                best, best_score = i, score
+        if best != self.current:
+            self.current, self.held = best, 0
+        return self.current
