@@ -56,19 +56,31 @@ def optical_flow(depth: np.ndarray, geom_ids: np.ndarray, k0: np.ndarray, w2c0: 
     Each pixel's 3D point (from `depth` at t) is carried with the geom it lies on: into
     the geom's frame at t (`xpos0`, `xmat0`: (ngeom, 3), (ngeom, 9)), back out with its
     pose at t+1, then projected with the camera at t+1. Pixels on no geom (id -1) get 0.
+    Only pixels that can move are computed: all of them when the camera moves, else
+    those on geoms whose pose changed (the rest have exactly zero flow).
     """
     h, w = depth.shape
-    pts = backproject(depth, k0, w2c0).reshape(-1, 3)
-    ids = geom_ids.reshape(-1)
-    hit = ids >= 0
-    g = ids[hit]
-    r0 = xmat0.reshape(-1, 3, 3)[g]
-    r1 = xmat1.reshape(-1, 3, 3)[g]
-    local = np.einsum("nji,nj->ni", r0, pts[hit] - xpos0[g])  # R0^T (p - x0)
-    moved = np.einsum("nij,nj->ni", r1, local) + xpos1[g]
-    uv1, _ = project(moved, k1, w2c1)
-    u, v = np.meshgrid(np.arange(w, dtype=np.float64), np.arange(h, dtype=np.float64))
-    uv0 = np.stack([u, v], axis=-1).reshape(-1, 2)
     flow = np.zeros((h * w, 2), np.float32)
-    flow[hit] = (uv1 - uv0[hit]).astype(np.float32)
+    moved = np.any(xpos0 != xpos1, axis=1) | np.any(xmat0 != xmat1, axis=1)
+    ids = geom_ids.reshape(-1)
+    same_camera = np.array_equal(k0, k1) and np.array_equal(w2c0, w2c1)
+    movable = np.concatenate([[False], moved if same_camera else np.ones_like(moved)])
+    sel = np.flatnonzero(movable[ids + 1])
+    if len(sel) == 0:
+        return flow.reshape(h, w, 2)
+    u = (sel % w).astype(np.float64)
+    v = (sel // w).astype(np.float64)
+    z = depth.reshape(-1)[sel].astype(np.float64)
+    pc = np.stack([(u - k0[0, 2]) * z / k0[0, 0], (v - k0[1, 2]) * z / k0[1, 1], z], axis=-1)
+    pts = (pc - w2c0[:3, 3]) @ w2c0[:3, :3]  # camera -> world: R^T (p - t)
+    g = ids[sel]
+    gm = np.flatnonzero(moved[g])  # of those, the points whose geom moved
+    if len(gm):
+        gg = g[gm]
+        r0 = xmat0.reshape(-1, 3, 3)[gg]
+        r1 = xmat1.reshape(-1, 3, 3)[gg]
+        local = np.einsum("nji,nj->ni", r0, pts[gm] - xpos0[gg])  # R0^T (p - x0)
+        pts[gm] = np.einsum("nij,nj->ni", r1, local) + xpos1[gg]
+    uv1, _ = project(pts, k1, w2c1)
+    flow[sel] = (uv1 - np.stack([u, v], axis=-1)).astype(np.float32)
     return flow.reshape(h, w, 2)

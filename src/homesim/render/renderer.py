@@ -40,6 +40,8 @@ class Renderer:
         self._rect = mujoco.MjrRect(0, 0, width, height)
         self._rgb = np.empty((height, width, 3), np.uint8)
         self._depth = np.empty((height, width), np.float32)
+        self._seg4: np.ndarray | None = None
+        self._lut: np.ndarray | None = None
         extent = model.stat.extent
         self.znear = float(model.vis.map.znear * extent)
         self.zfar = float(model.vis.map.zfar * extent)
@@ -94,22 +96,39 @@ class Renderer:
         return self._decode(self._rgb), depth
 
     def _decode(self, buf: np.ndarray) -> np.ndarray:
-        px = buf[::-1].astype(np.int32)
-        seg = px[..., 0] + (px[..., 1] << 8) + (px[..., 2] << 16)  # segid + 1, 0 = none
-        n = self._scn.ngeom
+        h, w = buf.shape[:2]
+        if self._seg4 is None or self._seg4.shape[:2] != (h, w):
+            self._seg4 = np.zeros((h, w, 4), np.uint8)
+        self._seg4[..., :3] = buf[::-1]
+        seg = self._seg4.view("<u4")[..., 0]  # segid + 1 (0: no geom), little-endian RGB
+        lut = self._segid_lut()
+        return lut[np.minimum(seg, len(lut) - 1)]
+
+    def _segid_lut(self) -> np.ndarray:
+        """segid + 1 -> geom id. The scene lists the same geoms in the same order every
+        frame, so the table is rebuilt only when a spot check disagrees."""
+        scn, n = self._scn, self._scn.ngeom
+        lut = self._lut
+        if lut is not None and len(lut) == n + 2:
+            ok = True
+            for i in (0, n // 2, n - 1):
+                g = scn.geoms[i]
+                want = g.objid if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM else -1
+                ok = ok and g.segid >= 0 and lut[g.segid + 1] == want
+            if ok:
+                return lut
         lut = np.full(n + 2, -1, np.int32)
         for i in range(n):
-            g = self._scn.geoms[i]
+            g = scn.geoms[i]
             if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
                 lut[g.segid + 1] = g.objid
-        return lut[np.clip(seg, 0, n + 1)]
+        self._lut = lut
+        return lut
 
     def _metric_depth(self, raw: np.ndarray) -> np.ndarray:
-        # MuJoCo draws with reversed Z: the buffer holds near/z scaled between the
-        # clip planes. Invert the projection in float64, as the depth is hyperbolic.
-        n, f = np.float32(self.znear), np.float32(self.zfar)
-        c = -(f + n) / (f - n)
-        d = -(np.float32(2) * f * n) / (f - n)
-        c = np.float32(-0.5) * c - np.float32(0.5)
-        d = np.float32(-0.5) * d
-        return (d / (raw.astype(np.float64) + c)).astype(np.float32)
+        # MuJoCo draws with reversed Z: the buffer holds about near/z (1 at the near
+        # plane, ~0 far away), so float32 keeps its precision; invert the projection.
+        n, f = self.znear, self.zfar
+        c = 0.5 * (f + n) / (f - n) - 0.5
+        d = f * n / (f - n)
+        return (np.float32(d) / (raw + np.float32(c))).astype(np.float32, copy=False)

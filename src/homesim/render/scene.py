@@ -119,7 +119,7 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
   <statistic extent="20" center="0 0 1"/>
   <visual>
     <global offwidth="{width}" offheight="{height}"/>
-    <quality shadowsize="0" offsamples="0"/>
+    <quality shadowsize="0" offsamples="0" numquads="1" numslices="12" numstacks="8"/>
     <map znear="0.002" zfar="3"/>
     <headlight ambient="0.38 0.38 0.38" diffuse="0.45 0.45 0.45" specular="0.05 0.05 0.05"/>
   </visual>
