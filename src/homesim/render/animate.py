@@ -18,7 +18,7 @@ from homesim.errors import ExecutionError
 from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK
-from homesim.render.layout import Box, lights_on_by_switch, to_mujoco
+from homesim.render.layout import SEAT_HEIGHT, Box, lights_on_by_switch, to_mujoco
 from homesim.render.navigation import build_grid, plan_path
 from homesim.render.poses import (
     Pose,
@@ -214,7 +214,7 @@ class Animator:
         away = self.pose.xy - spot
         yaw = math.atan2(away[1], away[0]) if np.hypot(*away) > 1e-3 else self.pose.yaw + math.pi
         top = seat.hi[2]
-        height = 0.45 if top > 0.7 else top
+        height = SEAT_HEIGHT if top > 0.7 else top
         self.turn_to(self.pose.xy + np.array([math.cos(yaw), math.sin(yaw)]))
         self.move_to(sitting(self.shape, spot, yaw, height), 1.0)
         self.posture = "sit"

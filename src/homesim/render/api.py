@@ -14,7 +14,7 @@ from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
 from homesim.render.groundtruth import RecordingWriter, StepSpan
-from homesim.render.recorder import record
+from homesim.render.recorder import record, still_frames
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
 from homesim.sim.execute import Bindings, execute
@@ -142,10 +142,7 @@ def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 
     _check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
                                  seed=seed, bindings=bindings, agent=agent)
-    wanted = {end: i for i, (_, end) in enumerate(timeline.step_frames)}
-    out: list[tuple[int, np.ndarray]] = []
+    ends = [end for _, end in timeline.step_frames]
     with Renderer(scene, width, height) as renderer:
-        for truth in record(scene, timeline, renderer):
-            if truth.index in wanted:
-                out.append((wanted[truth.index], truth.rgb))
-    return out
+        stills = still_frames(scene, timeline, renderer, ends)
+    return [(step, rgb) for step, (_, rgb) in enumerate(stills)]

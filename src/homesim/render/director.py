@@ -41,13 +41,19 @@ class Director:
             in_range = np.linalg.norm(cam.pos - agent_pos) <= MAX_RANGE
             if self.held < MIN_HOLD or (visible_now >= MIN_VISIBLE and in_range):
                 return self.current
-        best, best_score = None, -1.0
-        for i in self.candidates(agent_pos[:2]):
+        best, best_share = self._best(self.candidates(agent_pos[:2]), agent_pos, probe)
+        if best_share <= 0.0:  # e.g. in a doorway: look from every room
+            best, best_share = self._best(range(len(self.scene.cameras)), agent_pos, probe)
+        if best != self.current:
+            self.current, self.held = best, 0
+        return self.current
+
+    def _best(self, cams, agent_pos: np.ndarray, probe) -> tuple[int, float]:
+        best, best_score, best_share = 0, -np.inf, 0.0
+        for i in cams:
             share = probe(i)
             dist = float(np.linalg.norm(self.scene.cameras[i].pos - agent_pos))
             score = share - 0.001 * dist  # prefer the closer of two equal views
             if score > best_score:
-                best, best_score = i, score
-        if best != self.current:
-            self.current, self.held = best, 0
-        return self.current
+                best, best_score, best_share = i, score, share
+        return best, best_share

@@ -15,7 +15,7 @@ import numpy as np
 
 from homesim.render.palette import RGBA, class_color
 from homesim.world.graph import EnvironmentGraph, Node
-from homesim.world.vocab import CAN_OPEN, GRABBABLE, INSIDE, S_ON, S_OPEN
+from homesim.world.vocab import CAN_OPEN, GRABBABLE, INSIDE, S_ON, S_OPEN, SITTABLE
 
 WALL_THICKNESS = 0.1
 """Metres; corner walls (2.5 m cubes) become slabs this thick on the room's edge."""
@@ -30,6 +30,8 @@ SCREEN_CLASSES = frozenset({"tv", "computer", "laptop", "television"})
 LAMP_CLASSES = frozenset({"ceilinglamp", "tablelamp", "walllamp", "floorlamp", "lamp",
                           "desklamp", "lightbulb"})
 SKIP_CATEGORIES = frozenset({"Rooms", "Characters"})
+SEAT_HEIGHT = 0.45
+"""Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
 
 
 @dataclass(frozen=True)
@@ -213,6 +215,20 @@ def _hollow(box: Box, axis: int, sign: float, t: float = 0.03) -> tuple[list[Box
     return slabs, hinge
 
 
+def _seat(box: Box, axis: int, sign: float) -> list[Box]:
+    """A seat `SEAT_HEIGHT` high and a 0.2 m backrest on the side away from the front."""
+    lo, hi = box.lo.copy(), box.hi.copy()
+    seat_hi = hi.copy()
+    seat_hi[2] = lo[2] + SEAT_HEIGHT
+    back_lo, back_hi = lo.copy(), hi.copy()
+    depth = min(0.2, box.half[axis])
+    if sign > 0:
+        back_hi[axis] = lo[axis] + depth
+    else:
+        back_lo[axis] = hi[axis] - depth
+    return [Box.from_bounds(lo, seat_hi), Box.from_bounds(back_lo, back_hi)]
+
+
 def _door(box: Box, jambs: list[Box]) -> Hinge | None:
     if not jambs:
         return None
@@ -275,6 +291,9 @@ def build_layout(graph: EnvironmentGraph) -> Layout:
             toward = rooms[room].center if room in rooms else [*box.center, 0, 1, 0]
             axis, sign = _front_axis(box, toward)
             part.boxes, part.hinge = _hollow(box, axis, sign)
+        elif SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
+            toward = rooms[room].center if room in rooms else box.center + np.array([0.0, 1.0, 0.0])
+            part.boxes = _seat(box, *_front_axis(box, toward))
         elif GRABBABLE in node.properties:
             part.movable = _flat(box, 0.01)
         else:

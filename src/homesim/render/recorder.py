@@ -123,3 +123,18 @@ def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> Fra
                               xpos0, xmat0, poses1[0], poses1[1])
     truth.cut = cam1 != truth.camera
     return truth
+
+
+def still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
+                 frames: list[int]) -> list[tuple[int, np.ndarray]]:
+    """RGB of chosen frames only, each from the camera that sees the agent best."""
+    state = SceneState(scene, timeline)
+    body = scene.model.body("agent").id
+    out = []
+    for i in frames:
+        d = state.apply(i)
+        director = Director(scene)  # a fresh choice per frame: no continuity needed
+        cam = director.choose(d.xpos[body].copy(), None,
+                              lambda c, d=d: renderer.probe(d, c, scene.character_id))
+        out.append((i, renderer.rgb(d, cam)))
+    return out
