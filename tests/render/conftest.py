@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from homesim.world.graph import EnvironmentGraph
 
-pytest.importorskip("mujoco", reason="needs the render extra")
+try:  # homesim.render.gl picks MUJOCO_GL before mujoco is first imported
+    import numpy as np
+
+    import homesim.render.gl  # noqa: F401
+except ImportError:
+    pytest.skip("needs the render extra (mujoco)", allow_module_level=True)
 
 
 def _box(center, size):

@@ -26,8 +26,7 @@ def test_doorway_is_cut_out_of_a_wall_with_a_lintel():
     jamb = Box(np.array([0.2, 0.0, 1.03]), np.array([0.46, 0.06, 1.03]))
     pieces = _cut_doorways(wall, [jamb])
     assert len(pieces) == 3
-    left, right, lintel = sorted(pieces, key=lambda p: (p.lo[2], p.lo[0]))[:2] + \
-        [max(pieces, key=lambda p: p.lo[2])]
+    left, right, lintel = [*sorted(pieces, key=lambda p: (p.lo[2], p.lo[0]))[:2], max(pieces, key=lambda p: p.lo[2])]
     assert left.hi[0] <= jamb.lo[0] + 1e-9 and right.lo[0] >= jamb.hi[0] - 1e-9
     assert abs(lintel.lo[2] - jamb.hi[2]) < 1e-9
 

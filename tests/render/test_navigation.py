@@ -1,3 +1,5 @@
+import itertools
+
 import numpy as np
 
 from homesim.render.layout import build_layout, to_mujoco
@@ -17,7 +19,7 @@ def test_path_goes_around_the_table_and_ends_within_reach(box_home):
     tv = to_mujoco(box_home.node(22))
     start = grid.point(grid.nearest_free((1.0, -1.7)))  # behind the table, seen from the TV
     path = plan_path(grid, start, tv, reach=0.7)
-    for a, b in zip(path[:-1], path[1:], strict=True):
+    for a, b in itertools.pairwise(path):
         assert grid.line_free(a, b)
     end = path[-1]
     gap = np.maximum(np.abs(end - tv.center[:2]) - tv.half[:2], 0.0)
@@ -32,5 +34,5 @@ def test_paths_through_doors_in_a_real_apartment(shared_data):
     grid = build_grid(layout)
     path = plan_path(grid, layout.start, to_mujoco(g.node(410)))  # bedroom -> living room tv
     assert len(path) >= 3
-    length = sum(np.linalg.norm(b - a) for a, b in zip(path[:-1], path[1:], strict=True))
+    length = sum(np.linalg.norm(b - a) for a, b in itertools.pairwise(path))
     assert 8.0 < length < 30.0

@@ -18,8 +18,8 @@ def _render_module():
     try:
         import homesim.render as render
     except ImportError as e:
-        raise HomesimError("rendering needs the 'render' extra: pip install 'homesim[render]' "
-                           f"({e.name or e})") from None
+        raise HomesimError(f"rendering needs the 'render' extra: pip install "
+                           f"'homesim[render]' (missing {e.name or e})") from None
     return render
 
 

@@ -10,8 +10,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from homesim.errors import HomesimError
-
 
 def _default_backend() -> str:
     has_gpu = Path("/dev/nvidia0").exists() or Path("/dev/dri/renderD128").exists()
@@ -24,8 +22,8 @@ BACKEND = os.environ.setdefault("MUJOCO_GL", _default_backend()).lower()
 try:
     import mujoco
 except ImportError as e:  # pragma: no cover - depends on the installed extras
-    raise HomesimError("rendering needs the 'render' extra: pip install 'homesim[render]' "
-                       f"({e})") from None
+    raise ImportError("rendering needs the 'render' extra: pip install 'homesim[render]' "
+                      f"({e})", name="mujoco") from None
 
 __all__ = ["BACKEND", "gl_available", "mujoco"]
 
