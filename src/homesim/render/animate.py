@@ -231,8 +231,10 @@ class Animator:
         if node_id in self.scene.mocap:  # a movable object: where it is now
             c = self.mocap[self.scene.mocap[node_id]]
             return Box(c.copy(), self.boxes[node_id].half)
-        if node_id in self.scene.layout.room_floors:
-            return self.scene.layout.room_floors[node_id]
+        if node_id in self.scene.layout.room_floors:  # a room: its middle's free spot
+            middle = self.scene.layout.room_floors[node_id].center
+            spot = self.grid.point(self.grid.nearest_free(middle[:2]))
+            return Box(np.r_[spot, 0.0], np.full(3, 0.05))
         if node_id not in self.boxes:
             raise ExecutionError(f"node {node_id} has no 3D box to walk to")
         return self.boxes[node_id]

@@ -12,8 +12,9 @@ import numpy as np
 
 from homesim.render.layout import room_of_point
 
-MIN_VISIBLE = 0.002
-"""Least share of the image the agent must cover for a camera to keep it."""
+KEEP_SCORE = 0.75
+"""Least view score (see `recorder.view_score`: capped agent pixels + share of joints in
+the image) for the current camera to be kept."""
 MAX_RANGE = 7.0
 """Metres: beyond this the current camera is left for a closer one."""
 MIN_HOLD = 15
@@ -22,7 +23,8 @@ MIN_HOLD = 15
 
 @dataclass
 class Director:
-    """Chooses a camera per frame; `probe(camera_index)` returns agent-pixel share."""
+    """Chooses a camera per frame; `probe(camera_index)` scores how well it shows the
+    agent (0: not at all)."""
 
     scene: object  # SceneModel
     current: int = -1
@@ -33,13 +35,14 @@ class Director:
         cams = [i for i, c in enumerate(self.scene.cameras) if c.room_id == room]
         return cams or list(range(len(self.scene.cameras)))
 
-    def choose(self, agent_pos: np.ndarray, visible_now: float | None, probe) -> int:
-        """The camera for this frame. `visible_now`: agent share seen by the current one."""
+    def choose(self, agent_pos: np.ndarray, score_now: float | None, probe) -> int:
+        """The camera for this frame. `score_now`: the current camera's last view score."""
         self.held += 1
-        if self.current >= 0 and visible_now is not None:
+        if self.current >= 0 and score_now is not None:
             cam = self.scene.cameras[self.current]
             in_range = np.linalg.norm(cam.pos - agent_pos) <= MAX_RANGE
-            if self.held < MIN_HOLD or (visible_now >= MIN_VISIBLE and in_range):
+            if score_now > 0 and (self.held < MIN_HOLD or (score_now >= KEEP_SCORE
+                                                           and in_range)):
                 return self.current
         best, best_share = self._best(self.candidates(agent_pos[:2]), agent_pos, probe)
         if best_share <= 0.0:  # e.g. in a doorway: look from every room

@@ -23,13 +23,16 @@ PANEL_THICKNESS = 0.04
 HINGED_CLASSES = frozenset({
     "fridge", "cabinet", "kitchencabinet", "kitchencabinets", "closet", "microwave",
     "washingmachine", "dishwasher", "stove", "oven", "bathroomcabinet", "closetdrawer",
-    "toilet", "garbagecan", "nightstand", "dresser",
+    "garbagecan", "nightstand", "dresser",
 })
 """Classes drawn as a hollow carcass with a hinged front door when they can open."""
 SCREEN_CLASSES = frozenset({"tv", "computer", "laptop", "television"})
 LAMP_CLASSES = frozenset({"ceilinglamp", "tablelamp", "walllamp", "floorlamp", "lamp",
                           "desklamp", "lightbulb"})
 SKIP_CATEGORIES = frozenset({"Rooms", "Characters"})
+ENCLOSURES = frozenset({"stall", "shower", "showerstall"})
+"""Furniture that surrounds other objects (a toilet stall): drawn as three walls, open at
+the front and the top."""
 SEAT_HEIGHT = 0.45
 """Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
 
@@ -291,6 +294,11 @@ def build_layout(graph: EnvironmentGraph) -> Layout:
             toward = rooms[room].center if room in rooms else [*box.center, 0, 1, 0]
             axis, sign = _front_axis(box, toward)
             part.boxes, part.hinge = _hollow(box, axis, sign)
+        elif cls in ENCLOSURES:
+            toward = rooms[room].center if room in rooms else box.center + np.array([0.0, 1.0, 0.0])
+            axis, sign = _front_axis(box, toward)
+            slabs, _ = _hollow(box, axis, sign)
+            part.boxes = [b for b in slabs if b.hi[2] < box.hi[2] - 1e-6 or b.half[2] > 0.1]
         elif SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
             toward = rooms[room].center if room in rooms else box.center + np.array([0.0, 1.0, 0.0])
             part.boxes = _seat(box, *_front_axis(box, toward))

@@ -40,6 +40,24 @@ class FrameTruth:
     cut: bool  # True when the camera changes between this frame and the next
 
 
+VIEW_CAP = 0.04
+"""Agent share of the image above which a view counts as no better (close-ups that
+cut the agent off are not preferred over full-body views)."""
+
+
+def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: int,
+               ks: list[np.ndarray]) -> float:
+    """How well a camera shows the agent: visible pixels (capped) and joints in frame."""
+    share = renderer.probe(data, cam, scene.character_id)
+    if share <= 0.0:
+        return 0.0
+    w2c = world_to_cam(data.cam_xpos[cam], data.cam_xmat[cam])
+    uv, z = project(data.site_xpos[scene.joint_sites], ks[cam], w2c)
+    w, h = renderer.width, renderer.height
+    inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
+    return min(share, VIEW_CAP) / VIEW_CAP + float(inside.mean())
+
+
 class SceneState:
     """Applies one frame of a timeline to the model and data."""
 
@@ -89,12 +107,12 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
             cam = fixed_camera
         else:
             cam = director.choose(agent, visible,
-                                  lambda c, d=d: renderer.probe(d, c, char))
+                                  lambda c, d=d: view_score(renderer, d, scene, c, ks))
         rgb = renderer.rgb(d, cam)
         ids, depth = renderer.ids_depth(d, cam)
         seen = ids >= 0
         instance = np.where(seen, scene.geom_node[np.maximum(ids, 0)], BACKGROUND)
-        visible = float(np.count_nonzero(instance == char)) / instance.size
+        share = float(np.count_nonzero(instance == char)) / instance.size
         w2c = world_to_cam(d.cam_xpos[cam], d.cam_xmat[cam])
         poses = (d.geom_xpos.copy(), d.geom_xmat.copy())
         if pending is not None:
@@ -105,6 +123,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         inside = (uv[:, 0] >= -0.5) & (uv[:, 0] < w - 0.5) & (uv[:, 1] >= -0.5) \
             & (uv[:, 1] < h - 0.5) & (z > 0)
         unhidden = z <= depth[iu[:, 1], iu[:, 0]] + 0.15  # joints sit inside the limbs
+        visible = 0.0 if share == 0 else min(share, VIEW_CAP) / VIEW_CAP + float(inside.mean())
         depth = np.where(seen, depth, 0.0).astype(np.float32)
         truth = FrameTruth(
             i, cam, rgb, depth,
@@ -130,11 +149,12 @@ def still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     """RGB of chosen frames only, each from the camera that sees the agent best."""
     state = SceneState(scene, timeline)
     body = scene.model.body("agent").id
+    ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
     out = []
     for i in frames:
         d = state.apply(i)
         director = Director(scene)  # a fresh choice per frame: no continuity needed
         cam = director.choose(d.xpos[body].copy(), None,
-                              lambda c, d=d: renderer.probe(d, c, scene.character_id))
+                              lambda c, d=d: view_score(renderer, d, scene, c, ks))
         out.append((i, renderer.rgb(d, cam)))
     return out
