@@ -19,6 +19,8 @@ MAX_RANGE = 7.0
 """Metres: beyond this the current camera is left for a closer one."""
 MIN_HOLD = 15
 """Frames a camera is kept at least (no flicker between two views)."""
+RETRY = 10
+"""Frames to wait before probing again when no camera was better than the current one."""
 
 
 @dataclass
@@ -29,6 +31,7 @@ class Director:
     scene: object  # SceneModel
     current: int = -1
     held: int = 0
+    since_probe: int = 0
 
     def candidates(self, agent_xy: np.ndarray) -> list[int]:
         room = room_of_point(self.scene.layout, agent_xy)
@@ -38,12 +41,14 @@ class Director:
     def choose(self, agent_pos: np.ndarray, score_now: float | None, probe) -> int:
         """The camera for this frame. `score_now`: the current camera's last view score."""
         self.held += 1
+        self.since_probe += 1
         if self.current >= 0 and score_now is not None:
             cam = self.scene.cameras[self.current]
             in_range = np.linalg.norm(cam.pos - agent_pos) <= MAX_RANGE
-            if score_now > 0 and (self.held < MIN_HOLD or (score_now >= KEEP_SCORE
-                                                           and in_range)):
+            if score_now > 0 and (self.held < MIN_HOLD or self.since_probe < RETRY
+                                  or (score_now >= KEEP_SCORE and in_range)):
                 return self.current
+        self.since_probe = 0
         best, best_share = self._best(self.candidates(agent_pos[:2]), agent_pos, probe)
         if best_share <= 0.0:  # e.g. in a doorway: look from every room
             best, best_share = self._best(range(len(self.scene.cameras)), agent_pos, probe)

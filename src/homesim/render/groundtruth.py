@@ -56,7 +56,7 @@ class RecordingWriter:
         self._video = imageio_ffmpeg.write_frames(
             str(self.out / "video.mp4"), (width, height), fps=fps, codec="libx264",
             pix_fmt_out="yuv420p", quality=7, macro_block_size=1,
-            ffmpeg_log_level="error")
+            ffmpeg_log_level="error", output_params=["-preset", "veryfast"])
         self._video.send(None)
         self._pool = ThreadPoolExecutor(max_workers=1)
         self._pending: list[Future] = []
@@ -64,12 +64,15 @@ class RecordingWriter:
             "camera", "intrinsics", "world_to_cam", "joints3d", "joints2d", "joints_visible",
             "cut")}
 
-    def add(self, f: FrameTruth) -> None:
+    def _write(self, f: FrameTruth) -> None:
         self._video.send(np.ascontiguousarray(f.rgb))
-        path = self.out / "frames" / f"{f.index:06d}.npz"
-        self._pending.append(self._pool.submit(write_npz, path, {
+        write_npz(self.out / "frames" / f"{f.index:06d}.npz", {
             "depth": f.depth, "class": f.class_seg, "instance": f.instance_seg,
-            "flow": f.flow}))
+            "flow": f.flow})
+
+    def add(self, f: FrameTruth) -> None:
+        # Frames are written in order by the single worker (video and frame files).
+        self._pending.append(self._pool.submit(self._write, f))
         if len(self._pending) > 8:
             self._pending.pop(0).result()
         pf = self._per_frame
@@ -82,10 +85,10 @@ class RecordingWriter:
         pf["cut"].append(f.cut)
 
     def close(self, meta: dict) -> None:
-        self._video.close()
         for fut in self._pending:
             fut.result()
         self._pool.shutdown()
+        self._video.close()
         pf = self._per_frame
         np.savez_compressed(
             self.out / "frames.npz", camera=np.asarray(pf["camera"], np.int16),
@@ -99,9 +102,9 @@ class RecordingWriter:
     def abort(self) -> None:
         """Stop writing without finishing (the folder is left incomplete, no meta.json)."""
         try:
-            self._video.close()
-        finally:
             self._pool.shutdown(cancel_futures=True)
+        finally:
+            self._video.close()
 
 
 @dataclass(frozen=True)

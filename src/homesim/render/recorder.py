@@ -98,6 +98,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     char = scene.character_id
     w, h = renderer.width, renderer.height
     ks = [intrinsics(w, h, c.fovy) for c in scene.cameras]
+    node_lut = np.concatenate([[BACKGROUND], scene.geom_node]).astype(np.int32)
+    class_lut = np.concatenate([[0], scene.geom_class]).astype(np.uint16)
     visible = None
     pending = None  # frame t waiting for t+1's poses to finish its flow
     for i in range(len(timeline)):
@@ -111,7 +113,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         rgb = renderer.rgb(d, cam)
         ids, depth = renderer.ids_depth(d, cam)
         seen = ids >= 0
-        instance = np.where(seen, scene.geom_node[np.maximum(ids, 0)], BACKGROUND)
+        instance = node_lut[ids + 1]  # one gather per map: id -1 (nothing) -> slot 0
         share = float(np.count_nonzero(instance == char)) / instance.size
         w2c = world_to_cam(d.cam_xpos[cam], d.cam_xmat[cam])
         poses = (d.geom_xpos.copy(), d.geom_xmat.copy())
@@ -124,12 +126,10 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
             & (uv[:, 1] < h - 0.5) & (z > 0)
         unhidden = z <= depth[iu[:, 1], iu[:, 0]] + 0.15  # joints sit inside the limbs
         visible = 0.0 if share == 0 else min(share, VIEW_CAP) / VIEW_CAP + float(inside.mean())
-        depth = np.where(seen, depth, 0.0).astype(np.float32)
+        depth[~seen] = 0.0
         truth = FrameTruth(
-            i, cam, rgb, depth,
-            np.where(seen, scene.geom_class[np.maximum(ids, 0)], 0).astype(np.uint16),
-            instance.astype(np.int32), np.zeros((h, w, 2), np.float32), ks[cam], w2c,
-            joints, uv, inside & unhidden, False)
+            i, cam, rgb, depth, class_lut[ids + 1], instance,
+            np.zeros((h, w, 2), np.float32), ks[cam], w2c, joints, uv, inside & unhidden, False)
         pending = (truth, ids, poses)
     if pending is not None:
         truth = pending[0]
