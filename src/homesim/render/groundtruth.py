@@ -44,8 +44,8 @@ def write_npz(path: Path, arrays: dict[str, np.ndarray]) -> None:
 class RecordingWriter:
     """Streams frames into a recording folder; `close(meta)` finishes it.
 
-    Compression runs on a worker thread (zlib releases the GIL), so it overlaps with
-    rendering the next frame.
+    Video encoding and compression run on a worker thread (pipe writes and zlib release
+    the GIL), so they overlap with rendering the next frames.
     """
 
     def __init__(self, out_dir: str | Path, width: int, height: int, fps: int):
@@ -71,8 +71,11 @@ class RecordingWriter:
             "flow": f.flow})
 
     def add(self, f: FrameTruth) -> None:
-        # Frames are written in order by the single worker (video and frame files).
+        # Frames are written in order by the single worker (video and frame files); at
+        # most 8 wait, so memory stays bounded when writing is slower than rendering.
         self._pending.append(self._pool.submit(self._write, f))
+        while len(self._pending) > 8:
+            self._pending.pop(0).result()
         if len(self._pending) > 8:
             self._pending.pop(0).result()
         pf = self._per_frame
