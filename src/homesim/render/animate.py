@@ -273,7 +273,9 @@ class Animator:
         nodes = rec.nodes
         ch = rec.changes
         target = nodes[0] if nodes else None
-        if key in MOVE_KEYS and target is not None:
+        if key == "FIND" and target is not None and self.within_reach(target, 1.0):
+            self.look(self.box_of(target).center)  # already there: just look for it
+        elif key in MOVE_KEYS and target is not None:
             self.walk(self.box_of(target), run=key == "RUN")
         elif key in ("TURNTO", "LOOKAT", "WATCH", "POINTAT", "GREET") and target is not None:
             self.look(self.box_of(target).center, point=key in ("POINTAT", "GREET"))
@@ -387,11 +389,14 @@ class Animator:
         point = self.handle_point(target)
         self.reach(side, point, 0.6, at_peak=lambda: self.apply_states(states))
 
-    def walk_if_far(self, node_id: int, reach: float = 0.8) -> None:
+    def within_reach(self, node_id: int, reach: float) -> bool:
         box = self.box_of(node_id)
         d = np.maximum(np.abs(self.pose.xy - box.center[:2]) - box.half[:2], 0.0)
-        if np.hypot(*d) > reach + 0.3 and self.posture == "stand":
-            self.walk(box, reach=reach)
+        return bool(np.hypot(*d) <= reach)
+
+    def walk_if_far(self, node_id: int, reach: float = 0.8) -> None:
+        if not self.within_reach(node_id, reach + 0.3) and self.posture == "stand":
+            self.walk(self.box_of(node_id), reach=reach)
 
     def apply_states(self, states: dict[int, tuple[frozenset[str], frozenset[str]]]) -> None:
         for n, (_before, after) in states.items():

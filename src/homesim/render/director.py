@@ -12,7 +12,7 @@ import numpy as np
 
 from homesim.render.layout import room_of_point
 
-KEEP_SCORE = 0.75
+KEEP_SCORE = 1.3
 """Least view score (see `recorder.view_score`: capped agent pixels + share of joints in
 the image) for the current camera to be kept."""
 MAX_RANGE = 7.0

@@ -41,8 +41,14 @@ class FrameTruth:
 
 
 VIEW_CAP = 0.04
-"""Agent share of the image above which a view counts as no better (close-ups that
-cut the agent off are not preferred over full-body views)."""
+"""Agent share of the image at which a view scores best; larger shares (close-ups that
+cut the agent off) score less, down to 0 at VIEW_CAP + 0.2."""
+
+
+def _size_score(share: float) -> float:
+    if share <= VIEW_CAP:
+        return share / VIEW_CAP
+    return max(0.0, 1.0 - (share - VIEW_CAP) / 0.2)
 
 
 def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: int,
@@ -55,7 +61,7 @@ def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: 
     uv, z = project(data.site_xpos[scene.joint_sites], ks[cam], w2c)
     w, h = renderer.width, renderer.height
     inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
-    return min(share, VIEW_CAP) / VIEW_CAP + float(inside.mean())
+    return _size_score(share) + float(inside.mean())
 
 
 class SceneState:
@@ -125,7 +131,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         inside = (uv[:, 0] >= -0.5) & (uv[:, 0] < w - 0.5) & (uv[:, 1] >= -0.5) \
             & (uv[:, 1] < h - 0.5) & (z > 0)
         unhidden = z <= depth[iu[:, 1], iu[:, 0]] + 0.15  # joints sit inside the limbs
-        visible = 0.0 if share == 0 else min(share, VIEW_CAP) / VIEW_CAP + float(inside.mean())
+        visible = 0.0 if share == 0 else _size_score(share) + float(inside.mean())
         depth[~seen] = 0.0
         truth = FrameTruth(
             i, cam, rgb, depth, class_lut[ids + 1], instance,
