@@ -19,7 +19,8 @@ def _box(center, size):
 
 
 def box_home_dict() -> dict:
-    """A 4 m x 4 m room (Unity frame, y up) with walls, a table, a cup, a TV and a sofa.
+    """A 4 m x 4 m room (Unity frame, y up): walls, a table with a cup, an apple and a lamp,
+    a TV and a fridge.
 
     MuJoCo frame (x, z, y): walls' inner faces at x = +-1.95 and y = +-1.95.
     """
@@ -49,9 +50,17 @@ def box_home_dict() -> dict:
         {"id": 23, "class_name": "fridge", "category": "Appliances",
          "properties": ["CAN_OPEN", "CONTAINERS"], "states": ["CLOSED"],
          "bounding_box": _box((-1.6, 0.9, 1.4), (0.6, 1.8, 0.6))},
+        {"id": 24, "class_name": "apple", "category": "Food",
+         "properties": ["GRABBABLE", "EATABLE"],
+         "bounding_box": _box((1.15, 0.85, -0.85), (0.08, 0.08, 0.08))},
+        {"id": 25, "class_name": "tablelamp", "category": "Lamps",
+         "properties": ["HAS_SWITCH"], "states": ["OFF"],
+         "bounding_box": _box((0.85, 1.0, -1.15), (0.2, 0.4, 0.2))},
     ]
     edges = [(n["id"], "INSIDE", 1) for n in nodes[1:]]
-    edges += [(21, "ON", 20), (21, "CLOSE", 20), (20, "CLOSE", 21)]
+    edges += [(21, "ON", 20), (21, "CLOSE", 20), (20, "CLOSE", 21),
+              (24, "ON", 20), (24, "CLOSE", 20), (20, "CLOSE", 24),
+              (25, "ON", 20), (25, "CLOSE", 20), (20, "CLOSE", 25)]
     return {"nodes": nodes,
             "edges": [{"from_id": a, "relation_type": r, "to_id": b} for a, r, b in edges]}
 

@@ -109,3 +109,37 @@ def test_sitting_on_the_sofa_in_scene1(shared_data):
     assert np.all(np.abs(q[:2] - sofa.center[:2]) <= sofa.half[:2])  # on the sofa
     assert SEAT_HEIGHT < q[2] < SEAT_HEIGHT + 0.2  # pelvis just above the seat
     assert q[scene.joint_qpos["l_knee"]] > 1.2  # knees bent
+
+
+def _run(program: str, fps: int = 10):
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    g = EnvironmentGraph.from_dict(box_home_dict())
+    scene = build_scene(g, AGENTS["female1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(program), g, trace=True)
+    return scene, Animator(scene, g, AGENTS["female1"], fps=fps).run(result)
+
+
+def test_second_object_goes_to_the_left_hand():
+    scene, tl = _run("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Grab] <apple> (24)\n"
+                     "[Walk] <tv> (22)\n")
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = tl.qpos[-1]
+    mujoco.mj_kinematics(scene.model, d)
+    right, left = (d.site_xpos[scene.hand_sites[s]] for s in ("r", "l"))
+    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[21]], right, atol=1e-6)
+    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[24]], left, atol=1e-6)
+
+
+def test_running_is_faster_than_walking():
+    _, walk = _run("[Walk] <tv> (22)\n")
+    _, run = _run("[Run] <tv> (22)\n")
+    assert len(run.qpos) < 0.75 * len(walk.qpos)
+
+
+def test_lamp_lights_up_when_switched_on():
+    _, tl = _run("[Walk] <tablelamp> (25)\n[SwitchOn] <tablelamp> (25)\n")
+    a, b = tl.step_frames[1]
+    assert 25 not in tl.lamps[a] and 25 in tl.lamps[b]

@@ -80,3 +80,15 @@ def test_loader_errors_name_the_folder(tmp_path, recording):
     _, rec, _, _ = recording
     with pytest.raises(DataError, match="out of range"):
         rec.frame(rec.num_frames)
+
+
+def test_same_seed_gives_the_same_recording(tmp_path, box_home, gl):
+    p = homesim.parse_program("[Walk] <tv> (22)\n")
+    for name in ("a", "b"):
+        render_program(p, box_home, tmp_path / name, width=32, height=24, fps=4, seed=5)
+    a, b = load_recording(tmp_path / "a"), load_recording(tmp_path / "b")
+    assert a.num_frames == b.num_frames
+    for i in (0, a.num_frames - 1):
+        for key, arr in a.frame(i).items():
+            np.testing.assert_array_equal(arr, b.frame(i)[key], err_msg=key)
+    np.testing.assert_array_equal(a.per_frame["joints2d"], b.per_frame["joints2d"])

@@ -15,7 +15,8 @@ def test_scene_maps_every_geom_to_a_node_and_class(box_home):
     assert agent_geoms and all(scene.geom_node[g] == 10 for g in agent_geoms)
     assert scene.classes[0] == "background"
     assert scene.instances[21] == "cup" and scene.instances[10] == "character"
-    assert set(scene.mocap) == {21} and set(scene.hinge_qpos) == {23}
+    assert set(scene.mocap) == {21, 24} and set(scene.hinge_qpos) == {23}
+    assert set(scene.lamp_mat) == {25} and scene.lamp_light[25] >= 0
     assert set(scene.screen_geom) == {22}
     assert len(scene.joint_sites) == len(JOINTS) and set(scene.joint_qpos) == set(HINGES)
 
