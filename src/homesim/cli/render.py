@@ -46,15 +46,23 @@ def render(
     r = _render_module()
     prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
-    with Progress(TextColumn("rendering"), BarColumn(), MofNCompleteColumn(),
-                  TimeRemainingColumn(), console=console) as bar:
-        task = bar.add_task("frames", total=None)
+    bar = Progress(TextColumn("rendering"), BarColumn(), MofNCompleteColumn(),
+                   TimeRemainingColumn(), console=console)
+    task = None
 
-        def progress(done: int, total: int) -> None:
-            bar.update(task, completed=done, total=total)
+    def progress(done: int, total: int) -> None:
+        nonlocal task
+        if task is None:  # start the bar with the first frame (errors come before it)
+            bar.start()
+            task = bar.add_task("frames", total=total)
+        bar.update(task, completed=done, total=total)
 
+    try:
         result = r.render_program(prog, g, out, width=width, height=height, fps=fps,
                                   seed=seed, progress=progress, agent=agent)
+    finally:
+        if task is not None:
+            bar.stop()
     console.print(f"[green]ok[/]: {result.num_frames} frames ({result.num_frames / fps:.1f} s "
                   f"of video) of {len(result.steps)} steps in {gname}, agent {result.agent}, "
                   f"written to {out} in {result.seconds:.1f} s "

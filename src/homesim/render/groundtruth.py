@@ -121,10 +121,7 @@ class StepSpan:
 
 
 class Recording:
-    """A recording folder read back. Frames load lazily.
-
-    >>> # rec = load_recording("out/demo"); rec.frame(0)["depth"].shape
-    """
+    """A recording folder read back (see `load_recording`); frames load lazily."""
 
     def __init__(self, path: Path, meta: dict, per_frame: dict[str, np.ndarray]):
         self.path, self.meta, self.per_frame = path, meta, per_frame
