@@ -63,6 +63,7 @@ class Timeline:
     lamps: list[frozenset[int]] = field(default_factory=list)  # lamp node ids lit
     screens: list[frozenset[int]] = field(default_factory=list)  # screen node ids on
     step_frames: list[tuple[int, int]] = field(default_factory=list)  # [start, end]
+    focus: list[int] = field(default_factory=list)  # per step: the node it acts on, or -1
 
     def __len__(self) -> int:
         return len(self.qpos)
@@ -424,8 +425,8 @@ class Animator:
         for rec in result.trace:
             first = len(self.timeline)
             self.step(rec)
-            # Non-reach steps that change states (e.g. a SwitchOn done while seated).
             self.timeline.step_frames.append((first, len(self.timeline) - 1))
+            self.timeline.focus.append(rec.nodes[-1] if rec.nodes else -1)
         self.hold(0.3)
         last = self.timeline.step_frames[-1] if self.timeline.step_frames else (0, 0)
         if self.timeline.step_frames:

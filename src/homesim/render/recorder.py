@@ -51,17 +51,30 @@ def _size_score(share: float) -> float:
     return max(0.0, 1.0 - (share - VIEW_CAP) / 0.2)
 
 
+FOCUS_BONUS = 0.5
+"""Score added when the object the step acts on is in view too."""
+
+
 def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: int,
-               ks: list[np.ndarray]) -> float:
-    """How well a camera shows the agent: visible pixels (capped) and joints in frame."""
-    share = renderer.probe(data, cam, scene.character_id)
+               ks: list[np.ndarray], focus: int = -1) -> float:
+    """How well a camera shows the agent (visible pixels, capped; joints in frame) and
+    the object it acts on (`focus`, a node id; -1 for none)."""
+    share, seen = renderer.probe_nodes(data, cam, (scene.character_id, focus))
     if share <= 0.0:
         return 0.0
     w2c = world_to_cam(data.cam_xpos[cam], data.cam_xmat[cam])
     uv, z = project(data.site_xpos[scene.joint_sites], ks[cam], w2c)
     w, h = renderer.width, renderer.height
     inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
-    return _size_score(share) + float(inside.mean())
+    return _size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
+
+
+def focus_per_frame(timeline: Timeline) -> list[int]:
+    """The node each frame's step acts on (-1 before the first and for none)."""
+    out = [-1] * len(timeline)
+    for (a, b), node in zip(timeline.step_frames, timeline.focus, strict=False):
+        out[a:b + 1] = [node] * (b + 1 - a)
+    return out
 
 
 class SceneState:
@@ -104,6 +117,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     char = scene.character_id
     w, h = renderer.width, renderer.height
     ks = [intrinsics(w, h, c.fovy) for c in scene.cameras]
+    focus = focus_per_frame(timeline)
     node_lut = np.concatenate([[BACKGROUND], scene.geom_node]).astype(np.int32)
     class_lut = np.concatenate([[0], scene.geom_class]).astype(np.uint16)
     visible = None
@@ -114,8 +128,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         if fixed_camera is not None:
             cam = fixed_camera
         else:
-            cam = director.choose(agent, visible,
-                                  lambda c, d=d: view_score(renderer, d, scene, c, ks))
+            cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: view_score(
+                renderer, d, scene, c, ks, f))
         rgb = renderer.rgb(d, cam)
         ids, depth = renderer.ids_depth(d, cam)
         seen = ids >= 0
@@ -131,7 +145,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         inside = (uv[:, 0] >= -0.5) & (uv[:, 0] < w - 0.5) & (uv[:, 1] >= -0.5) \
             & (uv[:, 1] < h - 0.5) & (z > 0)
         unhidden = z <= depth[iu[:, 1], iu[:, 0]] + 0.15  # joints sit inside the limbs
-        visible = 0.0 if share == 0 else _size_score(share) + float(inside.mean())
+        visible = 0.0 if share == 0 else _size_score(share) + float(inside.mean()) + (
+            FOCUS_BONUS if focus[i] >= 0 and np.any(instance == focus[i]) else 0.0)
         depth[~seen] = 0.0
         truth = FrameTruth(
             i, cam, rgb, depth, class_lut[ids + 1], instance,
@@ -156,11 +171,12 @@ def still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     state = SceneState(scene, timeline)
     body = scene.model.body("agent").id
     ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
+    focus = focus_per_frame(timeline)
     out = []
     for i in frames:
         d = state.apply(i)
         director = Director(scene)  # a fresh choice per frame: no continuity needed
         cam = director.choose(d.xpos[body].copy(), None,
-                              lambda c, d=d: view_score(renderer, d, scene, c, ks))
+                              lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
         out.append((i, renderer.rgb(d, cam)))
     return out

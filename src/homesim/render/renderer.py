@@ -62,14 +62,19 @@ class Renderer:
     def probe(self, data: mujoco.MjData, camera_id: int, node_id: int,
               size: tuple[int, int] = (80, 60)) -> float:
         """Share of a small (w, h) view covered by one graph node (cheap visibility)."""
+        return self.probe_nodes(data, camera_id, (node_id,), size)[0]
+
+    def probe_nodes(self, data: mujoco.MjData, camera_id: int, node_ids: tuple[int, ...],
+                    size: tuple[int, int] = (80, 60)) -> list[float]:
+        """Shares of a small (w, h) view covered by each of some graph nodes."""
         w, h = size
         rect = mujoco.MjrRect(0, 0, w, h)
         self._draw(data, camera_id, segment=True, rect=rect)
         buf = np.empty((h, w, 3), np.uint8)
         mujoco.mjr_readPixels(buf, None, rect, self._con)
         ids = self._decode(buf)
-        hit = ids >= 0
-        return float(np.count_nonzero(self.scene.geom_node[ids[hit]] == node_id)) / ids.size
+        nodes = self.scene.geom_node[ids[ids >= 0]]
+        return [float(np.count_nonzero(nodes == n)) / ids.size for n in node_ids]
 
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
               rect: mujoco.MjrRect | None = None) -> None:
