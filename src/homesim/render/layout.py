@@ -15,7 +15,7 @@ import numpy as np
 
 from homesim.render.palette import RGBA, class_color
 from homesim.world.graph import EnvironmentGraph, Node
-from homesim.world.vocab import CAN_OPEN, GRABBABLE, INSIDE, S_ON, S_OPEN, SITTABLE
+from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
 
 WALL_THICKNESS = 0.1
 """Metres; corner walls (2.5 m cubes) become slabs this thick on the room's edge."""
@@ -355,4 +355,4 @@ def room_of_point(layout: Layout, xy: np.ndarray) -> int | None:
     return None if best is None else best[1]
 
 
-__all__ = ["INSIDE", "Box", "Hinge", "Layout", "Part", "build_layout", "to_mujoco"]
+__all__ = ["Box", "Hinge", "Layout", "Part", "build_layout", "to_mujoco"]

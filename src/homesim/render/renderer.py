@@ -67,7 +67,7 @@ class Renderer:
     def probe_nodes(self, data: mujoco.MjData, camera_id: int, node_ids: tuple[int, ...],
                     size: tuple[int, int] = (80, 60)) -> list[float]:
         """Shares of a small (w, h) view covered by each of some graph nodes."""
-        w, h = size
+        w, h = min(size[0], self.width), min(size[1], self.height)  # inside the buffer
         rect = mujoco.MjrRect(0, 0, w, h)
         self._draw(data, camera_id, segment=True, rect=rect)
         buf = np.empty((h, w, 3), np.uint8)
