@@ -1,0 +1,7 @@
+"""Root pytest configuration: doctests of optional packages need their extras."""
+
+import importlib.util
+
+collect_ignore_glob = []
+if importlib.util.find_spec("mujoco") is None:
+    collect_ignore_glob.append("src/homesim/render/*")

@@ -1,0 +1,148 @@
+"""The public calls: render a program to a recording folder, or to key frames."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from homesim.errors import HomesimError
+from homesim.program.model import Program
+from homesim.render.agent import AGENTS, agent_shape
+from homesim.render.animate import Animator, Timeline
+from homesim.render.groundtruth import RecordingWriter, StepSpan
+from homesim.render.recorder import record, still_frames
+from homesim.render.renderer import Renderer
+from homesim.render.scene import SceneModel, build_scene
+from homesim.sim.execute import Bindings, execute
+from homesim.world.graph import EnvironmentGraph
+
+Progress = Callable[[int, int], None]
+"""Called as ``progress(frames_done, frames_total)``."""
+
+
+@dataclass(frozen=True)
+class RenderResult:
+    """What `render_program` wrote."""
+
+    out_dir: Path
+    num_frames: int
+    width: int
+    height: int
+    fps: int
+    agent: str
+    steps: list[StepSpan]
+    seconds: float  # wall time of the whole call
+
+    @property
+    def video(self) -> Path:
+        return self.out_dir / "video.mp4"
+
+
+def _check_size(width: int, height: int, fps: int) -> None:
+    if not (8 <= width <= 4096 and 8 <= height <= 4096):
+        raise HomesimError(f"image size {width}x{height} out of range (8..4096)")
+    if width % 2 or height % 2:
+        raise HomesimError(f"image size {width}x{height}: width and height must be even "
+                           "(H.264 video)")
+    if not 1 <= fps <= 240:
+        raise HomesimError(f"fps {fps} out of range (1..240)")
+
+
+def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
+            seed: int, bindings: Bindings | None, agent: str | None
+            ) -> tuple[SceneModel, Timeline, str]:
+    """Execute, build the scene and animate: everything before drawing."""
+    if not program.steps:
+        raise HomesimError("the program has no steps to render")
+    name = agent or list(AGENTS)[seed % len(AGENTS)]
+    shape = agent_shape(name)
+    result = execute(program, graph, trace=True, bindings=bindings)
+    scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
+    timeline = Animator(scene, graph, shape, fps=fps, seed=seed).run(result)
+    return scene, timeline, name
+
+
+def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Path, *,
+                   width: int = 640, height: int = 480, fps: int = 30, seed: int = 0,
+                   bindings: Bindings | None = None, progress: Progress | None = None,
+                   agent: str | None = None) -> RenderResult:
+    """Animate a grounded program in a home with geometry and record it with ground truth.
+
+    The program's objects name nodes of `graph` (``<tv> (1.410)``, or plain ``(410)``), or
+    `bindings` maps (class, instance) to node ids. Writes the folder layout described in
+    `homesim.render.groundtruth`; read it back with `load_recording`.
+    """
+    t0 = time.perf_counter()
+    _check_size(width, height, fps)
+    out = Path(out_dir)
+    if (out / "meta.json").exists() or (out / "video.mp4").exists():
+        raise HomesimError(f"{out}: already holds a recording; choose another folder")
+    scene, timeline, name = prepare(program, graph, width=width, height=height, fps=fps,
+                                    seed=seed, bindings=bindings, agent=agent)
+    total = len(timeline)
+    writer = RecordingWriter(out, width, height, fps)
+    try:
+        with Renderer(scene, width, height) as renderer:
+            for truth in record(scene, timeline, renderer):
+                writer.add(truth)
+                if progress is not None:
+                    progress(truth.index + 1, total)
+    except BaseException:
+        writer.abort()
+        raise
+    steps = [StepSpan(i, str(program.steps[i]), a, b)
+             for i, (a, b) in enumerate(timeline.step_frames)]
+    meta = _meta(program, graph, scene, name, width, height, fps, seed, total, steps)
+    writer.close(meta)
+    return RenderResult(out, total, width, height, fps, name, steps, time.perf_counter() - t0)
+
+
+def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, total,
+          steps) -> dict:
+    from homesim.render.agent import JOINTS
+    from homesim.render.flow import intrinsics
+
+    class_ids = {name: i for i, name in enumerate(scene.classes)}
+    return {
+        "program": str(program),
+        "title": program.title,
+        "home": getattr(graph, "source", None) or "graph",
+        "agent": agent,
+        "seed": seed,
+        "width": width,
+        "height": height,
+        "fps": fps,
+        "num_frames": total,
+        "steps": [{"index": s.index, "step": s.step, "start_frame": s.start_frame,
+                   "end_frame": s.end_frame} for s in steps],
+        "classes": {str(i): name for i, name in enumerate(scene.classes)},
+        "instances": {str(n): {"class": c, "class_id": class_ids[c]}
+                      for n, c in scene.instances.items()},
+        "character_id": scene.character_id,
+        "joints": list(JOINTS),
+        "cameras": [{"name": c.name, "room_id": c.room_id, "fovy": c.fovy,
+                     "position": [float(x) for x in c.pos],
+                     "intrinsics": intrinsics(width, height, c.fovy).tolist()}
+                    for c in scene.cameras],
+        "units": {"depth": "metres along the optical axis, 0 = nothing seen",
+                  "flow": "pixels (du, dv) from this frame to the next",
+                  "world": "metres, MuJoCo frame (z up) = Unity (x, z, y)",
+                  "camera": "OpenCV: x right, y down, z forward; pixel centres at integers"},
+    }
+
+
+def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
+                     height: int = 240, seed: int = 0, bindings: Bindings | None = None,
+                     agent: str | None = None) -> list[tuple[int, np.ndarray]]:
+    """(step index, RGB frame at the end of that step) for each step; nothing is written."""
+    _check_size(width, height, 30)
+    scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
+                                 seed=seed, bindings=bindings, agent=agent)
+    ends = [end for _, end in timeline.step_frames]
+    with Renderer(scene, width, height) as renderer:
+        stills = still_frames(scene, timeline, renderer, ends)
+    return [(step, rgb) for step, (_, rgb) in enumerate(stills)]

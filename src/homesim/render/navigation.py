@@ -1,0 +1,175 @@
+"""Paths for the agent: a 2D occupancy grid of the home and A* on it.
+
+Cells are free where a floor tile lies and nothing stands at leg height (walls,
+furniture), after growing obstacles by the agent's radius. Door frames and doors
+are passable. Paths are shortened by line of sight, so the agent walks straight
+segments around furniture and through doorways.
+"""
+
+from __future__ import annotations
+
+import heapq
+from dataclasses import dataclass
+
+import numpy as np
+
+from homesim.errors import ExecutionError
+from homesim.render.layout import Box, Layout
+
+CELL = 0.1
+"""Grid resolution, metres."""
+AGENT_RADIUS = 0.25
+PASSABLE = frozenset({"floor", "ceiling", "door", "doorjamb", "rug", "character"})
+LEG_LEVEL = (0.08, 1.2)
+"""Things between these heights (metres) block walking."""
+
+
+@dataclass
+class Grid:
+    """Occupancy grid: ``free[i, j]`` is True when cell (i=x, j=y) can be walked."""
+
+    origin: np.ndarray  # world (x, y) of cell (0, 0)'s centre
+    free: np.ndarray  # (nx, ny) bool
+
+    def cell(self, xy) -> tuple[int, int]:
+        ij = np.round((np.asarray(xy, float) - self.origin) / CELL).astype(int)
+        return (int(np.clip(ij[0], 0, self.free.shape[0] - 1)),
+                int(np.clip(ij[1], 0, self.free.shape[1] - 1)))
+
+    def point(self, ij: tuple[int, int]) -> np.ndarray:
+        return self.origin + np.asarray(ij, float) * CELL
+
+    def nearest_free(self, xy) -> tuple[int, int]:
+        """The free cell closest to a point."""
+        idx = np.argwhere(self.free)
+        if len(idx) == 0:
+            raise ExecutionError("the home has no free floor to walk on")
+        pts = self.origin + idx * CELL
+        k = int(np.argmin(np.sum((pts - np.asarray(xy)[:2]) ** 2, axis=1)))
+        return int(idx[k][0]), int(idx[k][1])
+
+    def line_free(self, a: np.ndarray, b: np.ndarray) -> bool:
+        n = int(np.ceil(np.linalg.norm(b - a) / (CELL / 2))) + 1
+        return all(self.free[self.cell(a + t * (b - a))] for t in np.linspace(0.0, 1.0, n))
+
+
+def _mark(grid: np.ndarray, origin: np.ndarray, box: Box, value: bool, grow: float) -> None:
+    lo = np.floor((box.lo[:2] - grow - origin) / CELL + 0.5).astype(int)
+    hi = np.ceil((box.hi[:2] + grow - origin) / CELL - 0.5).astype(int)
+    lo = np.maximum(lo, 0)
+    hi = np.minimum(hi, np.array(grid.shape) - 1)
+    if np.all(hi >= lo):
+        grid[lo[0]:hi[0] + 1, lo[1]:hi[1] + 1] = value
+
+
+def build_grid(layout: Layout) -> Grid:
+    """The occupancy grid of a home's layout."""
+    lo = np.min([f.lo[:2] for f in layout.floors], axis=0)
+    hi = np.max([f.hi[:2] for f in layout.floors], axis=0)
+    shape = tuple(np.ceil((hi - lo) / CELL).astype(int) + 1)
+    free = np.zeros(shape, bool)
+    origin = lo + CELL / 2
+    for f in layout.floors:
+        _mark(free, origin, Box(f.center, f.half - CELL / 2), True, 0.0)
+    for part in layout.parts:
+        if part.class_name in PASSABLE or part.movable is not None:
+            continue
+        boxes = list(part.boxes)
+        for box in boxes:
+            if box.hi[2] > LEG_LEVEL[0] and box.lo[2] < LEG_LEVEL[1]:
+                _mark(free, origin, box, False, AGENT_RADIUS)
+    # Door frames: keep the opening between the posts walkable.
+    for part in layout.parts:
+        if part.class_name == "doorjamb" and len(part.boxes) == 2:
+            a, b = part.boxes
+            opening = Box.from_bounds(np.minimum(a.hi, b.hi) * 0 + np.minimum(a.lo, b.lo),
+                                      np.maximum(a.hi, b.hi))
+            along = 0 if opening.half[0] >= opening.half[1] else 1
+            inner = opening.half.copy()
+            inner[along] -= 0.12
+            inner[1 - along] += 0.35
+            _mark(free, origin, Box(opening.center, inner), True, 0.0)
+    return Grid(origin, free)
+
+
+_STEPS = [(1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),
+          (1, 1, 1.4142), (1, -1, 1.4142), (-1, 1, 1.4142), (-1, -1, 1.4142)]
+
+
+def astar(grid: Grid, start: tuple[int, int], goals: set[tuple[int, int]],
+          aim: np.ndarray) -> list[tuple[int, int]]:
+    """Shortest 8-connected path from `start` to any goal cell (heuristic: to `aim`)."""
+    if start in goals:
+        return [start]
+    aim_ij = (aim - grid.origin) / CELL
+
+    def h(c):
+        return max(0.0, float(np.hypot(c[0] - aim_ij[0], c[1] - aim_ij[1])) - 12.0)
+
+    came: dict[tuple[int, int], tuple[int, int]] = {}
+    cost = {start: 0.0}
+    heap = [(h(start), start)]
+    free = grid.free
+    nx, ny = free.shape
+    while heap:
+        _, cur = heapq.heappop(heap)
+        if cur in goals:
+            path = [cur]
+            while cur in came:
+                cur = came[cur]
+                path.append(cur)
+            return path[::-1]
+        base = cost[cur]
+        for di, dj, w in _STEPS:
+            nb = (cur[0] + di, cur[1] + dj)
+            if not (0 <= nb[0] < nx and 0 <= nb[1] < ny) or not free[nb]:
+                continue
+            if di and dj and not (free[cur[0] + di, cur[1]] and free[cur[0], cur[1] + dj]):
+                continue  # no cutting corners
+            c = base + w
+            if c < cost.get(nb, np.inf):
+                cost[nb] = c
+                came[nb] = cur
+                heapq.heappush(heap, (c + h(nb), nb))
+    raise ExecutionError("no walkable path to the target")
+
+
+def goal_cells(grid: Grid, target: Box, reach: float = 0.75) -> set[tuple[int, int]]:
+    """Free cells within `reach` metres of a box's footprint (where the agent may stand)."""
+    idx = np.argwhere(grid.free)
+    pts = grid.origin + idx * CELL
+    d = np.maximum(np.abs(pts - target.center[:2]) - target.half[:2], 0.0)
+    dist = np.hypot(d[:, 0], d[:, 1])
+    near = idx[dist <= reach]
+    if len(near) == 0:  # nothing close enough: the nearest free cells
+        near = idx[dist <= dist.min() + CELL]
+    return {(int(i), int(j)) for i, j in near}
+
+
+def smooth(grid: Grid, cells: list[tuple[int, int]]) -> list[np.ndarray]:
+    """Way points: drop every cell that the previous way point can see past."""
+    pts = [grid.point(c) for c in cells]
+    if len(pts) <= 2:
+        return pts
+    out = [pts[0]]
+    i = 0
+    while i < len(pts) - 1:
+        j = len(pts) - 1
+        while j > i + 1 and not grid.line_free(pts[i], pts[j]):
+            j -= 1
+        out.append(pts[j])
+        i = j
+    return out
+
+
+def plan_path(grid: Grid, start_xy: np.ndarray, target: Box,
+              reach: float = 0.75) -> list[np.ndarray]:
+    """Way points (x, y) from a position to a spot within reach of a target box."""
+    start = grid.cell(start_xy)
+    if not grid.free[start]:
+        start = grid.nearest_free(start_xy)
+    goals = goal_cells(grid, target, reach)
+    cells = astar(grid, start, goals, target.center[:2])
+    pts = smooth(grid, cells)
+    pts[0] = np.asarray(start_xy, float)[:2].copy() if len(pts) > 1 else pts[0]
+    return pts

@@ -1,0 +1,182 @@
+"""Play a `Timeline` through the renderer and produce each frame's ground truth.
+
+For every frame: apply the scene state (agent qpos, objects, hinges, lamps, screens),
+let the `Director` pick a camera, draw colour and ids+depth, map geoms to graph ids
+and classes, and compute the exact flow to the next frame. Frames are yielded as
+`FrameTruth` in order; writing them is the writer's job.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from homesim.render.animate import Timeline
+from homesim.render.director import Director
+from homesim.render.flow import intrinsics, optical_flow, project, world_to_cam
+from homesim.render.gl import mujoco
+from homesim.render.renderer import Renderer
+from homesim.render.scene import BACKGROUND, SceneModel
+
+
+@dataclass
+class FrameTruth:
+    """Everything recorded for one frame (arrays are H x W unless noted)."""
+
+    index: int
+    camera: int  # index into scene.cameras
+    rgb: np.ndarray  # (H, W, 3) uint8
+    depth: np.ndarray  # float32 metres along the view axis; 0 where nothing is seen
+    class_seg: np.ndarray  # uint16 class index (0 background)
+    instance_seg: np.ndarray  # int32 graph node id (0 background)
+    flow: np.ndarray  # (H, W, 2) float32 pixels to the next frame (u, v)
+    intrinsics: np.ndarray  # (3, 3)
+    world_to_cam: np.ndarray  # (4, 4) OpenCV convention
+    joints3d: np.ndarray  # (J, 3) world metres
+    joints2d: np.ndarray  # (J, 2) pixels
+    joints_visible: np.ndarray  # (J,) bool: in the image and not hidden
+    cut: bool  # True when the camera changes between this frame and the next
+
+
+VIEW_CAP = 0.04
+"""Agent share of the image at which a view scores best; larger shares (close-ups that
+cut the agent off) score less, down to 0 at VIEW_CAP + 0.2."""
+
+
+def _size_score(share: float) -> float:
+    if share <= VIEW_CAP:
+        return share / VIEW_CAP
+    return max(0.0, 1.0 - (share - VIEW_CAP) / 0.2)
+
+
+FOCUS_BONUS = 0.5
+"""Score added when the object the step acts on is in view too."""
+
+
+def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: int,
+               ks: list[np.ndarray], focus: int = -1) -> float:
+    """How well a camera shows the agent (visible pixels, capped; joints in frame) and
+    the object it acts on (`focus`, a node id; -1 for none)."""
+    share, seen = renderer.probe_nodes(data, cam, (scene.character_id, focus))
+    if share <= 0.0:
+        return 0.0
+    w2c = world_to_cam(data.cam_xpos[cam], data.cam_xmat[cam])
+    uv, z = project(data.site_xpos[scene.joint_sites], ks[cam], w2c)
+    w, h = renderer.width, renderer.height
+    inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
+    return _size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
+
+
+def focus_per_frame(timeline: Timeline) -> list[int]:
+    """The node each frame's step acts on (-1 before the first and for none)."""
+    out = [-1] * len(timeline)
+    for (a, b), node in zip(timeline.step_frames, timeline.focus, strict=False):
+        out[a:b + 1] = [node] * (b + 1 - a)
+    return out
+
+
+class SceneState:
+    """Applies one frame of a timeline to the model and data."""
+
+    def __init__(self, scene: SceneModel, timeline: Timeline):
+        self.scene, self.tl = scene, timeline
+        self.data = mujoco.MjData(scene.model)
+        m = scene.model
+        self._emission = {n: 1.0 for n in scene.lamp_mat}
+        self._light_ids = dict(scene.lamp_light)
+        self._mocap = m.nmocap > 0
+        del m
+
+    def apply(self, i: int) -> mujoco.MjData:
+        m, d, tl = self.scene.model, self.data, self.tl
+        d.qpos[:] = tl.qpos[i]
+        if self._mocap:
+            d.mocap_pos[:] = tl.mocap[i]
+        lit = tl.lamps[i]
+        for n, mat in self.scene.lamp_mat.items():
+            on = n in lit
+            m.mat_emission[mat] = 0.9 if on else 0.0
+            lid = self._light_ids.get(n, -1)
+            if lid >= 0:
+                m.light_active[lid] = on
+        off, on = self.scene.screen_mats
+        for n, g in self.scene.screen_geom.items():
+            m.geom_matid[g] = on if n in tl.screens[i] else off
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_camlight(m, d)
+        return d
+
+
+def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
+           fixed_camera: int | None = None) -> Iterator[FrameTruth]:
+    """Yield each frame's ground truth, in order."""
+    state = SceneState(scene, timeline)
+    director = Director(scene)
+    char = scene.character_id
+    w, h = renderer.width, renderer.height
+    ks = [intrinsics(w, h, c.fovy) for c in scene.cameras]
+    focus = focus_per_frame(timeline)
+    node_lut = np.concatenate([[BACKGROUND], scene.geom_node]).astype(np.int32)
+    class_lut = np.concatenate([[0], scene.geom_class]).astype(np.uint16)
+    visible = None
+    pending = None  # frame t waiting for t+1's poses to finish its flow
+    for i in range(len(timeline)):
+        d = state.apply(i)
+        agent = d.xpos[scene.model.body("agent").id].copy()
+        if fixed_camera is not None:
+            cam = fixed_camera
+        else:
+            cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: view_score(
+                renderer, d, scene, c, ks, f))
+        rgb = renderer.rgb(d, cam)
+        ids, depth = renderer.ids_depth(d, cam)
+        seen = ids >= 0
+        instance = node_lut[ids + 1]  # one gather per map: id -1 (nothing) -> slot 0
+        share = float(np.count_nonzero(instance == char)) / instance.size
+        w2c = world_to_cam(d.cam_xpos[cam], d.cam_xmat[cam])
+        poses = (d.geom_xpos.copy(), d.geom_xmat.copy())
+        if pending is not None:
+            yield _finish(pending, cam, ks[cam], w2c, poses)
+        joints = d.site_xpos[scene.joint_sites].copy()
+        uv, z = project(joints, ks[cam], w2c)
+        iu = np.clip(np.round(uv).astype(int), 0, [w - 1, h - 1])
+        inside = (uv[:, 0] >= -0.5) & (uv[:, 0] < w - 0.5) & (uv[:, 1] >= -0.5) \
+            & (uv[:, 1] < h - 0.5) & (z > 0)
+        unhidden = z <= depth[iu[:, 1], iu[:, 0]] + 0.15  # joints sit inside the limbs
+        visible = 0.0 if share == 0 else _size_score(share) + float(inside.mean()) + (
+            FOCUS_BONUS if focus[i] >= 0 and np.any(instance == focus[i]) else 0.0)
+        depth[~seen] = 0.0
+        truth = FrameTruth(
+            i, cam, rgb, depth, class_lut[ids + 1], instance,
+            np.zeros((h, w, 2), np.float32), ks[cam], w2c, joints, uv, inside & unhidden, False)
+        pending = (truth, ids, poses)
+    if pending is not None:
+        truth = pending[0]
+        yield _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
+
+
+def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> FrameTruth:
+    truth, ids, (xpos0, xmat0) = pending
+    truth.flow = optical_flow(truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1,
+                              xpos0, xmat0, poses1[0], poses1[1])
+    truth.cut = cam1 != truth.camera
+    return truth
+
+
+def still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
+                 frames: list[int]) -> list[tuple[int, np.ndarray]]:
+    """RGB of chosen frames only, each from the camera that sees the agent best."""
+    state = SceneState(scene, timeline)
+    body = scene.model.body("agent").id
+    ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
+    focus = focus_per_frame(timeline)
+    out = []
+    for i in frames:
+        d = state.apply(i)
+        director = Director(scene)  # a fresh choice per frame: no continuity needed
+        cam = director.choose(d.xpos[body].copy(), None,
+                              lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
+        out.append((i, renderer.rgb(d, cam)))
+    return out

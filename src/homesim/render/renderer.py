@@ -1,0 +1,139 @@
+"""`Renderer`: the offscreen GL context, drawing RGB + metric depth and geom ids.
+
+Two draws per frame: one in colour, and one in MuJoCo's segmentation mode from which
+`mjr_readPixels` reads both the geom ids and the depth buffer (so depth and ids agree
+pixel for pixel). Use it as a context manager so the GL
+context is freed: ``with Renderer(scene, 640, 480) as r: ...``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from homesim.errors import HomesimError
+from homesim.render.gl import BACKEND, mujoco
+from homesim.render.scene import SceneModel
+
+
+class Renderer:
+    """Draws a `SceneModel` from its fixed cameras at one resolution."""
+
+    def __init__(self, scene: SceneModel, width: int, height: int):
+        model = scene.model
+        if width > model.vis.global_.offwidth or height > model.vis.global_.offheight:
+            raise HomesimError(f"{width}x{height} is larger than the scene was built for "
+                               f"({model.vis.global_.offwidth}x{model.vis.global_.offheight})")
+        self.scene, self.width, self.height = scene, width, height
+        try:
+            self._gl = mujoco.GLContext(width, height)
+            self._gl.make_current()
+        except Exception as e:
+            raise HomesimError(f"cannot create an OpenGL context with MUJOCO_GL={BACKEND} "
+                               f"({e}); on Debian install libosmesa6") from None
+        self._con = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_100)
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self._con)
+        self._con.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR  # reversed Z
+        self._scn = mujoco.MjvScene(model, maxgeom=model.ngeom + 200)
+        self._opt = mujoco.MjvOption()
+        self._cam = mujoco.MjvCamera()
+        self._cam.type = mujoco.mjtCamera.mjCAMERA_FIXED
+        self._rect = mujoco.MjrRect(0, 0, width, height)
+        self._rgb = np.empty((height, width, 3), np.uint8)
+        self._depth = np.empty((height, width), np.float32)
+        self._seg4: np.ndarray | None = None
+        self._lut: np.ndarray | None = None
+        extent = model.stat.extent
+        self.znear = float(model.vis.map.znear * extent)
+        self.zfar = float(model.vis.map.zfar * extent)
+
+    def __enter__(self) -> Renderer:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Free the GL resources (safe to call twice)."""
+        if getattr(self, "_gl", None) is not None:
+            self._con.free()
+            self._gl.free()
+            self._gl = None
+
+    def probe(self, data: mujoco.MjData, camera_id: int, node_id: int,
+              size: tuple[int, int] = (80, 60)) -> float:
+        """Share of a small (w, h) view covered by one graph node (cheap visibility)."""
+        return self.probe_nodes(data, camera_id, (node_id,), size)[0]
+
+    def probe_nodes(self, data: mujoco.MjData, camera_id: int, node_ids: tuple[int, ...],
+                    size: tuple[int, int] = (80, 60)) -> list[float]:
+        """Shares of a small (w, h) view covered by each of some graph nodes."""
+        w, h = min(size[0], self.width), min(size[1], self.height)  # inside the buffer
+        rect = mujoco.MjrRect(0, 0, w, h)
+        self._draw(data, camera_id, segment=True, rect=rect)
+        buf = np.empty((h, w, 3), np.uint8)
+        mujoco.mjr_readPixels(buf, None, rect, self._con)
+        ids = self._decode(buf)
+        nodes = self.scene.geom_node[ids[ids >= 0]]
+        return [float(np.count_nonzero(nodes == n)) / ids.size for n in node_ids]
+
+    def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
+              rect: mujoco.MjrRect | None = None) -> None:
+        self._gl.make_current()
+        self._cam.fixedcamid = camera_id
+        mujoco.mjv_updateScene(self.scene.model, data, self._opt, None, self._cam,
+                               mujoco.mjtCatBit.mjCAT_ALL, self._scn)
+        self._scn.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = segment
+        self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
+        mujoco.mjr_render(rect or self._rect, self._scn, self._con)
+
+    def rgb(self, data: mujoco.MjData, camera_id: int) -> np.ndarray:
+        """(H, W, 3) uint8 colour image."""
+        self._draw(data, camera_id, segment=False)
+        mujoco.mjr_readPixels(self._rgb, None, self._rect, self._con)
+        return self._rgb[::-1].copy()  # GL rows start at the bottom
+
+    def ids_depth(self, data: mujoco.MjData, camera_id: int) -> tuple[np.ndarray, np.ndarray]:
+        """(H, W) int32 geom id per pixel (-1: none) and (H, W) float32 depth in metres
+        along the camera's view axis."""
+        self._draw(data, camera_id, segment=True)
+        mujoco.mjr_readPixels(self._rgb, self._depth, self._rect, self._con)
+        depth = self._metric_depth(self._depth[::-1])
+        return self._decode(self._rgb), depth
+
+    def _decode(self, buf: np.ndarray) -> np.ndarray:
+        h, w = buf.shape[:2]
+        if self._seg4 is None or self._seg4.shape[:2] != (h, w):
+            self._seg4 = np.zeros((h, w, 4), np.uint8)
+        self._seg4[..., :3] = buf[::-1]
+        seg = self._seg4.view("<u4")[..., 0]  # segid + 1 (0: no geom), little-endian RGB
+        lut = self._segid_lut()
+        return lut[np.minimum(seg, len(lut) - 1)]
+
+    def _segid_lut(self) -> np.ndarray:
+        """segid + 1 -> geom id. The scene lists the same geoms in the same order every
+        frame, so the table is rebuilt only when a spot check disagrees."""
+        scn, n = self._scn, self._scn.ngeom
+        lut = self._lut
+        if lut is not None and len(lut) == n + 2:
+            ok = True
+            for i in (0, n // 2, n - 1):
+                g = scn.geoms[i]
+                want = g.objid if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM else -1
+                ok = ok and g.segid >= 0 and lut[g.segid + 1] == want
+            if ok:
+                return lut
+        lut = np.full(n + 2, -1, np.int32)
+        for i in range(n):
+            g = scn.geoms[i]
+            if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
+                lut[g.segid + 1] = g.objid
+        self._lut = lut
+        return lut
+
+    def _metric_depth(self, raw: np.ndarray) -> np.ndarray:
+        # MuJoCo draws with reversed Z: the buffer holds about near/z (1 at the near
+        # plane, ~0 far away), so float32 keeps its precision; invert the projection.
+        n, f = self.znear, self.zfar
+        c = 0.5 * (f + n) / (f - n) - 0.5
+        d = f * n / (f - n)
+        return (np.float32(d) / (raw + np.float32(c))).astype(np.float32, copy=False)

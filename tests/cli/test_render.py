@@ -1,0 +1,45 @@
+import json
+
+import pytest
+
+from homesim.cli.main import main
+
+pytest.importorskip("homesim.render.gl", reason="needs the render extra",
+                    exc_type=ImportError)
+
+
+@pytest.fixture
+def graph_file(tmp_path):
+    from tests.render.conftest import box_home_dict
+
+    path = tmp_path / "home.json"
+    path.write_text(json.dumps(box_home_dict()))
+    return path
+
+
+def test_render_writes_a_recording_and_preview(tmp_path, graph_file, capsys):
+    from homesim.render import gl_available, load_recording
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    prog = tmp_path / "p.txt"
+    prog.write_text("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n")
+    out = tmp_path / "rec"
+    code = main(["render", str(prog), "--graph", str(graph_file), "--out", str(out),
+                 "--width", "32", "--height", "24", "--fps", "5", "--seed", "2", "--preview"])
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "frames" in text and "preview" in text
+    assert (out / "preview.png").stat().st_size > 0
+    assert load_recording(out).meta["seed"] == 2
+
+
+@pytest.mark.parametrize(("args", "pattern"), [
+    (["--home", "scene1_trimmed"], "no floor boxes"),
+    (["--width", "31"], "must be even"),
+])
+def test_render_errors_are_one_line(tmp_path, args, pattern, capsys):
+    code = main(["render", "--out", str(tmp_path / "o"), *args])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert pattern in err and "Traceback" not in err

@@ -1,0 +1,145 @@
+import numpy as np
+import pytest
+
+import homesim
+from homesim.render.agent import AGENTS
+from homesim.render.animate import Animator
+from homesim.render.gl import mujoco
+from homesim.render.layout import to_mujoco
+from homesim.render.scene import build_scene
+
+pytestmark = pytest.mark.render
+
+PROGRAM = """[Walk] <cup> (21)
+[Grab] <cup> (21)
+[Walk] <tv> (22)
+[SwitchOn] <tv> (22)
+[Walk] <fridge> (23)
+[Open] <fridge> (23)
+[PutIn] <cup> (21) <fridge> (23)
+[Close] <fridge> (23)
+"""
+
+
+@pytest.fixture(scope="module")
+def animated():
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    g = EnvironmentGraph.from_dict(box_home_dict())
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True)
+    timeline = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
+    return g, scene, timeline
+
+
+def _hand_and_cup(scene, timeline, frame):
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = timeline.qpos[frame]
+    d.mocap_pos[:] = timeline.mocap[frame]
+    mujoco.mj_kinematics(scene.model, d)
+    return d.site_xpos[scene.hand_sites["r"]], timeline.mocap[frame][scene.mocap[21]]
+
+
+def test_steps_cover_the_timeline_in_order(animated):
+    _, _, tl = animated
+    spans = tl.step_frames
+    assert len(spans) == 8
+    assert all(a <= b for a, b in spans)
+    assert all(spans[i][1] + 1 == spans[i + 1][0] for i in range(len(spans) - 1))
+    assert spans[-1][1] == len(tl) - 1
+
+
+def test_grabbed_cup_stays_in_the_right_hand_while_walking(animated):
+    _, scene, tl = animated
+    grab_end = tl.step_frames[1][1]
+    put_start = tl.step_frames[6][0]
+    for f in range(grab_end, put_start, 3):
+        hand, cup = _hand_and_cup(scene, tl, f)
+        assert np.linalg.norm(hand - cup) < 1e-6
+    walked = np.linalg.norm(tl.qpos[put_start][:2] - tl.qpos[grab_end][:2])
+    assert walked > 1.0
+
+
+def test_cup_ends_inside_the_fridge_and_the_door_swings(animated):
+    g, scene, tl = animated
+    fridge = to_mujoco(g.node(23))
+    cup = tl.mocap[-1][scene.mocap[21]]
+    assert np.all(np.abs(cup - fridge.center) <= fridge.half)
+    hinge = scene.hinge_qpos[23]
+    assert tl.qpos[tl.step_frames[5][0] - 1][hinge] == 0.0
+    assert abs(tl.qpos[tl.step_frames[5][1]][hinge] - scene.hinge_open[23]) < 1e-9
+    assert tl.qpos[-1][hinge] == 0.0  # closed again
+
+
+def test_tv_screen_turns_on_at_switch_on(animated):
+    _, _, tl = animated
+    a, b = tl.step_frames[3]
+    assert 22 not in tl.screens[a]
+    assert 22 in tl.screens[b] and 22 in tl.screens[-1]
+
+
+def test_agent_never_walks_through_the_table(animated):
+    g, _, tl = animated
+    table = to_mujoco(g.node(20))
+    for q in tl.qpos:
+        assert not np.all(np.abs(q[:2] - table.center[:2]) < table.half[:2])
+
+
+def test_same_seed_same_timeline(animated):
+    g, scene, tl = animated
+    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True)
+    again = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
+    assert len(again) == len(tl)
+    np.testing.assert_array_equal(np.array(again.qpos), np.array(tl.qpos))
+    np.testing.assert_array_equal(np.array(again.mocap), np.array(tl.mocap))
+
+
+def test_sitting_on_the_sofa_in_scene1(shared_data):
+    from homesim.examples import load_example
+    from homesim.render.layout import SEAT_HEIGHT
+
+    g = homesim.load_home("scene1")
+    scene = build_scene(g, AGENTS["male2"], max_size=(64, 48))
+    result = homesim.execute(load_example("watch_tv"), g, trace=True)
+    tl = Animator(scene, g, AGENTS["male2"], fps=5).run(result)
+    sofa = to_mujoco(g.node(352))
+    q = tl.qpos[tl.step_frames[3][1]]
+    assert np.all(np.abs(q[:2] - sofa.center[:2]) <= sofa.half[:2])  # on the sofa
+    assert SEAT_HEIGHT < q[2] < SEAT_HEIGHT + 0.2  # pelvis just above the seat
+    assert q[scene.joint_qpos["l_knee"]] > 1.2  # knees bent
+
+
+def _run(program: str, fps: int = 10):
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    g = EnvironmentGraph.from_dict(box_home_dict())
+    scene = build_scene(g, AGENTS["female1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(program), g, trace=True)
+    return scene, Animator(scene, g, AGENTS["female1"], fps=fps).run(result)
+
+
+def test_second_object_goes_to_the_left_hand():
+    scene, tl = _run("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Grab] <apple> (24)\n"
+                     "[Walk] <tv> (22)\n")
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = tl.qpos[-1]
+    mujoco.mj_kinematics(scene.model, d)
+    right, left = (d.site_xpos[scene.hand_sites[s]] for s in ("r", "l"))
+    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[21]], right, atol=1e-6)
+    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[24]], left, atol=1e-6)
+
+
+def test_running_is_faster_than_walking():
+    _, walk = _run("[Walk] <tv> (22)\n")
+    _, run = _run("[Run] <tv> (22)\n")
+    assert len(run.qpos) < 0.75 * len(walk.qpos)
+
+
+def test_lamp_lights_up_when_switched_on():
+    _, tl = _run("[Walk] <tablelamp> (25)\n[SwitchOn] <tablelamp> (25)\n")
+    a, b = tl.step_frames[1]
+    assert 25 not in tl.lamps[a] and 25 in tl.lamps[b]

@@ -1,0 +1,52 @@
+import numpy as np
+import pytest
+
+import homesim
+from homesim.errors import ExecutionError, HomesimError
+from homesim.render import render_keyframes, render_program
+
+pytestmark = pytest.mark.render
+
+
+def test_keyframes_one_per_step(box_home, gl):
+    p = homesim.parse_program("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n")
+    frames = render_keyframes(p, box_home, width=64, height=48, seed=1)
+    assert [i for i, _ in frames] == [0, 1]
+    assert all(f.shape == (48, 64, 3) and f.dtype == np.uint8 for _, f in frames)
+    # The TV's screen lights up after SwitchOn: the second frame is not the first.
+    assert not np.array_equal(frames[0][1], frames[1][1])
+
+
+def test_bindings_ground_script_ids(box_home, gl):
+    p = homesim.parse_program("[Walk] <television> (1)\n")
+    frames = render_keyframes(p, box_home, width=32, height=24,
+                              bindings={("television", 1): 22})
+    assert len(frames) == 1
+
+
+def test_program_that_does_not_execute_is_refused(box_home, tmp_path, gl):
+    p = homesim.parse_program("[Grab] <tv> (22)\n")
+    with pytest.raises(ExecutionError, match=r"step 1 \[Grab\] <tv> \(22\)"):
+        render_program(p, box_home, tmp_path / "x", width=32, height=24)
+    assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize(("kwargs", "pattern"), [
+    ({"width": 33}, "must be even"),
+    ({"width": 2}, "out of range"),
+    ({"fps": 0}, "fps 0 out of range"),
+    ({"agent": "robot"}, "unknown agent 'robot'"),
+])
+def test_bad_arguments(box_home, tmp_path, kwargs, pattern, gl):
+    p = homesim.parse_program("[Walk] <tv> (22)\n")
+    args = {"width": 32, "height": 24, **kwargs}
+    with pytest.raises(HomesimError, match=pattern):
+        render_program(p, box_home, tmp_path / "x", **args)
+
+
+def test_existing_recording_is_not_overwritten(box_home, tmp_path, gl):
+    (tmp_path / "meta.json").write_text("{}")
+    p = homesim.parse_program("[Walk] <tv> (22)\n")
+    with pytest.raises(HomesimError, match="already holds a recording"):
+        render_program(p, box_home, tmp_path, width=32, height=24)
+    assert (tmp_path / "meta.json").read_text() == "{}"

@@ -1,0 +1,51 @@
+import numpy as np
+
+from homesim.render.layout import Box, _cut_doorways, _wall_slabs, build_layout, to_mujoco
+
+
+def test_unity_boxes_become_z_up(box_home):
+    b = to_mujoco(box_home.node(22))  # tv: Unity centre (1.7, 1.0, 1.0)
+    np.testing.assert_allclose(b.center, [1.7, 1.0, 1.0])
+    np.testing.assert_allclose(b.half, [0.075, 0.5, 0.3])
+
+
+def test_corner_cube_keeps_only_faces_on_the_room_edge():
+    cube = Box(np.array([0.0, 0.0, 1.25]), np.array([1.25, 1.25, 1.25]))
+    # The room continues on +x and +y: tiles there; the cube is the (-x, -y) corner.
+    tiles = [Box(np.array([2.5, 0.0, 0.0]), np.array([1.25, 1.25, 0.0])),
+             Box(np.array([0.0, 2.5, 0.0]), np.array([1.25, 1.25, 0.0]))]
+    slabs = _wall_slabs(cube, tiles)
+    assert len(slabs) == 2
+    thin = sorted(tuple(np.round(s.half, 3)) for s in slabs)
+    assert thin == [(0.05, 1.25, 1.25), (1.25, 0.05, 1.25)]
+    assert all(s.lo[0] == -1.25 or s.lo[1] == -1.25 for s in slabs)  # on the outer faces
+
+
+def test_doorway_is_cut_out_of_a_wall_with_a_lintel():
+    wall = Box(np.array([0.0, 0.0, 1.25]), np.array([1.25, 0.03, 1.25]))
+    jamb = Box(np.array([0.2, 0.0, 1.03]), np.array([0.46, 0.06, 1.03]))
+    pieces = _cut_doorways(wall, [jamb])
+    assert len(pieces) == 3
+    left, right, lintel = [*sorted(pieces, key=lambda p: (p.lo[2], p.lo[0]))[:2], max(pieces, key=lambda p: p.lo[2])]
+    assert left.hi[0] <= jamb.lo[0] + 1e-9 and right.lo[0] >= jamb.hi[0] - 1e-9
+    assert abs(lintel.lo[2] - jamb.hi[2]) < 1e-9
+
+
+def test_parts_of_a_home(box_home):
+    layout = build_layout(box_home)
+    kinds = {p.node_id: p for p in layout.parts}
+    assert kinds[21].movable is not None  # the cup can be carried
+    assert kinds[23].hinge is not None and not kinds[23].hinge.is_open  # closed fridge
+    assert kinds[22].screen is not None and kinds[22].screen.center[0] < 1.7  # faces room
+    assert 10 not in kinds and 1 not in kinds  # the character and rooms are not drawn
+    np.testing.assert_allclose(layout.start, [-1.0, -1.4])
+
+
+def test_real_apartments_have_walls_doors_and_no_corner_cubes(shared_data):
+    from homesim.world.homes import load_home
+
+    for name in ("scene1", "scene3"):
+        layout = build_layout(load_home(name))
+        walls = [b for p in layout.parts if p.class_name == "wall" for b in p.boxes]
+        assert walls and all(min(b.half[0], b.half[1]) <= 0.06 for b in walls)
+        assert sum(p.class_name == "door" and p.hinge is not None for p in layout.parts) >= 1

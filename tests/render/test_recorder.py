@@ -1,0 +1,66 @@
+import numpy as np
+import pytest
+
+from homesim.render.agent import AGENTS
+from homesim.render.animate import Timeline
+from homesim.render.gl import mujoco
+from homesim.render.recorder import record
+from homesim.render.renderer import Renderer
+from homesim.render.scene import build_scene
+
+from .conftest import place_camera
+
+pytestmark = pytest.mark.render
+
+
+def _two_frames(scene, shift):
+    q0 = scene.model.qpos0.copy()
+    q1 = q0.copy()
+    q1[0] += shift  # the agent's root moves along world x
+    mocap = np.array(scene.model.body_pos[scene.model.body_mocapid >= 0])
+    tl = Timeline([q0, q1], [mocap, mocap], [frozenset()] * 2, [frozenset()] * 2, [(0, 1)])
+    return tl
+
+
+def test_flow_of_a_known_agent_motion_seen_side_on(box_home, gl):
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    start = scene.model.body("agent").pos.copy()
+    data = mujoco.MjData(scene.model)
+    # Camera 1.6 m to the agent's +y, looking along -y: image right is world -x.
+    place_camera(scene, data, 0, (start[0], start[1] + 1.6, 1.0), (0.0, -1.0, 0.0))
+    shift = 0.05
+    with Renderer(scene, 64, 48) as r:
+        frames = list(record(scene, _two_frames(scene, shift), r, fixed_camera=0))
+    first = frames[0]
+    on_agent = first.instance_seg == scene.character_id
+    assert on_agent.sum() > 50
+    f = first.intrinsics[0, 0]
+    expect_u = -f * shift / first.depth[on_agent]  # moving along -image-right
+    np.testing.assert_allclose(first.flow[..., 0][on_agent], expect_u, rtol=1e-3, atol=1e-3)
+    np.testing.assert_allclose(first.flow[..., 1][on_agent], 0.0, atol=1e-3)
+    assert not first.flow[~on_agent].any()  # walls and furniture stand still
+    assert not first.cut and not frames[1].flow.any()  # the last frame has no successor
+
+
+def test_every_channel_has_its_shape_and_dtype(box_home, gl):
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    with Renderer(scene, 64, 48) as r:
+        (f, _) = list(record(scene, _two_frames(scene, 0.0), r))
+    assert f.rgb.shape == (48, 64, 3) and f.rgb.dtype == np.uint8
+    assert f.depth.shape == (48, 64) and f.depth.dtype == np.float32
+    assert f.class_seg.shape == (48, 64) and f.class_seg.dtype == np.uint16
+    assert f.instance_seg.shape == (48, 64) and f.instance_seg.dtype == np.int32
+    assert f.flow.shape == (48, 64, 2) and f.flow.dtype == np.float32
+    assert f.intrinsics.shape == (3, 3) and f.world_to_cam.shape == (4, 4)
+    assert f.joints3d.shape == (16, 3) and f.joints2d.shape == (16, 2)
+    assert f.joints_visible.dtype == bool
+    # Classes and instances agree pixel by pixel.
+    for nid in np.unique(f.instance_seg):
+        cls = set(np.unique(f.class_seg[f.instance_seg == nid]).tolist())
+        assert len(cls) == 1
+    # The camera chosen sees the agent and its visible joints project where it is.
+    assert (f.instance_seg == scene.character_id).any()
+    vis = f.joints_visible
+    assert vis.any()
+    uv = np.round(f.joints2d[vis]).astype(int)
+    assert np.all((uv >= 0) & (uv < [64, 48]))

@@ -1,0 +1,61 @@
+import numpy as np
+import pytest
+
+from homesim.render.agent import AGENTS
+from homesim.render.gl import mujoco
+from homesim.render.renderer import Renderer
+from homesim.render.scene import build_scene
+
+from .conftest import place_camera
+
+pytestmark = pytest.mark.render
+
+
+@pytest.fixture
+def scene(box_home, gl):
+    return build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+
+
+def test_depth_of_a_known_wall(scene):
+    data = mujoco.MjData(scene.model)
+    # From (-1, 1, 1.6) straight along +x: the wall's inner face is at x = 1.95.
+    place_camera(scene, data, 0, (-1.0, 1.0, 1.6), (1.0, 0.0, 0.0))
+    with Renderer(scene, 64, 48) as r:
+        ids, depth = r.ids_depth(data, 0)
+    assert depth.shape == (48, 64) and depth.dtype == np.float32
+    assert abs(float(depth[24, 32]) - 2.95) < 0.01
+    assert scene.geom_node[ids[24, 32]] == 3  # the +x wall's node id
+    # A plane seen head-on has the same depth everywhere along the optical axis.
+    rows = depth[20:28, 28:36]
+    assert np.ptp(rows) < 0.01
+
+
+def test_segmentation_ids_are_graph_node_ids(scene, box_home):
+    data = mujoco.MjData(scene.model)
+    # Look down at the table and cup from above.
+    place_camera(scene, data, 0, (1.0, -1.0, 2.3), (0.0, 0.001, -1.0))
+    with Renderer(scene, 64, 48) as r:
+        ids, _ = r.ids_depth(data, 0)
+        rgb = r.rgb(data, 0)
+    nodes = set(np.unique(scene.geom_node[ids[ids >= 0]]).tolist())
+    assert {20, 21} <= nodes  # table and cup
+    assert nodes <= set(box_home.nodes)
+    assert rgb.shape == (48, 64, 3) and rgb.dtype == np.uint8 and rgb.std() > 1
+
+
+def test_probe_sees_the_agent(scene):
+    data = mujoco.MjData(scene.model)
+    mujoco.mj_forward(scene.model, data)
+    start = scene.model.body("agent").pos.copy()
+    cam = np.array([1.6, -1.7, 1.4])  # across the room, beside the table
+    place_camera(scene, data, 0, cam, start - cam)
+    with Renderer(scene, 64, 48) as r:
+        share = r.probe(data, 0, scene.character_id)
+    assert share > 0.02
+
+
+def test_renderer_rejects_sizes_the_scene_was_not_built_for(scene):
+    from homesim.errors import HomesimError
+
+    with pytest.raises(HomesimError, match="larger than the scene was built for"):
+        Renderer(scene, 128, 96)
