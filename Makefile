@@ -2,11 +2,12 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev
+EXTRAS ?= dev,serve
 
 .PHONY: setup demo test lint bench clean
+WEB_BUILD := src/homesim/serve/static/index.html
 
-setup: $(VENV)/.installed
+setup: $(VENV)/.installed $(WEB_BUILD)
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -14,13 +15,17 @@ $(VENV)/.installed: pyproject.toml
 	$(BIN)/python -m pip install --quiet -e ".[$(EXTRAS)]"
 	touch $@
 
+# The block editor (web/) is built here, not committed; homesim serve serves the build.
+$(WEB_BUILD): web/package.json web/package-lock.json web/index.html web/vite.config.ts $(wildcard web/src/*)
+	cd web && npm ci --no-audit --no-fund --loglevel=error && npm run build
+
 demo: setup
 	$(BIN)/homesim run
 
 test: setup
 	$(BIN)/homesim data fetch
 	$(BIN)/ruff check src tests benchmarks tools
-	HOMESIM_REQUIRE_DATA=1 $(BIN)/python -m pytest
+	HOMESIM_REQUIRE_DATA=1 HOMESIM_REQUIRE_E2E=1 $(BIN)/python -m pytest
 
 bench: setup
 	$(BIN)/homesim data fetch
