@@ -82,7 +82,7 @@ async function dragBlock(page, category, type) {
   const area = await page.locator("#blockly").boundingBox();
   const to = before.last
     ? { x: before.last.left + 8, y: before.last.bottom + 10 }
-    : { x: area.x + area.width * 0.45, y: area.y + 60 };
+    : { x: area.x + area.width * 0.3, y: area.y + 60 };
   await page.mouse.move(grab.x, grab.y);
   await page.mouse.down();
   await page.mouse.move(grab.x + 20, grab.y + 5, { steps: 4 });
@@ -181,6 +181,8 @@ async function main() {
     }, grab);
     check(warning && warning.text === GRAB_REASON && warning.open,
       `the Grab block's warning is ${JSON.stringify(warning)}`);
+    check(await page.locator(`[data-id="${grab}"].hsFailed`).count() === 1,
+      "the failing block is not outlined");
     await page.locator(".blocklyBubble", { hasText: GRAB_REASON }).first()
       .waitFor({ state: "visible" });
     if (opts.screenshot) await page.screenshot({ path: opts.screenshot });
@@ -204,8 +206,28 @@ async function main() {
     await page.waitForFunction(() => document.querySelector("#status").textContent
       .includes("unknown action 'Wlak' (did you mean Walk?)"));
 
+    // 6. Another home: refs that are not its nodes become free text; no line is lost.
+    await page.locator("#home").selectOption("scene2_trimmed");
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false)
+      .every((b) => b.type === "hs_free_text"));
+    check((await page.locator("#text").inputValue()).includes("[Walk] <sofa> (1.352)"),
+      "switching homes lost a line");
+
+    // 7. Key frames: pictures when homesim.render is installed, else a clear message.
+    await page.locator("#home").selectOption("scene1");
+    await page.locator("#text").fill(EXPECTED_TEXT);
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 5);
+    await page.locator("#render").click();
+    await page.waitForFunction(() => /key frames$|rendering is not available/.test(
+      document.querySelector("#status").textContent), null, { timeout: 120000 });
+    const frames = await page.locator("#frames img").count();
+    const status = await page.locator("#status").textContent();
+    check(frames === 5 || status.includes("rendering is not available"),
+      `key frames: ${frames} images, status ${status}`);
+
     check(errors.length === 0, `browser errors: ${errors.join(" | ")}`);
-    console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000 }));
+    console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000,
+      keyframes: frames }));
   } finally {
     await browser.close();
   }

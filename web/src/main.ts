@@ -37,7 +37,10 @@ function blockAtLine(line: number | null): Blockly.BlockSvg | null {
 
 function clearMarks(): void {
   ws.highlightBlock(null);
-  for (const block of ws.getAllBlocks(false)) block.setWarningText(null);
+  for (const block of ws.getAllBlocks(false)) {
+    block.setWarningText(null);
+    block.removeClass("hsFailed");
+  }
 }
 
 /** Put `reason` on the block of `line` and open its bubble, so the reason is in view. */
@@ -45,8 +48,15 @@ function markBlock(line: number | null, reason: string): void {
   const block = blockAtLine(line);
   if (!block) return;
   block.setWarningText(reason);
+  block.addClass("hsFailed");
   ws.highlightBlock(block.id, true);
-  void block.getIcon(Blockly.icons.IconType.WARNING)?.setBubbleVisible(true);
+  const icon = block.getIcon(Blockly.icons.IconType.WARNING);
+  void icon?.setBubbleVisible(true).then(() => {
+    // To the right of the block, so the bubble does not hide the steps above it.
+    const bubble = icon.getBubble() as Blockly.bubbles.Bubble | null;
+    const anchor = bubble?.getRelativeToSurfaceXY();
+    if (bubble && anchor) bubble.setPositionRelativeToAnchor(block.width, -8);
+  });
 }
 
 function regenerate(): void {
