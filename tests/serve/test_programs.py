@@ -23,6 +23,18 @@ def test_validate_reports_node_ids_missing_or_of_another_class(client):
         (3, "line 3: node 410 is a tv, not a television")]
 
 
+def test_validate_flags_ungrounded_refs_only_without_grounding(client, monkeypatch):
+    text = "[Walk] <tv> (1)\n"
+    monkeypatch.setattr(optional, "grounding", lambda: (None, "missing"))
+    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
+    assert data["grounding_available"] is False and data["ok"] is False
+    assert data["problems"][0]["message"] == (
+        "line 1: <tv> (1) has no node id, and grounding is not available to choose one")
+    monkeypatch.setattr(optional, "grounding", lambda: (lambda *a, **k: None, ""))
+    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
+    assert data["grounding_available"] is True and data["ok"] is True
+
+
 @pytest.mark.parametrize(
     ("text", "line", "fragment"),
     [

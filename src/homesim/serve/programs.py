@@ -34,12 +34,20 @@ def parse_request(text: str) -> tuple[Program, list[int]]:
     return program, step_lines(text)
 
 
-def ref_problems(program: Program, lines: list[int], graph: EnvironmentGraph) -> list[dict]:
-    """Grounded refs that name no node of the home, or a node of another class."""
+def ref_problems(program: Program, lines: list[int], graph: EnvironmentGraph,
+                 can_ground: bool) -> list[dict]:
+    """Grounded refs that name no node of the home or a node of another class; refs
+    without a node id when there is no grounding to bind them."""
     problems = []
     for index, step in enumerate(program.steps):
         for ref in step.args:
             if ref.node_id is None:
+                if can_ground:
+                    continue
+                message = (f"<{ref.name}> ({ref.instance}) has no node id, and grounding is "
+                           "not available to choose one")
+                problems.append({"index": index, "line": lines[index], "step": str(step),
+                                 "message": f"line {lines[index]}: {message}"})
                 continue
             node = graph.get(ref.node_id)
             if node is None:
@@ -88,10 +96,10 @@ def validate(request: ProgramRequest) -> dict[str, Any]:
     """Parse a program; with a home, also check that its node ids exist there."""
     program, lines = parse_request(request.program)
     answer = program_json(program, lines)
+    function, _ = optional.grounding()
     problems: list[dict] = []
     if request.home is not None:
-        problems = ref_problems(program, lines, get_home(request.home))
-    function, _ = optional.grounding()
+        problems = ref_problems(program, lines, get_home(request.home), function is not None)
     return {"ok": not problems, "problems": problems,
             "grounding_available": function is not None, **answer}
 
