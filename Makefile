@@ -16,8 +16,10 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 # The block editor (web/) is built here, not committed; homesim serve serves the build.
+# npm install --no-save, not npm ci: the lock file lacks the other platforms' optional
+# rollup binaries (our registry mirror lacks them), which npm ci rejects.
 $(WEB_BUILD): web/package.json web/package-lock.json web/index.html web/vite.config.ts $(wildcard web/src/*)
-	cd web && npm ci --no-audit --no-fund --loglevel=error && npm run build
+	cd web && npm install --no-save --no-audit --no-fund --loglevel=error && npm run build
 
 demo: setup
 	$(BIN)/homesim run

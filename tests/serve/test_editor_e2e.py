@@ -41,7 +41,7 @@ def test_editor_builds_runs_and_marks_the_failing_block(chromium, live_server, t
     if node is None:
         _missing("node is not installed")
     if not (WEB / "node_modules" / "playwright-core").is_dir():
-        _missing("web/node_modules is missing (run 'make setup' or 'cd web && npm ci')")
+        _missing("web/node_modules is missing (run 'make setup' or 'cd web && npm install')")
     if not is_built(default_static_dir()):
         _missing("the editor is not built (run 'make setup' or 'cd web && npm run build')")
     shot = tmp_path / "editor.png"

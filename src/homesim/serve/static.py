@@ -10,7 +10,7 @@ from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 BUILD_HINT = ("the editor is not built: run 'make setup' in the homesim checkout "
-              "(or 'cd web && npm ci && npm run build')")
+              "(or 'cd web && npm install && npm run build')")
 
 
 def default_static_dir() -> Path:
