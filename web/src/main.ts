@@ -24,6 +24,7 @@ let generated: Generated = { text: "", blockAtLine: new Map() };
 let applyingText = false;
 let validateTimer: number | undefined;
 let textTimer: number | undefined;
+let requestEpoch = 0; // a check's answer is dropped once a newer check or run was asked for
 
 function setStatus(message: string, kind: "ok" | "error" | "info" = "info"): void {
   statusLine.textContent = message;
@@ -93,15 +94,17 @@ async function validate(): Promise<void> {
     return;
   }
   const sent = generated.text;
+  const epoch = ++requestEpoch;
+  const stale = (): boolean => epoch !== requestEpoch || sent !== generated.text;
   try {
     const result = await api.validate(sent, homeSelect.value);
-    if (sent !== generated.text) return; // edited meanwhile; a newer check is on its way
+    if (stale()) return;
     clearMarks();
     for (const problem of result.problems) markBlock(problem.line, problem.message);
     if (result.ok) setStatus(`✓ valid program, ${generated.blockAtLine.size} steps`, "ok");
     else setStatus(`✗ ${result.problems[0].message}`, "error");
   } catch (e) {
-    if (sent !== generated.text) return;
+    if (stale()) return;
     clearMarks();
     showError(e);
   }
@@ -146,6 +149,7 @@ function showRun(result: Execution): void {
 
 async function run(): Promise<void> {
   window.clearTimeout(validateTimer);
+  requestEpoch++;
   clearMarks();
   resultList.replaceChildren();
   if (generated.blockAtLine.size === 0) {
