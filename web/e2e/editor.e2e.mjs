@@ -5,11 +5,13 @@
 //
 // It builds "watch TV" from blocks with the mouse (drag from the toolbox, pick objects in
 // the dropdowns), runs it and expects every step to pass; adds a failing step and expects
-// its reason on the block; pastes a program and expects blocks; saves the file. Exits
-// non-zero with a one-line reason on the first failure.
+// its reason on the block; saves and loads files; pastes a program and expects blocks;
+// switches homes; asks for key frames. Exits non-zero with a one-line reason on the first
+// failure.
 import { chromium } from "playwright-core";
 import { parseArgs } from "node:util";
 import { readFile } from "node:fs/promises";
+import { fileURLToPath } from "node:url";
 
 const { values: opts } = parseArgs({
   options: {
@@ -37,6 +39,8 @@ Walk to the TV and switch it on, then sit on the sofa and watch TV.
 [Sit] <sofa> (1.352)
 [Watch] <tv> (1.410)
 `;
+const EXAMPLE = fileURLToPath(
+  new URL("../../src/homesim/examples/watch_tv.txt", import.meta.url));
 const GRAB_REASON = "tv 410 cannot be grabbed (not GRABBABLE)";
 
 function check(condition, message) {
@@ -194,7 +198,18 @@ async function main() {
     check(download.suggestedFilename() === "Watch_TV.txt", `saved as ${download.suggestedFilename()}`);
     check(saved === `${EXPECTED_TEXT}[Grab] <tv> (1.410)\n`, `saved file is ${JSON.stringify(saved)}`);
 
-    // 5. Pasting a program makes blocks; a bad line becomes free text with its error.
+    // 5. Load reads an ActivityPrograms file back into blocks (the demo program's file).
+    await page.locator("#clear").click();
+    await page.locator("#load").setInputFiles(EXAMPLE);
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 5);
+    const loaded = await page.evaluate(() => window.homesimEditor.workspace().getAllBlocks(false)
+      .map((b) => b.type));
+    check(loaded.every((t) => t !== "hs_free_text"), `loaded blocks are ${loaded}`);
+    check(await page.locator("#title").inputValue() === "Watch TV", "loading did not set the title");
+    await runAndWait(page);
+    check(await page.locator("#results li.ok").count() === 5, "the loaded program does not run");
+
+    // 6. Pasting a program makes blocks; a bad line becomes free text with its error.
     const pasted = "Pasted\nA pasted program.\n\n[Walk] <sofa> (1.352)\n[Wlak] <tv> (1.410)\n";
     await page.locator("#text").fill(pasted);
     await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 2);
@@ -206,14 +221,14 @@ async function main() {
     await page.waitForFunction(() => document.querySelector("#status").textContent
       .includes("unknown action 'Wlak' (did you mean Walk?)"));
 
-    // 6. Another home: refs that are not its nodes become free text; no line is lost.
+    // 7. Another home: refs that are not its nodes become free text; no line is lost.
     await page.locator("#home").selectOption("scene2_trimmed");
     await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false)
       .every((b) => b.type === "hs_free_text"));
     check((await page.locator("#text").inputValue()).includes("[Walk] <sofa> (1.352)"),
       "switching homes lost a line");
 
-    // 7. Key frames: pictures when homesim.render is installed, else a clear message.
+    // 8. Key frames: pictures when homesim.render is installed, else a clear message.
     await page.locator("#home").selectOption("scene1");
     await page.locator("#text").fill(EXPECTED_TEXT);
     await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 5);
