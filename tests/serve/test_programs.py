@@ -155,3 +155,18 @@ def test_render_returns_one_png_per_key_frame(client, watch_tv, monkeypatch):
     assert [f["index"] for f in frames] == [0, 1, 2, 3, 4]
     assert [f["line"] for f in frames] == [4, 5, 6, 7, 8]
     assert all(f["image"].startswith("data:image/png;base64,iVBORw0KGgo") for f in frames)
+
+
+@pytest.mark.dataset
+def test_every_real_program_file_validates_with_its_lines(client, real_data):
+    from homesim.knowledge import real_programs
+
+    files = sorted((real_data / "programs").glob("*.txt"))
+    assert len(files) == len(list(real_programs(real_data))) == 518
+    for path in files:
+        text = path.read_text(encoding="utf-8")
+        r = client.post("/api/validate", json={"program": text})
+        assert r.status_code == 200, (path.name, r.json())
+        data = r.json()
+        lines = text.splitlines()
+        assert all(lines[s["line"] - 1].strip().startswith("[") for s in data["steps"]), path.name
