@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import socket
 import threading
 import time
 from collections.abc import Iterator
@@ -26,17 +25,11 @@ def watch_tv() -> str:
     return str(load_example("watch_tv"))
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def start_server(static_dir: Path | None = None) -> tuple[str, object, threading.Thread]:
     import uvicorn
 
-    port = _free_port()
-    config = uvicorn.Config(create_app(static_dir=static_dir), host="127.0.0.1", port=port,
+    # Port 0: the OS picks a free port when uvicorn binds, so parallel runs cannot collide.
+    config = uvicorn.Config(create_app(static_dir=static_dir), host="127.0.0.1", port=0,
                             log_level="warning")
     server = uvicorn.Server(config)
     thread = threading.Thread(target=server.run, daemon=True)
@@ -46,6 +39,7 @@ def start_server(static_dir: Path | None = None) -> tuple[str, object, threading
         if time.monotonic() > deadline or not thread.is_alive():
             raise RuntimeError("uvicorn did not start")
         time.sleep(0.05)
+    port = server.servers[0].sockets[0].getsockname()[1]
     return f"http://127.0.0.1:{port}", server, thread
 
 

@@ -92,6 +92,7 @@ async function dragBlock(page, category, type) {
   await page.mouse.move(grab.x + 20, grab.y + 5, { steps: 4 });
   await page.mouse.move(to.x, to.y, { steps: 15 });
   await page.mouse.up();
+  await page.waitForFunction(() => !window.homesimEditor.workspace().isDragging());
   const after = await stackInfo(page);
   check(after.blocks === before.blocks + 1, `dragging ${type} did not add a block`);
   check(after.stacks === 1, `${type} did not snap under the previous block (${after.stacks} stacks)`);
@@ -100,13 +101,41 @@ async function dragBlock(page, category, type) {
 
 /** Open dropdown `field` of block `id` and click the option labelled `label`. */
 async function pickOption(page, id, field, label) {
-  const box = await page.evaluate(({ id, field }) => {
+  // Where the field is now: the workspace may scroll a little after a drop, as its content
+  // bounds change, so ask again until two readings agree.
+  const fieldBox = () => page.evaluate(({ id, field }) => {
     const f = window.homesimEditor.workspace().getBlockById(id).getField(field);
     const r = f.getSvgRoot().getBoundingClientRect();
     return { x: r.left + r.width / 2, y: r.top + r.height / 2 };
   }, { id, field });
-  await page.mouse.click(box.x, box.y);
-  const item = page.locator(".blocklyDropDownDiv .blocklyMenuItem", { hasText: label }).first();
+  let box = await fieldBox();
+  for (let i = 0; i < 20; i++) {
+    await page.waitForTimeout(50);
+    const again = await fieldBox();
+    if (again.x === box.x && again.y === box.y) break;
+    box = again;
+  }
+  const menu = page.locator(".blocklyDropDownDiv .blocklyMenuItem");
+  for (let attempt = 1; ; attempt++) {
+    if (attempt > 1) box = await fieldBox();
+    await page.mouse.click(box.x, box.y);
+    try {
+      await menu.first().waitFor({ state: "attached", timeout: 3000 });
+      break;
+    } catch (e) {
+      if (attempt === 3) {
+        const dbg = await page.evaluate(({ x, y }) => {
+          const el = document.elementFromPoint(x, y);
+          const ws = window.homesimEditor.workspace();
+          return { at: `${el?.tagName}.${el?.getAttribute("class")}`,
+            flyout: ws.getToolbox().getFlyout().isVisible(), dragging: ws.isDragging(),
+            selected: window.homesimEditor.Blockly.getSelected()?.type };
+        }, box);
+        throw new Error(`the ${field} dropdown did not open: ${JSON.stringify(dbg)}`);
+      }
+    }
+  }
+  const item = menu.filter({ hasText: label }).first();
   await item.scrollIntoViewIfNeeded();
   await item.click();
   const value = await page.evaluate(({ id, field }) =>
