@@ -2,11 +2,12 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,stats,render
+EXTRAS ?= dev,stats,render,serve
 
 .PHONY: setup demo test lint bench clean
+WEB_BUILD := src/homesim/serve/static/index.html
 
-setup: $(VENV)/.installed
+setup: $(VENV)/.installed $(WEB_BUILD)
 
 $(VENV)/.installed: pyproject.toml
 	sh tools/install_system_deps.sh
@@ -14,6 +15,12 @@ $(VENV)/.installed: pyproject.toml
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e ".[$(EXTRAS)]"
 	touch $@
+
+# The block editor (web/) is built here, not committed; homesim serve serves the build.
+# npm install --no-save, not npm ci: the lock file lacks the other platforms' optional
+# rollup binaries (our registry mirror lacks them), which npm ci rejects.
+$(WEB_BUILD): web/package.json web/package-lock.json web/index.html web/vite.config.ts $(wildcard web/src/*)
+	cd web && npm install --no-save --no-audit --no-fund --loglevel=error && npm run build
 
 demo: setup
 	$(BIN)/homesim run
@@ -23,7 +30,7 @@ demo: setup
 test: setup
 	$(BIN)/homesim data fetch
 	$(BIN)/ruff check src tests benchmarks tools
-	HOMESIM_REQUIRE_DATA=1 $(BIN)/python -m pytest
+	HOMESIM_REQUIRE_DATA=1 HOMESIM_REQUIRE_E2E=1 $(BIN)/python -m pytest
 
 bench: setup
 	$(BIN)/homesim data fetch

@@ -7,7 +7,7 @@ import sys
 
 import typer
 
-from homesim.cli import data, render, run
+from homesim.cli import data, render, run, serve
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
 from homesim.world.homes import home_names
@@ -20,6 +20,7 @@ app = typer.Typer(
     add_completion=False,
 )
 app.command("run")(run.run)
+app.command("serve")(serve.serve)
 app.add_typer(data.app, name="data")
 app.command("render")(render.render)
 

@@ -1,0 +1,42 @@
+"""`homesim serve`: run the block editor and its JSON API (FastAPI + uvicorn)."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from homesim.cli.common import console
+from homesim.errors import HomesimError
+
+LOOPBACK = "127.0.0.1"
+
+
+def serve(
+    host: Annotated[str, typer.Option(
+        help="Address to listen on; the default only accepts connections from this "
+             "machine. Use 0.0.0.0 to share it on your network (no authentication!).")]
+    = LOOPBACK,
+    port: Annotated[int, typer.Option(help="TCP port.")] = 8000,
+    log_level: Annotated[str, typer.Option(help="uvicorn log level.")] = "warning",
+) -> None:
+    """Serve the block editor and the JSON API (docs at /docs)."""
+    try:
+        import uvicorn
+
+        from homesim.serve import create_app
+        from homesim.serve.static import BUILD_HINT, default_static_dir, is_built
+    except ModuleNotFoundError as e:
+        # No brackets in the text: the CLI prints errors as rich markup.
+        raise HomesimError(f"'homesim serve' needs the serve extra ({e}); install "
+                           "homesim with its 'serve' extra (fastapi, uvicorn)") from None
+    if not 0 < port < 65536:
+        raise HomesimError(f"--port {port}: not a TCP port (1-65535)")
+    if not is_built(default_static_dir()):
+        console.print(f"[yellow]note[/]: {BUILD_HINT}; serving the API only")
+    console.print(f"homesim editor on [bold]http://{host}:{port}/[/] (API docs at /docs); "
+                  "Ctrl-C stops it")
+    try:
+        uvicorn.run(create_app(), host=host, port=port, log_level=log_level)
+    except OSError as e:
+        raise HomesimError(f"cannot listen on {host}:{port} ({e.strerror or e})") from None

@@ -1,0 +1,86 @@
+"""Routes that describe what programs can use: homes, the action catalog, a home's objects."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+from fastapi import APIRouter
+
+from homesim.errors import GraphError
+from homesim.examples import DEMO_HOME
+from homesim.program import ACTIONS, Category, actions_in
+from homesim.serve.errors import ApiError
+from homesim.world.graph import EnvironmentGraph
+from homesim.world.homes import home_names, load_home
+
+router = APIRouter(prefix="/api", tags=["catalog"])
+
+CATEGORY_LABELS: dict[Category, str] = {
+    Category.MOVEMENT: "Movement",
+    Category.ATTENTION: "Attention",
+    Category.HANDS: "Hands",
+    Category.PLACING: "Placing",
+    Category.OPEN_CLOSE: "Open / close",
+    Category.DEVICES: "Devices",
+    Category.BODY: "Body",
+    Category.CLEANING: "Cleaning",
+    Category.EATING: "Eating",
+}
+"""Palette names of the 9 editor categories, in toolbox order."""
+
+
+def get_home(name: str) -> EnvironmentGraph:
+    """A built-in home, or a 404 naming the homes there are."""
+    try:
+        return load_home(name)
+    except GraphError as e:
+        raise ApiError(404, "home", str(e)) from None
+
+
+@router.get("/homes")
+def list_homes() -> dict[str, Any]:
+    """Built-in homes; ``geometry`` is True for the full apartments (renderable)."""
+    homes = [{"name": n, "geometry": not n.endswith("_trimmed")} for n in home_names()]
+    return {"default": DEMO_HOME, "homes": homes}
+
+
+@router.get("/actions")
+def list_actions() -> dict[str, Any]:
+    """The action catalog by editor category."""
+    categories = []
+    for category, label in CATEGORY_LABELS.items():
+        actions = [{"key": a.key, "name": a.name, "arity": a.arity, "animated": a.animated,
+                    "description": a.description} for a in actions_in(category)]
+        categories.append({"id": category.value, "label": label, "actions": actions})
+    return {"count": len(ACTIONS), "categories": categories}
+
+
+@lru_cache(maxsize=16)
+def _objects(name: str) -> dict[str, Any]:
+    graph = get_home(name)
+    rooms = {r.id: r.class_name for r in graph.rooms()}
+    objects = []
+    for node in graph:
+        if node.id == graph.character_id:
+            continue
+        room = graph.room_of(node.id)
+        objects.append({
+            "id": node.id,
+            "class_name": node.class_name,
+            "category": node.category,
+            "room_id": room,
+            "room": rooms.get(room) if room is not None else None,
+            "properties": sorted(node.properties),
+            "states": sorted(node.states),
+        })
+    objects.sort(key=lambda o: (o["room"] or "~", o["class_name"], o["id"]))
+    return {"home": name, "character": graph.character_id,
+            "rooms": [{"id": i, "class_name": c} for i, c in sorted(rooms.items())],
+            "objects": objects}
+
+
+@router.get("/homes/{name}/objects")
+def list_objects(name: str) -> dict[str, Any]:
+    """Every object of a home (not the character) with its room, sorted by room and class."""
+    return _objects(name)

@@ -1,0 +1,38 @@
+"""Request bodies of the API (responses are plain JSON dicts built in `results`)."""
+
+from __future__ import annotations
+
+from pydantic import BaseModel, Field
+
+MAX_STEPS = 1000
+"""Most steps a program sent to the API may have (real programs have under 100)."""
+
+
+class ProgramRequest(BaseModel):
+    """A program text (ActivityPrograms format or steps only), optionally for a home."""
+
+    program: str = Field(description="program text: title, description, blank line, steps")
+    home: str | None = Field(default=None, description="built-in home to check node ids in")
+
+
+class ExecuteRequest(BaseModel):
+    """A program to run on a home.
+
+    ``ground``: None (default) grounds only when some object ref lacks a node id; True
+    always grounds; False reads ``(N)`` as node N, as the reference simulator does.
+    """
+
+    program: str
+    home: str
+    ground: bool | None = None
+    seed: int = Field(default=0, description="seed of the grounding search")
+
+
+class RenderRequest(BaseModel):
+    """A program to render as key frames (one per step)."""
+
+    program: str
+    home: str
+    width: int = Field(default=320, ge=16, le=1280)
+    height: int = Field(default=240, ge=16, le=960)
+    seed: int = 0

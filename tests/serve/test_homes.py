@@ -1,0 +1,36 @@
+def test_homes_lists_builtin_homes_with_default(client):
+    data = client.get("/api/homes").json()
+    names = [h["name"] for h in data["homes"]]
+    assert data["default"] == "scene1" and "scene1" in names and "scene5_trimmed" in names
+    assert {h["name"]: h["geometry"] for h in data["homes"]}["scene1_trimmed"] is False
+
+
+def test_actions_are_grouped_in_the_nine_categories(client):
+    data = client.get("/api/actions").json()
+    assert [c["id"] for c in data["categories"]] == [
+        "movement", "attention", "hands", "placing", "open_close", "devices", "body",
+        "cleaning", "eating"]
+    flat = {a["name"]: a for c in data["categories"] for a in c["actions"]}
+    assert len(flat) == data["count"] == 42
+    assert flat["PutBack"]["arity"] == 2 and flat["StandUp"]["arity"] == 0
+    assert flat["SwitchOn"]["key"] == "SWITCHON" and flat["Walk"]["animated"] is True
+
+
+def test_objects_of_a_home_come_with_their_rooms(client):
+    data = client.get("/api/homes/scene1/objects").json()
+    by_id = {o["id"]: o for o in data["objects"]}
+    assert by_id[410]["class_name"] == "tv" and by_id[410]["room"] == "livingroom"
+    assert by_id[352]["class_name"] == "sofa" and by_id[352]["room_id"] == 319
+    assert data["character"] not in by_id
+    assert {r["class_name"] for r in data["rooms"]} == {
+        "bathroom", "bedroom", "kitchen", "livingroom"}
+    # Rooms are objects too ([Walk] <kitchen>), in their own room.
+    assert by_id[319]["room"] == "livingroom"
+
+
+def test_unknown_home_is_404_with_suggestion(client):
+    r = client.get("/api/homes/scene9/objects")
+    assert r.status_code == 404
+    error = r.json()["error"]
+    assert error["kind"] == "home"
+    assert "unknown home 'scene9'" in error["message"] and "scene1" in error["message"]

@@ -1,0 +1,172 @@
+import pytest
+
+from homesim.serve import optional
+
+
+def test_validate_returns_steps_with_their_lines(client, watch_tv):
+    r = client.post("/api/validate", json={"program": watch_tv, "home": "scene1"})
+    assert r.status_code == 200
+    data = r.json()
+    assert data["ok"] is True and data["problems"] == [] and data["title"] == "Watch TV"
+    assert [s["line"] for s in data["steps"]] == [4, 5, 6, 7, 8]
+    assert data["steps"][1]["action"] == "SWITCHON"
+    assert data["steps"][1]["args"] == [{"name": "tv", "instance": 1, "node_id": 410}]
+    assert data["program"] == watch_tv
+
+
+def test_validate_reports_node_ids_missing_or_of_another_class(client):
+    text = "[Walk] <tv> (1.410)\n[Walk] <sofa> (1.9999)\n[Sit] <television> (1.410)\n"
+    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
+    assert data["ok"] is False
+    assert [(p["line"], p["message"]) for p in data["problems"]] == [
+        (2, "line 2: the home has no node 9999 for <sofa> (1)"),
+        (3, "line 3: node 410 is a tv, not a television")]
+
+
+def test_validate_flags_ungrounded_refs_only_without_grounding(client, monkeypatch):
+    text = "[Walk] <tv> (1)\n"
+    monkeypatch.setattr(optional, "grounding", lambda: (None, "missing"))
+    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
+    assert data["grounding_available"] is False and data["ok"] is False
+    assert data["problems"][0]["message"] == (
+        "line 1: <tv> (1) has no node id, and grounding is not available to choose one")
+    monkeypatch.setattr(optional, "grounding", lambda: (lambda *a, **k: None, ""))
+    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
+    assert data["grounding_available"] is True and data["ok"] is True
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "fragment"),
+    [
+        ("[Walk] <tv> (1.410)\n[Wlak] <tv> (1.410)\n", 2, "unknown action 'Wlak' (did you mean Walk?)"),
+        ("Title\nDesc\n\n[Walk] <tv> (1.410)\n[Grab] <tv>\n", 5, "expected an id"),
+        ("[PutBack] <cup> (1.1)\n", 1, "[PutBack] takes 2 objects, got 1"),
+    ],
+)
+@pytest.mark.parametrize("route", ["/api/validate", "/api/execute"])
+def test_malformed_program_is_422_with_line(client, route, text, line, fragment):
+    r = client.post(route, json={"program": text, "home": "scene1"})
+    assert r.status_code == 422
+    error = r.json()["error"]
+    assert error["kind"] == "program" and error["line"] == line
+    assert fragment in error["message"] and error["message"].startswith(f"line {line}:")
+
+
+def test_empty_program_is_422(client):
+    r = client.post("/api/execute", json={"program": "Title\nDesc\n\n", "home": "scene1"})
+    assert r.status_code == 422 and r.json()["error"]["message"] == "the program has no steps"
+
+
+def test_too_many_steps_is_422(client):
+    text = "[Walk] <tv> (1.410)\n" * 1001
+    r = client.post("/api/execute", json={"program": text, "home": "scene1"})
+    assert r.status_code == 422
+    assert "1001 steps, over the limit of 1000" in r.json()["error"]["message"]
+
+
+def test_execute_watch_tv_every_step_passes(client, watch_tv):
+    r = client.post("/api/execute", json={"program": watch_tv, "home": "scene1"})
+    assert r.status_code == 200
+    data = r.json()
+    assert data["executable"] is True and data["failed_step"] is None
+    assert [s["ok"] for s in data["steps"]] == [True] * 5 and data["not_run"] == []
+    switch = data["steps"][1]
+    assert switch["changes"]["states"] == [{"node": 410, "before": ["OFF"], "after": ["ON"]}]
+    assert switch["summary"] == "tv 410: OFF → ON" and switch["line"] == 5
+    sit = data["steps"][3]
+    assert [65, "ON", 352] in sit["changes"]["added"]
+
+
+def test_execute_failing_step_has_reason_and_line(client, watch_tv):
+    text = watch_tv + "\n[Grab] <tv> (1.410)\n[Walk] <sofa> (1.352)\n"
+    data = client.post("/api/execute", json={"program": text, "home": "scene1"}).json()
+    assert data["executable"] is False and data["failed_step"] == 6 and data["failed_line"] == 9
+    last = data["steps"][-1]
+    assert last["ok"] is False and last["reason"] == "tv 410 cannot be grabbed (not GRABBABLE)"
+    assert last["changes"] == {"added": [], "removed": [], "states": [], "nodes": []}
+    assert data["not_run"] == [{"index": 6, "line": 10, "step": "[Walk] <sofa> (1.352)"}]
+    assert data["message"].startswith("step 6 [Grab] <tv> (1.410): tv 410 cannot be grabbed")
+
+
+def test_execute_on_unknown_home_is_404(client, watch_tv):
+    r = client.post("/api/execute", json={"program": watch_tv, "home": "nowhere"})
+    assert r.status_code == 404 and "unknown home 'nowhere'" in r.json()["error"]["message"]
+
+
+def test_ungrounded_refs_without_grounding_say_what_to_do(client, monkeypatch):
+    monkeypatch.setattr(optional, "grounding", lambda: (None, "homesim.sim.ground is missing"))
+    text = "[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1)\n"
+    r = client.post("/api/execute", json={"program": text, "home": "scene1"})
+    assert r.status_code == 422
+    error = r.json()["error"]
+    assert error["kind"] == "grounding" and error["line"] == 2
+    assert "<tv> (1) names no node of the home" in error["message"]
+    assert "homesim.sim.ground is missing" in error["message"]
+    r = client.post("/api/execute", json={"program": text, "home": "scene1", "ground": True})
+    assert r.status_code == 501 and "grounding is not available" in r.json()["error"]["message"]
+
+
+def test_ground_false_reads_instance_as_node_id_like_the_reference(client):
+    text = "[Walk] <tv> (410)\n[SwitchOn] <tv> (410)\n"
+    data = client.post("/api/execute",
+                       json={"program": text, "home": "scene1", "ground": False}).json()
+    assert data["executable"] is True and data["bindings"] is None
+
+
+def test_ungrounded_program_is_grounded_when_grounding_is_available(client, monkeypatch):
+    class Grounding:
+        def __init__(self, program, bindings):
+            self.program, self.bindings = program, bindings
+
+    calls = []
+
+    def fake_ground(program, graph, seed=0):
+        calls.append(seed)
+        bindings = {("tv", 1): 410}
+        return Grounding(program.with_steps([s.__class__(s.action, tuple(
+            r.ground(bindings[r.key]) for r in s.args)) for s in program.steps]), bindings)
+
+    monkeypatch.setattr(optional, "grounding", lambda: (fake_ground, ""))
+    text = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n"
+    data = client.post("/api/execute",
+                       json={"program": text, "home": "scene1", "seed": 7}).json()
+    assert calls == [7] and data["executable"] is True
+    assert data["program"] == "[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1.410)"
+    assert data["bindings"] == [{"name": "tv", "instance": 1, "node_id": 410}]
+
+
+def test_render_without_renderer_is_501(client, watch_tv, monkeypatch):
+    monkeypatch.setattr(optional, "keyframe_renderer", lambda: (None, "homesim.render is missing"))
+    r = client.post("/api/render", json={"program": watch_tv, "home": "scene1"})
+    assert r.status_code == 501
+    assert r.json()["error"]["message"].startswith(
+        "rendering is not available on this server: homesim.render is missing")
+
+
+def test_render_returns_one_png_per_key_frame(client, watch_tv, monkeypatch):
+    def fake_render(program, graph, *, width, height, seed):
+        return [(i, [[[i * 40, 0, 255]] * width] * height) for i in range(len(program.steps))]
+
+    monkeypatch.setattr(optional, "keyframe_renderer", lambda: (fake_render, ""))
+    r = client.post("/api/render",
+                    json={"program": watch_tv, "home": "scene1", "width": 16, "height": 16})
+    assert r.status_code == 200
+    frames = r.json()["frames"]
+    assert [f["index"] for f in frames] == [0, 1, 2, 3, 4]
+    assert [f["line"] for f in frames] == [4, 5, 6, 7, 8]
+    assert all(f["image"].startswith("data:image/png;base64,iVBORw0KGgo") for f in frames)
+
+
+@pytest.mark.dataset
+def test_every_real_program_file_validates_with_its_lines(client, real_data):
+    from homesim.knowledge import real_programs
+
+    files = sorted((real_data / "programs").glob("*.txt"))
+    assert len(files) == len(list(real_programs(real_data))) == 518
+    for path in files:
+        text = path.read_text(encoding="utf-8")
+        r = client.post("/api/validate", json={"program": text})
+        assert r.status_code == 200, (path.name, r.json())
+        data = r.json()
+        lines = text.splitlines()
+        assert all(lines[s["line"] - 1].strip().startswith("[") for s in data["steps"]), path.name

@@ -1,0 +1,283 @@
+// End-to-end test of the block editor: Playwright (playwright-core) driving Debian's
+// chromium against a running `homesim serve`.
+//
+//   node e2e/editor.e2e.mjs --url http://127.0.0.1:8000/ [--screenshot ../docs/editor.png]
+//
+// It builds "watch TV" from blocks with the mouse (drag from the toolbox, pick objects in
+// the dropdowns), runs it and expects every step to pass; adds a failing step and expects
+// its reason on the block; saves and loads files; pastes a program and expects blocks;
+// switches homes; asks for key frames. Exits non-zero with a one-line reason on the first
+// failure.
+import { chromium } from "playwright-core";
+import { parseArgs } from "node:util";
+import { readFile } from "node:fs/promises";
+import { fileURLToPath } from "node:url";
+
+const { values: opts } = parseArgs({
+  options: {
+    url: { type: "string", default: "http://127.0.0.1:8000/" },
+    screenshot: { type: "string" },
+    chromium: { type: "string", default: "/usr/bin/chromium" },
+  },
+});
+
+const TV = "tv 410 · livingroom";
+const SOFA = "sofa 352 · livingroom";
+const WATCH_TV = [
+  ["Movement", "WALK", [TV]],
+  ["Devices", "SWITCHON", [TV]],
+  ["Movement", "WALK", [SOFA]],
+  ["Body", "SIT", [SOFA]],
+  ["Attention", "WATCH", [TV]],
+];
+const EXPECTED_TEXT = `Watch TV
+Walk to the TV and switch it on, then sit on the sofa and watch TV.
+
+[Walk] <tv> (1.410)
+[SwitchOn] <tv> (1.410)
+[Walk] <sofa> (1.352)
+[Sit] <sofa> (1.352)
+[Watch] <tv> (1.410)
+`;
+const EXAMPLE = fileURLToPath(
+  new URL("../../src/homesim/examples/watch_tv.txt", import.meta.url));
+const GRAB_REASON = "tv 410 cannot be grabbed (not GRABBABLE)";
+
+function check(condition, message) {
+  if (!condition) throw new Error(message);
+}
+
+/** The last block of the (single) stack on the workspace, or null when it is empty. */
+async function stackInfo(page) {
+  return page.evaluate(() => {
+    const ws = window.homesimEditor.workspace();
+    const tops = ws.getTopBlocks(true);
+    let last = tops[0] ?? null;
+    while (last?.getNextBlock()) last = last.getNextBlock();
+    const r = last?.getSvgRoot().getBoundingClientRect();
+    return {
+      stacks: tops.length,
+      blocks: ws.getAllBlocks(false).length,
+      last: last ? { id: last.id, left: r.left, top: r.top, bottom: r.top + last.height * ws.scale } : null,
+    };
+  });
+}
+
+async function flyoutBlockRect(page, type) {
+  return page.evaluate((type) => {
+    const flyout = window.homesimEditor.workspace().getToolbox().getFlyout();
+    const block = flyout.getWorkspace().getTopBlocks(false).find((b) => b.type === type);
+    if (!block) return null;
+    const r = block.getSvgRoot().getBoundingClientRect();
+    return { left: r.left, top: r.top, height: r.height };
+  }, type);
+}
+
+/** Drag block `type` from category `category` to the bottom of the stack (or a free spot). */
+async function dragBlock(page, category, type) {
+  const label = page.locator(".blocklyToolboxCategoryLabel", { hasText: new RegExp(`^${category}$`) });
+  await page.locator(".blocklyToolboxCategory", { has: label }).click();
+  await page.waitForFunction(() => window.homesimEditor.workspace().getToolbox()
+    .getFlyout().isVisible());
+  const from = await flyoutBlockRect(page, `hs_${type}`);
+  check(from, `no ${type} block in the ${category} flyout`);
+  const grab = { x: from.left + 8, y: from.top + 10 };
+  const before = await stackInfo(page);
+  const area = await page.locator("#blockly").boundingBox();
+  const to = before.last
+    ? { x: before.last.left + 8, y: before.last.bottom + 10 }
+    : { x: area.x + area.width * 0.3, y: area.y + 60 };
+  await page.mouse.move(grab.x, grab.y);
+  await page.mouse.down();
+  await page.mouse.move(grab.x + 20, grab.y + 5, { steps: 4 });
+  await page.mouse.move(to.x, to.y, { steps: 15 });
+  await page.mouse.up();
+  await page.waitForFunction(() => !window.homesimEditor.workspace().isDragging());
+  const after = await stackInfo(page);
+  check(after.blocks === before.blocks + 1, `dragging ${type} did not add a block`);
+  check(after.stacks === 1, `${type} did not snap under the previous block (${after.stacks} stacks)`);
+  return after.last.id;
+}
+
+/** Open dropdown `field` of block `id` and click the option labelled `label`. */
+async function pickOption(page, id, field, label) {
+  // Where the field is now: the workspace may scroll a little after a drop, as its content
+  // bounds change, so ask again until two readings agree.
+  const fieldBox = () => page.evaluate(({ id, field }) => {
+    const f = window.homesimEditor.workspace().getBlockById(id).getField(field);
+    const r = f.getSvgRoot().getBoundingClientRect();
+    return { x: r.left + r.width / 2, y: r.top + r.height / 2 };
+  }, { id, field });
+  let box = await fieldBox();
+  for (let i = 0; i < 20; i++) {
+    await page.waitForTimeout(50);
+    const again = await fieldBox();
+    if (again.x === box.x && again.y === box.y) break;
+    box = again;
+  }
+  const menu = page.locator(".blocklyDropDownDiv .blocklyMenuItem");
+  for (let attempt = 1; ; attempt++) {
+    if (attempt > 1) box = await fieldBox();
+    await page.mouse.click(box.x, box.y);
+    try {
+      await menu.first().waitFor({ state: "attached", timeout: 3000 });
+      break;
+    } catch (e) {
+      if (attempt === 3) {
+        const dbg = await page.evaluate(({ x, y }) => {
+          const el = document.elementFromPoint(x, y);
+          const ws = window.homesimEditor.workspace();
+          return { at: `${el?.tagName}.${el?.getAttribute("class")}`,
+            flyout: ws.getToolbox().getFlyout().isVisible(), dragging: ws.isDragging(),
+            selected: window.homesimEditor.Blockly.getSelected()?.type };
+        }, box);
+        throw new Error(`the ${field} dropdown did not open: ${JSON.stringify(dbg)}`);
+      }
+    }
+  }
+  const item = menu.filter({ hasText: label }).first();
+  await item.scrollIntoViewIfNeeded();
+  await item.click();
+  const value = await page.evaluate(({ id, field }) =>
+    window.homesimEditor.workspace().getBlockById(id).getFieldValue(field), { id, field });
+  check(label.includes(` ${value} `), `dropdown ${field} is ${value}, not ${label}`);
+}
+
+async function runAndWait(page) {
+  await page.locator("#run").click();
+  await page.waitForFunction(() => /executable|✗/.test(document.querySelector("#status").textContent)
+    && document.querySelectorAll("#results li").length > 0);
+}
+
+async function main() {
+  const started = Date.now();
+  const browser = await chromium.launch({
+    executablePath: opts.chromium,
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+      "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+  });
+  const errors = [];
+  try {
+    const context = await browser.newContext({ viewport: { width: 1400, height: 820 },
+      acceptDownloads: true });
+    const page = await context.newPage();
+    page.on("pageerror", (e) => errors.push(`page error: ${e.message}`));
+    // API answers 4xx on purpose (a bad line); any other failed load is a bug.
+    page.on("console", (m) => {
+      if (m.type() === "error" && !m.text().startsWith("Failed to load resource")) {
+        errors.push(`console: ${m.text()}`);
+      }
+    });
+    page.on("response", (r) => {
+      if (r.status() >= 400 && !new URL(r.url()).pathname.startsWith("/api/")) {
+        errors.push(`${r.status()} for ${r.url()}`);
+      }
+    });
+    page.setDefaultTimeout(15000);
+
+    // 1. Open the page.
+    await page.goto(opts.url);
+    await page.waitForSelector("body[data-ready=true]");
+    const categories = await page.locator(".blocklyToolboxCategoryLabel").allTextContents();
+    check(categories.length === 10, `expected 9 categories + free text, got ${categories}`);
+
+    // 2. Build "watch TV" from blocks, run it, every step passes.
+    for (const [category, type, objects] of WATCH_TV) {
+      const id = await dragBlock(page, category, type);
+      for (const [slot, label] of objects.entries()) await pickOption(page, id, `OBJ${slot}`, label);
+    }
+    await page.locator("#title").fill("Watch TV");
+    await page.locator("#description").fill(
+      "Walk to the TV and switch it on, then sit on the sofa and watch TV.");
+    await page.waitForFunction((t) => document.querySelector("#text").value === t, EXPECTED_TEXT)
+      .catch(async () => {
+        throw new Error(`text view is ${JSON.stringify(await page.locator("#text").inputValue())}`);
+      });
+    await runAndWait(page);
+    const ok = await page.locator("#results li.ok").count();
+    const failed = await page.locator("#results li.fail").count();
+    check(ok === 5 && failed === 0, `watch TV: ${ok} steps passed, ${failed} failed`);
+    check((await page.locator("#status").textContent()).includes("all 5 steps ran"),
+      "status does not say the program is executable");
+
+    // 3. Add a failing step: its reason shows on its block.
+    const grab = await dragBlock(page, "Hands", "GRAB");
+    await pickOption(page, grab, "OBJ0", TV);
+    await runAndWait(page);
+    const failRow = page.locator("#results li.fail");
+    check(await failRow.count() === 1, "the failing step is not marked ✗");
+    check((await failRow.textContent()).includes(GRAB_REASON), "the ✗ row lacks the reason");
+    const warning = await page.evaluate((id) => {
+      const block = window.homesimEditor.workspace().getBlockById(id);
+      const icon = block.getIcon(window.homesimEditor.Blockly.icons.IconType.WARNING);
+      return icon ? { text: icon.getText(), open: icon.bubbleIsVisible() } : null;
+    }, grab);
+    check(warning && warning.text === GRAB_REASON && warning.open,
+      `the Grab block's warning is ${JSON.stringify(warning)}`);
+    check(await page.locator(`[data-id="${grab}"].hsFailed`).count() === 1,
+      "the failing block is not outlined");
+    await page.locator(".blocklyBubble", { hasText: GRAB_REASON }).first()
+      .waitFor({ state: "visible" });
+    if (opts.screenshot) await page.screenshot({ path: opts.screenshot });
+
+    // 4. Save writes the ActivityPrograms file.
+    const [download] = await Promise.all([page.waitForEvent("download"),
+      page.locator("#save").click()]);
+    const saved = await readFile(await download.path(), "utf8");
+    check(download.suggestedFilename() === "Watch_TV.txt", `saved as ${download.suggestedFilename()}`);
+    check(saved === `${EXPECTED_TEXT}[Grab] <tv> (1.410)\n`, `saved file is ${JSON.stringify(saved)}`);
+
+    // 5. Load reads an ActivityPrograms file back into blocks (the demo program's file).
+    await page.locator("#clear").click();
+    await page.locator("#load").setInputFiles(EXAMPLE);
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 5);
+    const loaded = await page.evaluate(() => window.homesimEditor.workspace().getAllBlocks(false)
+      .map((b) => b.type));
+    check(loaded.every((t) => t !== "hs_free_text"), `loaded blocks are ${loaded}`);
+    check(await page.locator("#title").inputValue() === "Watch TV", "loading did not set the title");
+    await runAndWait(page);
+    check(await page.locator("#results li.ok").count() === 5, "the loaded program does not run");
+
+    // 6. Pasting a program makes blocks; a bad line becomes free text with its error.
+    const pasted = "Pasted\nA pasted program.\n\n[Walk] <sofa> (1.352)\n[Wlak] <tv> (1.410)\n";
+    await page.locator("#text").fill(pasted);
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 2);
+    const types = await page.evaluate(() => window.homesimEditor.workspace().getTopBlocks(true)[0]
+      ? [window.homesimEditor.workspace().getTopBlocks(true)[0].type,
+        window.homesimEditor.workspace().getTopBlocks(true)[0].getNextBlock()?.type] : []);
+    check(types[0] === "hs_WALK" && types[1] === "hs_free_text", `pasted blocks are ${types}`);
+    check(await page.locator("#title").inputValue() === "Pasted", "pasting did not set the title");
+    await page.waitForFunction(() => document.querySelector("#status").textContent
+      .includes("unknown action 'Wlak' (did you mean Walk?)"));
+
+    // 7. Another home: refs that are not its nodes become free text; no line is lost.
+    await page.locator("#home").selectOption("scene2_trimmed");
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false)
+      .every((b) => b.type === "hs_free_text"));
+    check((await page.locator("#text").inputValue()).includes("[Walk] <sofa> (1.352)"),
+      "switching homes lost a line");
+
+    // 8. Key frames: pictures when homesim.render is installed, else a clear message.
+    await page.locator("#home").selectOption("scene1");
+    await page.locator("#text").fill(EXPECTED_TEXT);
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 5);
+    await page.locator("#render").click();
+    await page.waitForFunction(() => /key frames$|rendering is not available/.test(
+      document.querySelector("#status").textContent), null, { timeout: 120000 });
+    const frames = await page.locator("#frames img").count();
+    const status = await page.locator("#status").textContent();
+    check(frames === 5 || status.includes("rendering is not available"),
+      `key frames: ${frames} images, status ${status}`);
+
+    check(errors.length === 0, `browser errors: ${errors.join(" | ")}`);
+    console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000,
+      keyframes: frames }));
+  } finally {
+    await browser.close();
+  }
+}
+
+main().catch((e) => {
+  console.error(`e2e failed: ${e.message.split("\n")[0]}`);
+  process.exit(1);
+});

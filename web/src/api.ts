@@ -1,0 +1,56 @@
+// Typed calls to the homesim JSON API (src/homesim/serve). Every error answer has the
+// shape {"error": {"kind", "message", "line"?}}; `ApiError` carries it.
+
+export interface Home { name: string; geometry: boolean }
+export interface Action {
+  key: string; name: string; arity: number; animated: boolean; description: string;
+}
+export interface Category { id: string; label: string; actions: Action[] }
+export interface HomeObject {
+  id: number; class_name: string; category: string | null;
+  room_id: number | null; room: string | null; properties: string[]; states: string[];
+}
+export interface Objects { home: string; objects: HomeObject[] }
+export interface Problem { index: number; line: number; step: string; message: string }
+export interface Validation { ok: boolean; problems: Problem[]; program: string }
+export interface StepResult {
+  index: number; line: number; step: string; ok: boolean; reason: string | null;
+  summary: string;
+}
+export interface Execution {
+  executable: boolean; failed_step: number | null; failed_line: number | null;
+  reason: string | null; message: string; steps: StepResult[];
+  not_run: { index: number; line: number; step: string }[];
+}
+export interface Frames { frames: { index: number; line: number; image: string }[] }
+
+export class ApiError extends Error {
+  constructor(readonly status: number, message: string, readonly line: number | null) {
+    super(message);
+  }
+}
+
+async function call<T>(path: string, body?: unknown): Promise<T> {
+  const init: RequestInit = body === undefined ? {} : {
+    method: "POST",
+    headers: { "content-type": "application/json" },
+    body: JSON.stringify(body),
+  };
+  const response = await fetch(`api/${path}`, init);
+  const data = await response.json().catch(() => null);
+  if (!response.ok) {
+    const error = data?.error ?? {};
+    throw new ApiError(response.status, error.message ?? `HTTP ${response.status}`,
+      typeof error.line === "number" ? error.line : null);
+  }
+  return data as T;
+}
+
+export const api = {
+  homes: () => call<{ default: string; homes: Home[] }>("homes"),
+  actions: () => call<{ categories: Category[] }>("actions"),
+  objects: (home: string) => call<Objects>(`homes/${encodeURIComponent(home)}/objects`),
+  validate: (program: string, home: string) => call<Validation>("validate", { program, home }),
+  execute: (program: string, home: string) => call<Execution>("execute", { program, home }),
+  render: (program: string, home: string) => call<Frames>("render", { program, home }),
+};

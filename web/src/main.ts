@@ -1,0 +1,253 @@
+// The editor page: a Blockly workspace (zelos renderer) kept in sync with a program text,
+// checked and run by the homesim server.
+import * as Blockly from "blockly/core";
+import * as En from "blockly/msg/en";
+import { ApiError, api, type Execution } from "./api";
+import { defineBlocks, toolbox } from "./blocks";
+import { setObjects } from "./objects";
+import { itemsToState, parseText, workspaceToText, type Generated } from "./program";
+import "./style.css";
+
+Blockly.setLocale(En as unknown as { [key: string]: string });
+
+const $ = <T extends HTMLElement>(id: string): T => document.getElementById(id) as T;
+const homeSelect = $<HTMLSelectElement>("home");
+const titleInput = $<HTMLInputElement>("title");
+const descriptionInput = $<HTMLInputElement>("description");
+const textArea = $<HTMLTextAreaElement>("text");
+const statusLine = $<HTMLParagraphElement>("status");
+const resultList = $<HTMLOListElement>("results");
+const frameBox = $<HTMLDivElement>("frames");
+
+let ws: Blockly.WorkspaceSvg;
+let generated: Generated = { text: "", blockAtLine: new Map() };
+let applyingText = false;
+let validateTimer: number | undefined;
+let textTimer: number | undefined;
+let requestEpoch = 0; // a check's answer is dropped once a newer check or run was asked for
+
+function setStatus(message: string, kind: "ok" | "error" | "info" = "info"): void {
+  statusLine.textContent = message;
+  statusLine.className = kind;
+}
+
+function blockAtLine(line: number | null): Blockly.BlockSvg | null {
+  const id = line === null ? undefined : generated.blockAtLine.get(line);
+  return id ? ws.getBlockById(id) : null;
+}
+
+function clearMarks(): void {
+  ws.highlightBlock(null);
+  for (const block of ws.getAllBlocks(false)) {
+    block.setWarningText(null);
+    block.removeClass("hsFailed");
+  }
+}
+
+/** Put `reason` on the block of `line` and open its bubble, so the reason is in view. */
+function markBlock(line: number | null, reason: string): void {
+  const block = blockAtLine(line);
+  if (!block) return;
+  block.setWarningText(reason);
+  block.addClass("hsFailed");
+  ws.highlightBlock(block.id, true);
+  const icon = block.getIcon(Blockly.icons.IconType.WARNING);
+  void icon?.setBubbleVisible(true).then(() => {
+    // To the right of the block, so the bubble does not hide the steps above it.
+    const bubble = icon.getBubble() as Blockly.bubbles.Bubble | null;
+    const anchor = bubble?.getRelativeToSurfaceXY();
+    if (bubble && anchor) bubble.setPositionRelativeToAnchor(block.width, -8);
+  });
+}
+
+function regenerate(): void {
+  generated = workspaceToText(ws, titleInput.value, descriptionInput.value);
+  if (!applyingText && document.activeElement !== textArea) textArea.value = generated.text;
+  scheduleValidate();
+}
+
+function applyText(text: string): void {
+  const parsed = parseText(text);
+  titleInput.value = parsed.title;
+  descriptionInput.value = parsed.description;
+  applyingText = true;
+  Blockly.Events.disable();
+  try {
+    ws.clear();
+    Blockly.serialization.workspaces.load(itemsToState(parsed.items), ws);
+  } finally {
+    Blockly.Events.enable();
+    applyingText = false;
+  }
+  generated = workspaceToText(ws, titleInput.value, descriptionInput.value);
+  scheduleValidate();
+}
+
+function scheduleValidate(): void {
+  window.clearTimeout(validateTimer);
+  validateTimer = window.setTimeout(() => void validate(), 500);
+}
+
+async function validate(): Promise<void> {
+  if (generated.blockAtLine.size === 0) {
+    setStatus("Drag blocks from the categories, or paste a program into the text.");
+    return;
+  }
+  const sent = generated.text;
+  const epoch = ++requestEpoch;
+  const stale = (): boolean => epoch !== requestEpoch || sent !== generated.text;
+  try {
+    const result = await api.validate(sent, homeSelect.value);
+    if (stale()) return;
+    clearMarks();
+    for (const problem of result.problems) markBlock(problem.line, problem.message);
+    if (result.ok) setStatus(`✓ valid program, ${generated.blockAtLine.size} steps`, "ok");
+    else setStatus(`✗ ${result.problems[0].message}`, "error");
+  } catch (e) {
+    if (stale()) return;
+    clearMarks();
+    showError(e);
+  }
+}
+
+function showError(e: unknown): void {
+  if (e instanceof ApiError) {
+    setStatus(`✗ ${e.message}`, "error");
+    markBlock(e.line, e.message);
+  } else {
+    setStatus(`✗ cannot reach the server (${String(e)})`, "error");
+  }
+}
+
+function showRun(result: Execution): void {
+  resultList.replaceChildren();
+  for (const step of result.steps) {
+    const item = document.createElement("li");
+    item.className = step.ok ? "step ok" : "step fail";
+    item.dataset.line = String(step.line);
+    item.innerHTML = `<span class="mark">${step.ok ? "✓" : "✗"}</span> <code></code>
+      <div class="detail"></div>`;
+    item.querySelector("code")!.textContent = step.step;
+    item.querySelector(".detail")!.textContent = step.ok ? step.summary : step.reason;
+    item.addEventListener("click", () => blockAtLine(step.line)?.select());
+    resultList.append(item);
+  }
+  for (const step of result.not_run) {
+    const item = document.createElement("li");
+    item.className = "step notrun";
+    item.innerHTML = `<span class="mark">·</span> <code></code> <div class="detail">not run</div>`;
+    item.querySelector("code")!.textContent = step.step;
+    resultList.append(item);
+  }
+  if (result.executable) {
+    setStatus(`✓ executable: all ${result.steps.length} steps ran`, "ok");
+  } else {
+    setStatus(`✗ ${result.message}`, "error");
+    markBlock(result.failed_line, result.reason ?? "failed");
+  }
+}
+
+async function run(): Promise<void> {
+  window.clearTimeout(validateTimer);
+  requestEpoch++;
+  clearMarks();
+  resultList.replaceChildren();
+  if (generated.blockAtLine.size === 0) {
+    setStatus("Nothing to run: the program has no steps.", "error");
+    return;
+  }
+  setStatus("running…");
+  try {
+    showRun(await api.execute(generated.text, homeSelect.value));
+  } catch (e) {
+    showError(e);
+  }
+}
+
+async function renderFrames(): Promise<void> {
+  frameBox.replaceChildren();
+  setStatus("rendering key frames…");
+  try {
+    const { frames } = await api.render(generated.text, homeSelect.value);
+    for (const frame of frames) {
+      const figure = document.createElement("figure");
+      const image = document.createElement("img");
+      image.src = frame.image;
+      image.alt = `after step ${frame.index + 1}`;
+      const caption = document.createElement("figcaption");
+      caption.textContent = `after step ${frame.index + 1}`;
+      figure.append(image, caption);
+      frameBox.append(figure);
+    }
+    setStatus(`✓ ${frames.length} key frames`, "ok");
+  } catch (e) {
+    showError(e);
+  }
+}
+
+function save(): void {
+  const name = (titleInput.value.trim() || "program").replace(/[^\w-]+/g, "_");
+  const link = document.createElement("a");
+  link.href = URL.createObjectURL(new Blob([generated.text], { type: "text/plain" }));
+  link.download = `${name}.txt`;
+  link.click();
+  URL.revokeObjectURL(link.href);
+}
+
+async function loadHome(name: string): Promise<void> {
+  const { objects } = await api.objects(name);
+  setObjects(objects);
+  ws.getToolbox()?.refreshSelection();
+  // Rebuild from the text: refs that are not nodes of this home become free text.
+  applyText(textArea.value);
+}
+
+async function start(): Promise<void> {
+  const [homes, catalog] = await Promise.all([api.homes(), api.actions()]);
+  defineBlocks(catalog.categories);
+  ws = Blockly.inject($("blockly"), {
+    renderer: "zelos",
+    toolbox: toolbox(catalog.categories),
+    media: "media/",
+    trashcan: true,
+    move: { scrollbars: true, drag: true, wheel: true },
+    zoom: { controls: true, startScale: 0.75 },
+  });
+  for (const home of homes.homes) homeSelect.add(new Option(home.name, home.name));
+  homeSelect.value = new URLSearchParams(location.search).get("home") ?? homes.default;
+  await loadHome(homeSelect.value);
+  ws.addChangeListener((e) => {
+    if (!e.isUiEvent && !applyingText) regenerate();
+  });
+  homeSelect.addEventListener("change", () => void loadHome(homeSelect.value).catch(showError));
+  for (const input of [titleInput, descriptionInput]) input.addEventListener("input", regenerate);
+  textArea.addEventListener("input", () => {
+    window.clearTimeout(textTimer);
+    textTimer = window.setTimeout(() => applyText(textArea.value), 400);
+  });
+  $("run").addEventListener("click", () => void run());
+  $("check").addEventListener("click", () => void validate());
+  $("render").addEventListener("click", () => void renderFrames());
+  $("save").addEventListener("click", save);
+  $("clear").addEventListener("click", () => { textArea.value = ""; applyText(""); });
+  $<HTMLInputElement>("load").addEventListener("change", async (event) => {
+    const input = event.target as HTMLInputElement;
+    const file = input.files?.[0];
+    if (!file) return;
+    textArea.value = await file.text();
+    applyText(textArea.value);
+    input.value = "";
+  });
+  setStatus("Drag blocks from the categories, or paste a program into the text.");
+  document.body.dataset.ready = "true";
+}
+
+declare global {
+  interface Window { homesimEditor: { Blockly: typeof Blockly; workspace: () => Blockly.WorkspaceSvg } }
+}
+window.homesimEditor = { Blockly, workspace: () => ws };
+
+start().catch((e) => {
+  setStatus(`✗ the editor could not start: ${e instanceof Error ? e.message : String(e)}`,
+    "error");
+});
