@@ -7,7 +7,7 @@ import sys
 
 import typer
 
-from homesim.cli import data, run, synth
+from homesim.cli import data, learn, run, synth
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
 from homesim.world.homes import home_names
@@ -22,6 +22,7 @@ app = typer.Typer(
 app.command("run")(run.run)
 app.add_typer(data.app, name="data")
 app.command("synth")(synth.synth)
+app.add_typer(learn.app, name="learn")
 
 
 @app.command("homes")
