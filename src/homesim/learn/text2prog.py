@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pickle
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -83,6 +84,6 @@ class Text2Prog:
             steps = StepVocab.from_json(data["steps"])
             model = Seq2Seq(cfg, torch.tensor(steps.table))
             model.load_state_dict(data["state"])
-        except (OSError, KeyError, TypeError, RuntimeError) as e:
+        except (OSError, KeyError, TypeError, RuntimeError, pickle.UnpicklingError) as e:
             raise HomesimError(f"{path}: not a text2prog checkpoint ({e})") from None
         return cls(model, WordVocab(data["words"]), steps, data.get("meta", {}))
