@@ -21,3 +21,17 @@ def test_reward_is_lcs_plus_simulator_bonus(tiny_splits):
     assert reward(e.program, e, use_sim=True) == 1.0 + SIM_WEIGHT
     wrong = e.program.with_steps(e.program.steps[1:])
     assert reward(wrong, e, use_sim=False) == lcs_scores(wrong, e.program)[2]
+
+
+def test_best_on_dev_restores_the_best_epoch(tiny_splits):
+    from homesim.learn.train import BestOnDev
+
+    train = tiny_splits.train[:12]
+    t2p = Text2Prog.create(train, seed=0, pretrained=False)
+    best = BestOnDev(t2p, train[:4])
+    train_mle(t2p, train, TrainConfig(epochs=3, batch_size=4, lr=1e-2), after_epoch=best)
+    assert len(best.scores) == 3 and best.best == max(best.scores)
+    best.restore()
+    restored = BestOnDev(t2p, train[:4])
+    restored(0)
+    assert restored.scores[0] == best.best

@@ -66,8 +66,10 @@ def train(
     data: Annotated[str, typer.Option(help="real, synthetic or both.")] = "both",
     seed: Annotated[int, typer.Option(help="Seed of splits, synthetic data and training.")] = 0,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs to generate.")] = 5000,
-    mle_epochs: Annotated[int, typer.Option(help="MLE epochs.")] = 20,
-    pg_epochs: Annotated[int, typer.Option(help="Policy-gradient epochs per PG model.")] = 3,
+    mle_epochs: Annotated[int | None, typer.Option(
+        help="MLE epochs (default: 40 real, 10 synthetic).")] = None,
+    pg_epochs: Annotated[int | None, typer.Option(
+        help="Policy-gradient epochs per PG model (default: 5 real, 2 synthetic).")] = None,
     batch_size: Annotated[int, typer.Option(help="Examples per batch.")] = 32,
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,

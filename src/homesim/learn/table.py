@@ -11,7 +11,7 @@ import copy
 import json
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from homesim.errors import HomesimError
@@ -20,7 +20,7 @@ from homesim.learn.data import Splits, real_examples, split, synthetic_examples
 from homesim.learn.execution import executable
 from homesim.learn.metrics import Scores, score
 from homesim.learn.text2prog import Text2Prog
-from homesim.learn.train import TrainConfig, train_mle, train_pg
+from homesim.learn.train import BestOnDev, TrainConfig, train_mle, train_pg
 from homesim.program.model import Program
 
 DATASETS = ("real", "synthetic")
@@ -33,19 +33,31 @@ Report = Callable[[str, int, int, float], None]
 """Progress callback: (stage, done, total, running loss or reward)."""
 
 
+EPOCHS = {"real": (40, 5), "synthetic": (10, 2)}
+"""Default (MLE epochs, PG epochs per PG model) of each data set."""
+
+
 @dataclass
 class RunConfig:
-    """What `train_dataset` does; saved in every checkpoint's meta."""
+    """What `train_dataset` does; saved in every checkpoint's meta.
+
+    Epochs left at None take the data set's default (`EPOCHS`). Each model keeps the
+    weights of its best epoch on the dev split (`train.BestOnDev`).
+    """
 
     dataset: str
     seed: int = 0
     synth_n: int = 5000
-    mle_epochs: int = 20
-    pg_epochs: int = 3
+    mle_epochs: int | None = None
+    pg_epochs: int | None = None
     batch_size: int = 32
     mle_lr: float = 2e-3
     pg_lr: float = 5e-4
-    extra: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        mle, pg = EPOCHS.get(self.dataset, (20, 5))
+        self.mle_epochs = mle if self.mle_epochs is None else self.mle_epochs
+        self.pg_epochs = pg if self.pg_epochs is None else self.pg_epochs
 
 
 def load_splits(dataset: str, seed: int, synth_n: int = 5000) -> Splits:
@@ -69,20 +81,24 @@ def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None
     meta = {"task": "text2prog", "run": asdict(config)}
     start = time.perf_counter()
     mle = Text2Prog.create(splits.train, config.seed)
+    best = BestOnDev(mle, splits.dev)
     history = train_mle(mle, splits.train, TrainConfig(config.mle_epochs, config.batch_size,
                                                        config.mle_lr, config.seed),
-                        progress("MLE"))
-    mle.meta.update(meta, model="mle", history=history,
-                    seconds=time.perf_counter() - start)
+                        progress("MLE"), best)
+    best.restore()
+    mle.meta.update(meta, model="mle", history=history, dev=best.scores,
+                    best_epoch=best.epoch, seconds=time.perf_counter() - start)
     paths = {"mle": out_dir / "mle.pt"}
     mle.save(paths["mle"])
     for name, use_sim in (("pg_lcs", False), ("pg_lcs_sim", True)):
         start = time.perf_counter()
         model = copy.deepcopy(mle)
         pg = TrainConfig(config.pg_epochs, config.batch_size, config.pg_lr, config.seed)
-        history = train_pg(model, splits.train, pg, use_sim, progress(MODELS[name]))
-        model.meta.update(meta, model=name, history=history,
-                          seconds=time.perf_counter() - start)
+        best = BestOnDev(model, splits.dev, use_sim)
+        history = train_pg(model, splits.train, pg, use_sim, progress(MODELS[name]), best)
+        best.restore()
+        model.meta.update(meta, model=name, history=history, dev=best.scores,
+                          best_epoch=best.epoch, seconds=time.perf_counter() - start)
         paths[name] = out_dir / f"{name}.pt"
         model.save(paths[name])
     return paths

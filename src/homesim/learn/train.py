@@ -7,6 +7,7 @@ sample's log-probability, with r = LCS(steps) [+ 0.1 * executable in the example
 
 from __future__ import annotations
 
+import copy
 import random
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -22,6 +23,8 @@ from homesim.program.model import Program
 
 Progress = Callable[[int, int, float], None]
 """Called after each batch with (batches done, batches in all, running loss)."""
+EpochHook = Callable[[int], None]
+"""Called after each epoch with its 0-based number (e.g. to keep the best weights)."""
 
 SIM_WEIGHT = 0.1
 
@@ -53,7 +56,8 @@ def _batches(examples: list[Example], size: int, rng: random.Random) -> list[lis
 
 
 def train_mle(t2p: Text2Prog, train: list[Example], config: TrainConfig,
-              progress: Progress | None = None) -> list[float]:
+              progress: Progress | None = None, after_epoch: EpochHook | None = None
+              ) -> list[float]:
     """Teacher-forced cross-entropy; returns the mean loss of each epoch."""
     usable = [e for e in train if t2p.steps.encode(e.program) is not None]
     rng = random.Random(config.seed)
@@ -77,6 +81,8 @@ def train_mle(t2p: Text2Prog, train: list[Example], config: TrainConfig,
             if progress:
                 progress(done, total, sum(losses) / len(losses))
         history.append(sum(losses) / len(losses))
+        if after_epoch:
+            after_epoch(len(history) - 1)
     return history
 
 
@@ -89,7 +95,8 @@ def reward(pred: Program, example: Example, use_sim: bool) -> float:
 
 
 def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim: bool,
-             progress: Progress | None = None) -> list[float]:
+             progress: Progress | None = None, after_epoch: EpochHook | None = None
+             ) -> list[float]:
     """Self-critical policy gradient from the current weights; returns mean sample reward
     of each epoch."""
     rng = random.Random(config.seed)
@@ -121,4 +128,35 @@ def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim:
             if progress:
                 progress(done, total, sum(rewards) / len(rewards))
         history.append(sum(rewards) / len(rewards))
+        if after_epoch:
+            after_epoch(len(history) - 1)
     return history
+
+
+class BestOnDev:
+    """An epoch hook that keeps the weights scoring best on the dev split.
+
+    The score is the mean reward of greedy programs: steps LCS, plus the simulator bonus
+    when `use_sim` (the quantity the model is trained for).
+    """
+
+    def __init__(self, t2p: Text2Prog, dev: list[Example], use_sim: bool = False):
+        self.t2p, self.dev, self.use_sim = t2p, dev, use_sim
+        self.best = float("-inf")
+        self.epoch: int | None = None
+        self.scores: list[float] = []
+        self._state: dict | None = None
+
+    def __call__(self, epoch: int) -> None:
+        preds = self.t2p.predict(self.dev)
+        value = sum(reward(p, e, self.use_sim) for p, e in zip(preds, self.dev, strict=True))
+        value /= max(1, len(self.dev))
+        self.scores.append(value)
+        if value > self.best:
+            self.best, self.epoch = value, epoch
+            self._state = copy.deepcopy(self.t2p.model.state_dict())
+
+    def restore(self) -> None:
+        """Load the best weights back into the model (if any epoch was scored)."""
+        if self._state is not None:
+            self.t2p.model.load_state_dict(self._state)
