@@ -122,8 +122,18 @@ def evaluate(
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        markdown.write_text(markdown_table(results, eval_seconds=seconds))
+        markdown.write_text(markdown_table(results, eval_seconds=seconds, machine=_machine()))
         console.print(f"[green]ok[/]: wrote {markdown}")
+
+
+def _machine() -> str:
+    import os
+    import platform
+
+    import torch
+
+    return (f"{platform.machine()} CPU, {os.cpu_count()} cores, torch {torch.__version__} "
+            f"with {torch.get_num_threads()} thread(s), no GPU")
 
 
 def _rich_table(result: dict) -> Table:
