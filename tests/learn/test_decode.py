@@ -7,7 +7,7 @@ from homesim.learn.vocab import END
 
 
 def test_greedy_sample_and_constrained(tiny_splits):
-    t2p = Text2Prog.create(tiny_splits.train, seed=0, pretrained=False)
+    t2p = Text2Prog.create(tiny_splits.train, seed=0, embeddings="none")
     t2p.model.eval()
     test = tiny_splits.test
     words, mask = t2p.batch(test)

@@ -8,7 +8,7 @@ from homesim.learn.train import TrainConfig, train_mle
 
 def test_save_load_gives_the_same_predictions(tiny_splits, tmp_path):
     t2p = Text2Prog.create(tiny_splits.train, seed=0)  # MiniLM word vectors
-    assert t2p.model.config.word_dim == 384 and t2p.meta["pretrained"]
+    assert t2p.model.config.word_dim == 384 and t2p.meta["embeddings"] == "minilm"
     train_mle(t2p, tiny_splits.train, TrainConfig(epochs=1, batch_size=8))
     path = tmp_path / "m.pt"
     t2p.save(path)
@@ -24,3 +24,12 @@ def test_bad_checkpoint_is_one_clear_error(tmp_path):
     bad.write_text("not a checkpoint")
     with pytest.raises(HomesimError, match=r"bad\.pt: not a text2prog checkpoint"):
         Text2Prog.load(bad)
+
+
+def test_word2vec_and_unknown_embeddings(tiny_splits):
+    t2p = Text2Prog.create(tiny_splits.train, seed=0, embeddings="word2vec")
+    assert t2p.model.config.word_dim == 100
+    vectors = t2p.model.words.weight
+    assert vectors[t2p.words.index["the"]].abs().sum() > 0
+    with pytest.raises(HomesimError, match="unknown embeddings 'glove'"):
+        Text2Prog.create(tiny_splits.train, seed=0, embeddings="glove")

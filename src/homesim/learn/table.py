@@ -53,6 +53,7 @@ class RunConfig:
     batch_size: int = 32
     mle_lr: float = 2e-3
     pg_lr: float = 5e-4
+    embeddings: str = "minilm"
 
     def __post_init__(self) -> None:
         mle, pg = EPOCHS.get(self.dataset, (20, 5))
@@ -80,7 +81,7 @@ def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None
 
     meta = {"task": "text2prog", "run": asdict(config)}
     start = time.perf_counter()
-    mle = Text2Prog.create(splits.train, config.seed)
+    mle = Text2Prog.create(splits.train, config.seed, embeddings=config.embeddings)
     best = BestOnDev(mle, splits.dev)
     history = train_mle(mle, splits.train, TrainConfig(config.mle_epochs, config.batch_size,
                                                        config.mle_lr, config.seed),

@@ -28,21 +28,32 @@ class Text2Prog:
 
     @classmethod
     def create(cls, train: list[Example], seed: int, config: dict | None = None,
-               pretrained: bool = True) -> Text2Prog:
-        """A fresh model whose vocabularies come from the training examples."""
+               embeddings: str = "minilm") -> Text2Prog:
+        """A fresh model whose vocabularies come from the training examples.
+
+        `embeddings` initialises the word embeddings: "minilm" (pretrained token
+        embeddings), "word2vec" (trained on the training descriptions) or "none" (random).
+        """
+        from homesim.learn import embeddings as emb
+
+        if embeddings not in emb.EMBEDDINGS:
+            raise HomesimError(f"unknown embeddings {embeddings!r}: choose from "
+                               f"{', '.join(emb.EMBEDDINGS)}")
         torch.manual_seed(seed)
         words = WordVocab.build(e.text for e in train)
         steps = StepVocab.build(e.program for e in train)
         cfg = Seq2SeqConfig(len(words), len(steps.actions), len(steps.objects),
                             **(config or {}))
         vectors = None
-        if pretrained:
-            from homesim.learn.embeddings import word_vectors
-
-            vectors = word_vectors(words.words)
+        if embeddings == "minilm":
+            vectors = emb.word_vectors(words.words)
+        elif embeddings == "word2vec":
+            vectors = emb.word2vec_vectors(words.words, [e.text for e in train], seed)
+        if vectors is not None:
             cfg.word_dim = vectors.shape[1]
+        torch.manual_seed(seed)
         model = Seq2Seq(cfg, torch.tensor(steps.table), vectors)
-        return cls(model, words, steps, {"seed": seed, "pretrained": pretrained})
+        return cls(model, words, steps, {"seed": seed, "embeddings": embeddings})
 
     def batch(self, examples: list[Example]) -> tuple[torch.Tensor, torch.Tensor]:
         """Padded word ids (batch, words) and their mask."""
