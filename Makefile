@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,learn
+EXTRAS ?= dev,stats,learn
 
 .PHONY: setup demo test lint bench clean
 

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path
 
-from homesim.learn._pending import stratified_split
+from homesim.knowledge.datasets import ActivityDataset, ActivityProgram
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
@@ -102,7 +102,12 @@ def synthetic_examples(n: int = 5000, seed: int = 0, path: Path | None = None) -
 
 
 def split(name: str, examples: list[Example], seed: int) -> Splits:
-    """70/10/20 train/dev/test, stratified by activity; the same seed gives the same split."""
-    train, dev, test = stratified_split(examples, [e.activity for e in examples], seed,
-                                        SPLIT_FRACTIONS)
+    """70/10/20 train/dev/test, stratified by activity; the same seed gives the same split.
+
+    The split is `ActivityDataset.split` (activity = normalized title).
+    """
+    by_id = {e.id: e for e in examples}
+    dataset = ActivityDataset([ActivityProgram(e.id, e.program) for e in examples], name)
+    parts = dataset.split(seed, SPLIT_FRACTIONS)
+    train, dev, test = ([by_id[item.id] for item in parts[k]] for k in ("train", "val", "test"))
     return Splits(name, train, dev, test)

@@ -17,8 +17,8 @@ import torch
 from homesim.learn import decode
 from homesim.learn.data import Example
 from homesim.learn.execution import executable
-from homesim.learn.metrics import lcs_scores
 from homesim.learn.text2prog import Text2Prog
+from homesim.program.metrics import lcs_steps
 from homesim.program.model import Program
 
 Progress = Callable[[int, int, float], None]
@@ -88,7 +88,7 @@ def train_mle(t2p: Text2Prog, train: list[Example], config: TrainConfig,
 
 def reward(pred: Program, example: Example, use_sim: bool) -> float:
     """LCS of steps with the truth, plus 0.1 when `use_sim` and the program executes."""
-    r = lcs_scores(pred, example.program)[2]
+    r = lcs_steps(pred, example.program)
     if use_sim and executable(pred, example):
         r += SIM_WEIGHT
     return r

@@ -1,0 +1,327 @@
+"""Activity data sets: programs with a title (the activity) and a description.
+
+Glossary:
+    activity: what a program is for, its title (``Watch TV``); programs are grouped by the
+        normalized title (`normalize_title`: lower case, single spaces, no end punctuation).
+    ActivityPrograms format: a text file holding a title line, a description (one or more
+        lines), a blank line, then one step per line.
+    JSONL format: one JSON object per line, ``{"id", "title", "description", "program":
+        [step lines], "graph": path or null}``.
+
+`ActivityDataset.load` reads a file or folder in either format, or the fetched eai-eval
+data set (518 programs with initial and final graphs). Every program must have a title,
+a description and at least one step; a file that breaks this, is not UTF-8, or does not
+parse gives a `DataError` (or `ProgramError`) naming the file and line.
+"""
+
+from __future__ import annotations
+
+import json
+import random
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from homesim.errors import DataError, HomesimError
+from homesim.program.model import Program
+from homesim.program.parse import parse_program, parse_steps
+from homesim.world.graph import EnvironmentGraph
+
+SPLITS = ("train", "val", "test")
+
+
+def normalize_title(title: str) -> str:
+    """The activity a title names: lower case, single spaces, no trailing punctuation.
+
+    >>> normalize_title("  Watch  TV. ")
+    'watch tv'
+    """
+    return " ".join(title.lower().split()).rstrip(".!?;:, ")
+
+
+@dataclass(frozen=True)
+class ActivityProgram:
+    """One program of a data set.
+
+    Attributes:
+        id: unique within its data set (file stem or path relative to the folder, or the
+            JSONL ``id``).
+        program: the parsed program, with its title and description.
+        source: where it was read from (``path`` or ``path:line``).
+        graph_path: JSON file with ``init_graph`` and ``final_graph``, if the data set has one.
+    """
+
+    id: str
+    program: Program
+    source: str = ""
+    graph_path: Path | None = None
+
+    @property
+    def title(self) -> str:
+        return self.program.title
+
+    @property
+    def description(self) -> str:
+        return self.program.description
+
+    @property
+    def activity(self) -> str:
+        """The normalized title, used to group programs by activity."""
+        return normalize_title(self.program.title)
+
+    def graphs(self) -> tuple[EnvironmentGraph, EnvironmentGraph]:
+        """The stored initial and final graphs; `DataError` if this program has none."""
+        if self.graph_path is None:
+            raise DataError(f"{self.source or self.id}: no stored graphs for this program")
+        from homesim.knowledge.realdata import RealProgram
+
+        return RealProgram(self.id, self.program, self.graph_path).graphs()
+
+    def to_json(self) -> dict:
+        """The JSONL record of this program."""
+        return {"id": self.id, "title": self.title, "description": self.description,
+                "program": [str(s) for s in self.program.steps],
+                "graph": str(self.graph_path) if self.graph_path else None}
+
+
+def _check(program: Program, where: str) -> Program:
+    if not program.title:
+        raise DataError(f"{where}: no title (expected a title line, a description, a blank "
+                        "line, then the steps)")
+    if not program.description:
+        raise DataError(f"{where}: no description (expected it on the line after the title)")
+    if not program.steps:
+        raise DataError(f"{where}: empty program (no steps after the description)")
+    return program
+
+
+def read_program_file(path: Path) -> Program:
+    """Read one ActivityPrograms file; `DataError` naming the file if it is bad."""
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise DataError(f"{path}: not UTF-8 text (byte {e.start})") from None
+    except OSError as e:
+        raise DataError(f"{path}: cannot read ({e.strerror or e})") from None
+    return _check(parse_program(text, source=str(path)), str(path))
+
+
+class ActivityDataset(Sequence[ActivityProgram]):
+    """An ordered, read-only collection of `ActivityProgram` values.
+
+    >>> ds = ActivityDataset.from_texts({"a": "Watch TV\\nI watch.\\n\\n[Walk] <tv> (1)"})
+    >>> len(ds), ds[0].activity
+    (1, 'watch tv')
+    """
+
+    def __init__(self, items: Sequence[ActivityProgram], name: str = "",
+                 skipped: Sequence[str] = ()):
+        ids = [item.id for item in items]
+        if len(set(ids)) != len(ids):
+            dup = next(i for i in ids if ids.count(i) > 1)
+            raise DataError(f"{name or 'data set'}: duplicate program id {dup!r}")
+        self._items = tuple(items)
+        self.name = name
+        self.skipped: tuple[str, ...] = tuple(skipped)
+        """One error line per file that was skipped (``skip_bad=True``)."""
+
+    # -- Sequence --------------------------------------------------------------------
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __getitem__(self, index):  # type: ignore[override]
+        if isinstance(index, slice):
+            return ActivityDataset(self._items[index], self.name)
+        return self._items[index]
+
+    def __iter__(self) -> Iterator[ActivityProgram]:
+        return iter(self._items)
+
+    def __repr__(self) -> str:
+        return f"ActivityDataset({self.name!r}, {len(self)} programs)"
+
+    @property
+    def programs(self) -> list[Program]:
+        return [item.program for item in self._items]
+
+    def by_activity(self) -> dict[str, list[ActivityProgram]]:
+        """Programs grouped by normalized title, activities in order of first appearance."""
+        groups: dict[str, list[ActivityProgram]] = {}
+        for item in self._items:
+            groups.setdefault(item.activity, []).append(item)
+        return groups
+
+    # -- loading -------------------------------------------------------------------------
+
+    @classmethod
+    def from_texts(cls, texts: dict[str, str], name: str = "") -> ActivityDataset:
+        """Build from ``{id: ActivityPrograms text}`` (handy in tests and notebooks)."""
+        items = [ActivityProgram(i, _check(parse_program(t, source=i), i), i)
+                 for i, t in texts.items()]
+        return cls(items, name)
+
+    @classmethod
+    def from_file(cls, path: str | Path) -> ActivityDataset:
+        """One ActivityPrograms file as a one-program data set."""
+        path = Path(path)
+        return cls([ActivityProgram(path.stem, read_program_file(path), str(path))], str(path))
+
+    @classmethod
+    def from_folder(cls, path: str | Path, skip_bad: bool = False) -> ActivityDataset:
+        """Every ``*.txt`` under a folder (recursively, sorted); ids are relative paths.
+
+        With `skip_bad`, bad files are left out and their error lines kept in `skipped`.
+        """
+        root = Path(path)
+        if not root.is_dir():
+            raise DataError(f"{root}: not a folder")
+        items, skipped = [], []
+        for file in sorted(root.rglob("*.txt")):
+            try:
+                program = read_program_file(file)
+            except HomesimError as e:
+                if not skip_bad:
+                    raise
+                skipped.append(str(e))
+                continue
+            rel = file.relative_to(root).with_suffix("").as_posix()
+            items.append(ActivityProgram(rel, program, str(file)))
+        if not items and not skipped:
+            raise DataError(f"{root}: no program files (*.txt) here")
+        return cls(items, str(root), skipped)
+
+    @classmethod
+    def from_jsonl(cls, path: str | Path, skip_bad: bool = False) -> ActivityDataset:
+        """A JSONL file (see the module docstring); errors name the file and line."""
+        path = Path(path)
+        try:
+            text = path.read_bytes().decode("utf-8-sig")
+        except UnicodeDecodeError as e:
+            raise DataError(f"{path}: not UTF-8 text (byte {e.start})") from None
+        except OSError as e:
+            raise DataError(f"{path}: cannot read ({e.strerror or e})") from None
+        items, skipped = [], []
+        for lineno, line in enumerate(text.splitlines(), 1):
+            if not line.strip():
+                continue
+            where = f"{path}:{lineno}"
+            try:
+                items.append(_from_record(line, where, path.parent))
+            except HomesimError as e:
+                if not skip_bad:
+                    raise
+                skipped.append(str(e))
+        if not items and not skipped:
+            raise DataError(f"{path}: no programs in this file")
+        return cls(items, str(path), skipped)
+
+    @classmethod
+    def real(cls, directory: Path | None = None) -> ActivityDataset:
+        """The fetched eai-eval data set: 518 programs, each with its stored graphs."""
+        from homesim.knowledge.realdata import real_programs
+
+        items = []
+        for r in real_programs(directory):
+            source = str(r.graph_path.parents[1] / "programs" / f"{r.id}.txt")
+            items.append(ActivityProgram(r.id, _check(r.program, source), source, r.graph_path))
+        return cls(items, "eai-eval-1.0.5")
+
+    @classmethod
+    def load(cls, path: str | Path | None = None, skip_bad: bool = False) -> ActivityDataset:
+        """Load whatever `path` is: None or an eai-eval folder (``programs/`` and
+        ``graphs/``) -> `real`; another folder -> `from_folder`; ``*.jsonl`` ->
+        `from_jsonl`; another file -> `from_file`."""
+        if path is None:
+            return cls.real()
+        path = Path(path)
+        if not path.exists():
+            raise DataError(f"{path}: no such file or folder")
+        if path.is_dir():
+            if (path / "programs").is_dir() and (path / "graphs").is_dir():
+                return cls.real(path)
+            return cls.from_folder(path, skip_bad)
+        if path.suffix == ".jsonl":
+            return cls.from_jsonl(path, skip_bad)
+        return cls.from_file(path)
+
+    # -- saving and splitting ------------------------------------------------------------
+
+    def to_jsonl(self, path: str | Path, overwrite: bool = False) -> Path:
+        """Write the data set as JSONL; refuses to replace a file unless `overwrite`."""
+        path = Path(path)
+        if path.exists() and not overwrite:
+            raise DataError(f"{path}: already exists (pass overwrite=True to replace it)")
+        lines = [json.dumps(item.to_json(), ensure_ascii=False) for item in self._items]
+        path.write_text("".join(line + "\n" for line in lines), encoding="utf-8")
+        return path
+
+    def split(self, seed: int = 0, fractions: tuple[float, float, float] = (0.8, 0.1, 0.1)
+              ) -> dict[str, ActivityDataset]:
+        """Deterministic train/val/test splits, stratified by activity.
+
+        Activities and the programs within each are shuffled with `seed`; then each
+        program goes to the split furthest below its share of the programs dealt so far.
+        So every split gets its fraction of the whole (to within one program), each
+        activity is spread over the splits in proportion, and activities with a single
+        program are spread over the splits too rather than all landing in train.
+        """
+        if len(fractions) != 3 or any(f < 0 for f in fractions) or sum(fractions) <= 0:
+            raise ValueError(f"fractions must be three non-negative numbers, got {fractions}")
+        total = sum(fractions)
+        shares = [f / total for f in fractions]
+        rng = random.Random(seed)
+        groups = [sorted(g, key=lambda item: item.id) for _, g in
+                  sorted(self.by_activity().items())]
+        rng.shuffle(groups)
+        chosen: list[list[ActivityProgram]] = [[], [], []]
+        dealt = 0
+        for group in groups:
+            rng.shuffle(group)
+            for item in group:
+                dealt += 1
+                deficits = [share * dealt - len(c) for share, c in zip(shares, chosen,
+                                                                       strict=True)]
+                chosen[max(range(3), key=lambda k: (deficits[k], -k))].append(item)
+        order = {item.id: i for i, item in enumerate(self._items)}
+        return {name: ActivityDataset(sorted(c, key=lambda item: order[item.id]),
+                                      f"{self.name}[{name}]")
+                for name, c in zip(SPLITS, chosen, strict=True)}
+
+
+_REQUIRED = ("title", "description", "program")
+
+
+def _one_line(text: str) -> str:
+    """Join wrapped lines as the ActivityPrograms parser does; keep spacing within a line."""
+    return " ".join(line.strip() for line in text.splitlines() if line.strip())
+
+
+def _from_record(line: str, where: str, base: Path) -> ActivityProgram:
+    try:
+        record = json.loads(line)
+    except ValueError as e:
+        raise DataError(f"{where}: not valid JSON ({e})") from None
+    if not isinstance(record, dict):
+        raise DataError(f"{where}: expected a JSON object, got {type(record).__name__}")
+    missing = [k for k in _REQUIRED if k not in record]
+    if missing:
+        raise DataError(f"{where}: missing {', '.join(missing)}")
+    steps = record["program"]
+    if isinstance(steps, str):
+        steps = steps.splitlines()
+    if not isinstance(steps, list) or not all(isinstance(s, str) for s in steps):
+        raise DataError(f"{where}: 'program' must be a list of step lines")
+    title, description = record["title"], record["description"]
+    if not isinstance(title, str) or not isinstance(description, str):
+        raise DataError(f"{where}: 'title' and 'description' must be strings")
+    title, description = _one_line(title), _one_line(description)
+    if not title:
+        raise DataError(f"{where}: no title")
+    parsed = parse_steps(steps, source=where)
+    program = _check(Program(parsed.steps, title, description), where)
+    graph = record.get("graph")
+    graph_path = (base / graph) if isinstance(graph, str) and graph else None
+    return ActivityProgram(str(record.get("id") or where.rsplit(":", 1)[-1]), program, where,
+                           graph_path)
+
