@@ -11,12 +11,13 @@ from homesim.errors import (
     DataError,
     ExecutionError,
     GraphError,
+    GroundingError,
     HomesimError,
     ProgramError,
     UnknownActionError,
 )
 from homesim.program import ObjectRef, Program, Step, parse_program
-from homesim.sim import ExecutionResult, execute
+from homesim.sim import ExecutionResult, execute, ground, prepare, prepare_and_ground, unground
 from homesim.world import EnvironmentGraph, load_home
 
 __version__ = "0.1.0"
@@ -28,6 +29,7 @@ __all__ = [
     "ExecutionError",
     "ExecutionResult",
     "GraphError",
+    "GroundingError",
     "HomesimError",
     "ObjectRef",
     "Program",
@@ -35,6 +37,10 @@ __all__ = [
     "Step",
     "UnknownActionError",
     "execute",
+    "ground",
     "load_home",
     "parse_program",
+    "prepare",
+    "prepare_and_ground",
+    "unground",
 ]

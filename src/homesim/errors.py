@@ -49,3 +49,19 @@ class ExecutionError(HomesimError):
 
 class DataError(HomesimError):
     """A data set or resource that is missing, corrupt or of the wrong shape."""
+
+
+class GroundingError(HomesimError):
+    """A program that cannot be prepared or grounded in a home.
+
+    Attributes:
+        step: 1-based number of the step where the search failed (0 when no step applies).
+        obj: the program object (``<cup> (1)``) that could not be placed or bound, if any.
+        tried: what was tried, in words (classes, instances, destinations).
+    """
+
+    def __init__(self, message: str, step: int = 0, obj: str | None = None, tried: str = ""):
+        self.step = step
+        self.obj = obj
+        self.tried = tried
+        super().__init__(message)

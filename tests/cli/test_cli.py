@@ -65,3 +65,47 @@ def test_missing_program_file(capsys):
 def test_homes_lists_built_ins(capsys):
     assert main(["homes"]) == 0
     assert "scene1_trimmed" in capsys.readouterr().out
+
+
+DRINK = ("Have a drink\nFind a glass and drink.\n\n[Walk] <dining_room> (1)\n"
+         "[Find] <wine_glass> (1)\n[Grab] <wine_glass> (1)\n[Drink] <wine_glass> (1)\n"
+         "[Walk] <television> (1)\n[SwitchOn] <television> (1)\n")
+
+
+def test_ungrounded_program_is_prepared_grounded_and_run(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text(DRINK)
+    assert main(["run", str(p), "--home", "scene3"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "added wine_glass 1000 ON" in out
+    assert "<television> (1) → tv 216 in livingroom 161" in out
+    assert "agent stands at" in out
+    assert "[SwitchOn] <television> (1.216)" in out and "executable" in out
+
+
+def test_ungrounded_program_json_has_the_grounding(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text(DRINK)
+    assert main(["run", str(p), "--home", "scene3_trimmed", "--json", "--seed", "2"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    grounding = data["grounding"]
+    assert [a["class_name"] for a in grounding["added"]] == ["wine_glass"]
+    assert {"object": "<television> (1)", "node_id": 216} in grounding["bindings"]
+    assert grounding["standing"] is None and data["executable"] is True
+
+
+def test_program_that_cannot_be_grounded_exits_1_with_reason(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Walk] <television> (1)\n[SwitchOn] <television> (1)\n"
+                 "[SwitchOn] <television> (1)\n")
+    assert main(["run", str(p), "--home", "scene1_trimmed"]) == 1
+    out = " ".join(capsys.readouterr().out.split())
+    assert "cannot ground in scene1_trimmed: step 3 [SwitchOn] <television> (1)" in out
+    assert "is not off" in out
+
+
+def test_no_ground_reads_ids_as_nodes(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Walk] <tv> (410)\n[SwitchOn] <tv> (410)\n")
+    assert main(["run", str(p), "--home", "scene1", "--no-ground"]) == 0
+    assert "tv 410: OFF → ON" in capsys.readouterr().out

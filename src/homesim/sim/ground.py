@@ -1,0 +1,386 @@
+"""Grounding: bind a program's objects to instances of a home by backtracking search.
+
+A program names objects by class and per-program instance (``<cup> (1)``, ``<cup> (2)``).
+Grounding finds node ids for them under which every step executes:
+
+- one node per program object, different nodes for different objects (all-different);
+- candidates are the home's nodes of the object's class or of an equivalent class name
+  (``television`` -> ``tv``), see `homesim.sim.kbtypes.class_names_for`;
+- the search walks the program step by step on one `SimState`; a step's unbound objects
+  are bound when it is reached, trying candidates in order of preference, and the step
+  is run by the simulator (its preconditions prune); on failure the state is rolled back
+  with `SimState.undo` (no graph is copied);
+- preference keeps interactions together: first candidates related to objects already
+  bound (close to them, on or in them, on the same surface: the keyboard of the chosen
+  computer), then candidates in the character's room, then in rooms the program already
+  uses, then (with geometry) the nearest, then a seeded random order;
+- backjumping: a failed step blames the objects of the step and those the character is
+  close to, faces, sits on or holds; choices of other objects are skipped over;
+- with geometry, each interaction also needs free floor next to its object for the agent
+  to stand on (`homesim.sim.standing`); the chosen spots come with the result.
+
+>>> from homesim.program import parse_program
+>>> from homesim.world import load_home
+>>> p = parse_program("[Walk] <television> (1)\\n[SwitchOn] <television> (1)")
+>>> g = ground(p, load_home("scene1_trimmed"))
+>>> str(g.program.steps[1])
+'[SwitchOn] <television> (1.247)'
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+
+from homesim.errors import GroundingError
+from homesim.program.model import ObjectRef, Program, Step
+from homesim.sim.execute import run_step
+from homesim.sim.kbtypes import ObjectKnowledge, class_names_for, default_kb
+from homesim.sim.prepare import NEEDS, Prepared, first_use, instances_of, prepare
+from homesim.sim.standing import FloorPlan, Spot, has_geometry
+from homesim.sim.state import SimState
+from homesim.world.graph import EnvironmentGraph
+from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
+
+Key = tuple[str, int]
+
+DEFAULT_BUDGET = 5000
+"""Step runs the search may spend before it gives up (real programs need ~1.1 per step)."""
+
+
+@dataclass(frozen=True)
+class Grounding:
+    """The result of `ground`.
+
+    Attributes:
+        program: the program with every object ref bound to a node (``<cup> (1.417)``).
+        bindings: (class name, instance) -> node id, for `homesim.sim.execute`.
+        standing: step index (0-based) -> (x, z) where the agent stands for that step,
+            when the home has geometry; else None. Steps that act on what the agent holds
+            keep the previous spot.
+        step_runs: how many steps the search ran (its effort).
+    """
+
+    program: Program
+    bindings: dict[Key, int]
+    standing: dict[int, Spot] | None
+    step_runs: int
+
+
+class _OutOfBudget(Exception):
+    pass
+
+
+
+
+class _Search:
+    """One backtracking search; see the module docstring."""
+
+    def __init__(self, program: Program, graph: EnvironmentGraph, seed: int,
+                 kb: ObjectKnowledge, budget: int, geometry: bool):
+        self.program = program
+        self.steps = program.steps
+        self.st = SimState(graph)
+        self.graph = graph
+        self.budget = budget
+        self.runs = 0
+        self.rng = random.Random(seed)
+        self.tie: dict[int, float] = {}
+        self.assign: dict[Key, int] = {}
+        self.owner: dict[int, Key] = {}
+        self.domains: dict[Key, list[int]] = {}
+        self.tried: dict[Key, list[int]] = {}
+        self.deepest: tuple[int, str] = (-1, "")
+        self.plan = FloorPlan(graph, rotation=seed) if geometry else None
+        self.needs: dict[Key, list[frozenset[str]]] = {}
+        for step in program.steps:
+            for pos, ref in enumerate(step.args):
+                need = NEEDS.get((step.action.key, pos))
+                if need is not None:
+                    self.needs.setdefault(ref.key, []).append(need)
+        self.spots: list[Spot | None] = [None] * len(self.steps)
+        for ref in program.object_refs():
+            classes = class_names_for(ref.name, kb)
+            ids = instances_of(graph, classes)
+            if not ids:
+                n, text = first_use(program, ref.key)
+                raise GroundingError(
+                    f"step {n} {text}: the home has no {' or '.join(classes)} for "
+                    f"<{ref.name}> ({ref.instance}); prepare() adds missing objects",
+                    n, str(ref), ", ".join(classes))
+            self.domains[ref.key] = ids
+
+    # ------------------------------------------------------------------ search
+    def solve(self, i: int) -> set[Key] | None:
+        """Bind and run steps i.. ; None on success, else the objects to blame."""
+        if i == len(self.steps):
+            return None
+        step = self.steps[i]
+        for ref in step.args:
+            if ref.key not in self.assign:
+                return self.choose(i, ref)
+        ids = tuple([self.assign[ref.key] for ref in step.args])
+        self.runs += 1
+        if self.runs > self.budget:
+            raise _OutOfBudget
+        st = self.st
+        mark = st.mark()
+        holding_before = set(st.targets(st.char, HOLDS_RH)) | set(st.targets(st.char, HOLDS_LH))
+        reason = run_step(st, step, ids)
+        if reason is None and self.plan is not None:
+            reason = self.stand(i, step, ids, holding_before)
+        if reason is not None:
+            if i > self.deepest[0]:
+                self.deepest = (i, reason)
+            st.undo(mark)
+            return self.blame(step)
+        blame = self.solve(i + 1)
+        if blame is not None:
+            st.undo(mark)
+        return blame
+
+    def choose(self, i: int, ref: ObjectRef) -> set[Key] | None:
+        key = ref.key
+        blame: set[Key] = set()
+        tried = self.tried.setdefault(key, [])
+        for node in self.order(key):
+            other = self.owner.get(node)
+            if other is not None:
+                blame.add(other)
+                continue
+            if node not in tried:
+                tried.append(node)
+            self.assign[key] = node
+            self.owner[node] = key
+            result = self.solve(i)
+            if result is None:
+                return None
+            del self.assign[key]
+            del self.owner[node]
+            if key not in result:
+                return result  # backjump: this object's choice is not to blame
+            blame |= result
+        if self.owner.keys() >= set(self.domains[key]) and i >= self.deepest[0]:
+            taken = len(self.domains[key])
+            self.deepest = (i, f"all {taken} instances of <{ref.name}> in the home are "
+                               "bound to other objects of the program")
+        blame.discard(key)
+        return blame
+
+    def blame(self, step: Step) -> set[Key]:
+        """The objects a failed step may depend on: its own and those the character is
+        close to, faces, sits on or holds (where it went and what it did last)."""
+        st, owner = self.st, self.owner
+        keys = {ref.key for ref in step.args}
+        c = st.char
+        for rel in (CLOSE, FACING, ON, HOLDS_RH, HOLDS_LH):
+            for x in st.targets(c, rel):
+                k = owner.get(x)
+                if k is not None:
+                    keys.add(k)
+        return keys
+
+    # ------------------------------------------------------------------ preference
+    def order(self, key: Key) -> list[int]:
+        """Candidates for `key`, best first (see the module docstring); those lacking a
+        property the program's steps need come last."""
+        st = self.st
+        char_room = st.room_of(st.char)
+        bound = [n for n in self.assign.values() if n not in st.rooms]
+        used_rooms = {st.room_of(n) for n in self.assign.values()}
+        boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
+                             if n in self.graph.nodes) if b is not None]
+        scored = []
+        needs = self.needs.get(key, ())
+        for node in self.domains[key]:
+            props = st.properties(node)
+            lacking = sum(1 for need in needs if props.isdisjoint(need))
+            related = 0
+            if bound:
+                near = st.targets(node, CLOSE)
+                under = st.targets(node, ON) | st.targets(node, INSIDE)
+                for b in bound:
+                    if b in near or b in under or not under.isdisjoint(st.targets(b, ON)):
+                        related += 1
+            room = st.room_of(node)
+            room_rank = 0 if room == char_room else (1 if room in used_rooms else 2)
+            dist = 0.0
+            box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
+            if boxes and box is not None:
+                dist = min((box.center[0] - b.center[0]) ** 2 + (box.center[2] - b.center[2]) ** 2
+                           for b in boxes)
+            tie = self.tie.get(node)
+            if tie is None:
+                tie = self.tie[node] = self.rng.random()
+            scored.append((lacking, -related, room_rank, dist, tie, node))
+        scored.sort()
+        return [s[-1] for s in scored]
+
+    # ------------------------------------------------------------------ standing
+    def stand(self, i: int, step: Step, ids: tuple[int, ...],
+              holding_before: set[int]) -> str | None:
+        """Choose where the agent stands for step i; a reason if there is no free floor."""
+        previous = self.spots[i - 1] if i > 0 else None
+        if not ids:
+            self.spots[i] = previous
+            return None
+        target = ids[-1]
+        st = self.st
+        if target in holding_before or target == st.char or target in st.body_parts:
+            self.spots[i] = previous
+            return None
+        plan = self.plan
+        assert plan is not None
+        spot = self._spot(target)
+        if spot is None:
+            return f"no free floor next to {st.label(target)} for the agent to stand on"
+        self.spots[i] = spot
+        return None
+
+    def _spot(self, node: int) -> Spot | None:
+        """Free floor next to `node`, else next to what it is on or in (a cup in a
+        cupboard: stand at the cupboard)."""
+        plan = self.plan
+        assert plan is not None
+        g = self.graph
+        seen = set()
+        while node not in seen:
+            seen.add(node)
+            if node not in g.nodes or g.nodes[node].bounding_box is None:
+                return None
+            spot = plan.spot_near(node)
+            if spot is not None:
+                return spot
+            holders = sorted((g.targets(node, ON) | g.targets(node, INSIDE)) - g.room_ids)
+            if not holders:
+                return None
+            node = holders[0]
+        return None
+
+
+def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
+           kb: ObjectKnowledge | None = None, budget: int = DEFAULT_BUDGET) -> Grounding:
+    """Bind every object of `program` to a node of `graph` so that the program executes.
+
+    Args:
+        program: the program; node ids it may carry are ignored (use `unground` to see
+            it as the search does).
+        graph: the home, with every object the program needs (see `prepare`).
+        seed: breaks ties between equally preferred candidates and picks standing spots.
+        kb: the object knowledge base, for name equivalences (default: `load_kb()`).
+        budget: how many step runs the search may spend.
+
+    Returns:
+        A `Grounding` (grounded program, bindings, standing spots with geometry).
+
+    Raises:
+        GroundingError: no assignment works (or the budget ran out); the message names
+            the deepest step the search could not pass, why, and the instances it tried.
+    """
+    kb = kb or default_kb()
+    if not program.steps:
+        return Grounding(program, {}, None, 0)
+    geometry = has_geometry(graph)
+    search = _Search(program, graph, seed, kb, budget, geometry)
+    stopped = False
+    try:
+        result = search.solve(0)
+    except _OutOfBudget:
+        result, stopped = set(), True
+    if result is not None:
+        raise _failure(search, stopped)
+    bindings = dict(search.assign)
+    grounded = program.with_steps([
+        Step(step.action, tuple(ref.ground(bindings[ref.key]) for ref in step.args))
+        for step in program.steps])
+    standing = None
+    if geometry:
+        standing = {i: s for i, s in enumerate(search.spots) if s is not None}
+    return Grounding(grounded, bindings, standing, search.runs)
+
+
+def _failure(search: _Search, stopped: bool) -> GroundingError:
+    index, reason = search.deepest
+    if index < 0:
+        return GroundingError("no assignment of objects to instances was tried")
+    step = search.steps[index]
+    tried = []
+    for ref in step.args:
+        ids = search.tried.get(ref.key, [])
+        label = search.graph.nodes[ids[0]].class_name if ids else ref.name
+        shown = ", ".join(map(str, ids[:8])) + (", ..." if len(ids) > 8 else "")
+        tried.append(f"<{ref.name}> ({ref.instance}) as {label} {shown}")
+    tail = f" (search stopped after {search.runs} step runs)" if stopped else ""
+    what = "; ".join(tried) or "no objects"
+    obj = str(step.args[0]) if step.args else None
+    return GroundingError(f"step {index + 1} {step}: cannot be grounded: {reason}; "
+                          f"tried {what}{tail}", index + 1, obj, what)
+
+
+def unground(program: Program) -> Program:
+    """The program with node ids replaced by per-class counters, as a person writes it.
+
+    Refs that named the same node get the same instance; instances count from 1 per
+    class in order of first use.
+
+    >>> from homesim.program import parse_program
+    >>> p = parse_program("[Walk] <cup> (1.40)\\n[Walk] <cup> (1.12)\\n[Grab] <cup> (1.40)")
+    >>> print(unground(p))
+    [Walk] <cup> (1)
+    [Walk] <cup> (2)
+    [Grab] <cup> (1)
+    """
+    numbers: dict[tuple[str, int | tuple[int]], int] = {}
+    counts: dict[str, int] = {}
+
+    def renumber(ref: ObjectRef) -> ObjectRef:
+        ident = (ref.name, ref.node_id if ref.node_id is not None else (ref.instance,))
+        n = numbers.get(ident)
+        if n is None:
+            n = numbers[ident] = counts[ref.name] = counts.get(ref.name, 0) + 1
+        return ObjectRef(ref.name, n)
+
+    return program.with_steps([Step(s.action, tuple(renumber(r) for r in s.args))
+                               for s in program.steps])
+
+
+def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
+                       kb: ObjectKnowledge | None = None, repairs: int = 4,
+                       budget: int = DEFAULT_BUDGET) -> tuple[Prepared, Grounding]:
+    """Prepare the home for `program`, then ground it; add instances when that fails.
+
+    When grounding fails at a step because no instance of one of its objects can be used
+    there (every phone of the home is far from the table the program grabs it at), a
+    fresh instance of that object is added where the program needs it and the search
+    runs again, at most `repairs` times.
+
+    Returns:
+        (the preparation, the grounding in the prepared home).
+
+    Raises:
+        GroundingError: the last failure, when preparing or every attempt fails.
+    """
+    kb = kb or default_kb()
+    extra: list[Key] = []
+    rooms = {n.class_name for n in graph.rooms()}
+    failure: GroundingError | None = None
+    while True:
+        try:
+            prepared = prepare(program, graph, seed=seed, kb=kb, extra=extra)
+        except GroundingError:
+            if failure is None:
+                raise
+            raise failure from None  # the extra instance did not fit: report the search
+        try:
+            return prepared, ground(program, prepared.graph, seed=seed, kb=kb, budget=budget)
+        except GroundingError as e:
+            failure = failure or e
+            if repairs <= 0 or not e.step:
+                raise failure from None
+            step = program.steps[e.step - 1]
+            new = [ref.key for ref in step.args if ref.key not in extra
+                   and not rooms.intersection(class_names_for(ref.name, kb))]
+            if not new:
+                raise failure from None
+            extra += new
+            repairs -= 1

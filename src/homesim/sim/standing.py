@@ -1,0 +1,178 @@
+"""Where the agent stands to interact with an object: free floor next to it.
+
+The floor of a room is the union of the footprints of its floor tiles (or the room's box
+when it has none). Obstacles are the boxes that reach into the agent's body height
+(furniture, appliances, things on the floor); walls are left out because their boxes
+(corner pieces are 2.5 m cubes) cover floor that is free, and the floor tiles already
+end where the walls stand. The agent is a square of side `AGENT_SIZE` on the floor.
+
+A standing spot for an object is the first spot, on rings of growing distance around
+the object's footprint, where the agent's square lies on the floor of the object's room
+and overlaps no obstacle. Spots are (x, z) in metres (Unity frame, y up).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from collections.abc import Iterator
+
+from homesim.world.graph import BoundingBox, EnvironmentGraph
+from homesim.world.vocab import CHARACTER_CLASS, INSIDE
+
+Spot = tuple[float, float]
+
+AGENT_SIZE = 0.4
+"""Side (m) of the agent's square footprint."""
+_RINGS = (0.25, 0.45, 0.7, 1.0)
+"""Distances (m) from the object's footprint edge to the agent's centre, tried in turn."""
+_FLOOR_RINGS = (0.05, 0.2, 0.4, 0.6, 0.8, 1.0)
+"""Distances (m) from an anchor's footprint at which a new object may stand on the floor."""
+_DIRECTIONS = 16
+_COMPOSITE = 2.5
+"""A box wider than this (m) is taken for a composite piece (L-shaped counter or sofa)."""
+_BODY_LOW, _BODY_HIGH = 0.1, 1.5
+"""Boxes lower than this (rugs) or starting above that (shelves on walls) do not block."""
+_NOT_OBSTACLES = frozenset({"Rooms", "Floor", "Floors", "Ceiling", "Walls", "Doors",
+                            "Characters", "Windows"})
+
+
+def has_geometry(graph: EnvironmentGraph) -> bool:
+    """Whether the home has boxes to stand and place on (its rooms have boxes)."""
+    rooms = graph.rooms()
+    return bool(rooms) and all(r.bounding_box is not None for r in rooms)
+
+
+class FloorPlan:
+    """Free floor per room of a home, built lazily, for choosing standing spots."""
+
+    def __init__(self, graph: EnvironmentGraph, rotation: int = 0):
+        """`rotation` (from the seed) picks which direction around an object is tried first."""
+        self.graph = graph
+        self.rotation = rotation % _DIRECTIONS
+        self._floors: dict[int, list[BoundingBox]] = {}
+        self._obstacles: dict[int, list[BoundingBox]] = {}
+        self._spots: dict[int, Spot | None] = {}
+
+    def _room_parts(self, room: int) -> tuple[list[BoundingBox], list[BoundingBox]]:
+        floors = self._floors.get(room)
+        if floors is None:
+            g = self.graph
+            floors, obstacles = [], []
+            for nid in _contents(g, room):
+                node = g.nodes[nid]
+                box = node.bounding_box
+                if box is None:
+                    continue
+                if node.class_name == "floor":
+                    floors.append(box)
+                elif (node.category not in _NOT_OBSTACLES and node.class_name != CHARACTER_CLASS
+                      and box.center[1] + box.size[1] / 2 > _BODY_LOW
+                      and box.center[1] - box.size[1] / 2 < _BODY_HIGH):
+                    obstacles.append(box)
+            room_box = g.nodes[room].bounding_box
+            if not floors and room_box is not None:
+                floors = [room_box]
+            self._floors[room], self._obstacles[room] = floors, obstacles
+        return floors, self._obstacles[room]
+
+    def is_free(self, room: int, x: float, z: float, size_x: float = AGENT_SIZE,
+                size_z: float = AGENT_SIZE, ignore: list[BoundingBox] | None = None) -> bool:
+        """Whether a footprint (default: the agent's) centred at (x, z) lies on the room's
+        free floor."""
+        floors, obstacles = self._room_parts(room)
+        hx, hz = size_x / 2, size_z / 2
+        for cx, cz in ((x - hx, z - hz), (x - hx, z + hz), (x + hx, z - hz), (x + hx, z + hz)):
+            if not any(abs(cx - f.center[0]) <= f.size[0] / 2 and abs(cz - f.center[2])
+                       <= f.size[2] / 2 for f in floors):
+                return False
+        for o in obstacles:
+            if ignore and any(o is i for i in ignore):
+                continue
+            if (abs(x - o.center[0]) * 2 < o.size[0] + size_x
+                    and abs(z - o.center[2]) * 2 < o.size[2] + size_z):
+                return False
+        return True
+
+    def free_floor(self, room: int, size_x: float, size_z: float,
+                   rng: random.Random, tries: int = 64) -> Spot | None:
+        """A random spot of the room where a footprint of this size fits, or None."""
+        floors, _ = self._room_parts(room)
+        if not floors:
+            return None
+        for _ in range(tries):
+            f = floors[rng.randrange(len(floors))]
+            x = f.center[0] + rng.uniform(-0.5, 0.5) * f.size[0]
+            z = f.center[2] + rng.uniform(-0.5, 0.5) * f.size[2]
+            if self.is_free(room, x, z, size_x, size_z):
+                return (x, z)
+        return None
+
+    def free_floor_near(self, room: int, box: BoundingBox, size_x: float,
+                        size_z: float) -> Spot | None:
+        """The nearest spot around `box` where a footprint of this size fits, or None."""
+        for x, z in self._ring_spots(box, max(size_x, size_z), _FLOOR_RINGS):
+            if self.is_free(room, x, z, size_x, size_z):
+                return (x, z)
+        return None
+
+    def add_obstacle(self, room: int, box: BoundingBox) -> None:
+        """Count a new object's box as an obstacle (scene preparation adds objects)."""
+        self._room_parts(room)[1].append(box)
+        self._spots.clear()
+
+    def spot_near(self, node_id: int) -> Spot | None:
+        """Free floor next to the object (cached), or None if there is none in its room."""
+        if node_id in self._spots:
+            return self._spots[node_id]
+        spot = None
+        g = self.graph
+        node = g.nodes[node_id]
+        room = g.room_of(node_id)
+        box = node.bounding_box
+        if room is not None and box is not None:
+            if node_id == room:
+                spot = self._room_spot(room, box)
+            else:
+                # A composite piece (an L-shaped counter) has a box far larger than itself
+                # that covers the floor in front of what is built into it (a dishwasher):
+                # near such a piece, its box does not block.
+                skip = [o for o in self._room_parts(room)[1]
+                        if max(o.size[0], o.size[2]) > _COMPOSITE
+                        and abs(box.center[0] - o.center[0]) * 2 < o.size[0]
+                        and abs(box.center[2] - o.center[2]) * 2 < o.size[2]]
+                spot = next((s for s in self._ring_spots(box)
+                             if self.is_free(room, *s, ignore=skip)), None)
+        self._spots[node_id] = spot
+        return spot
+
+    def _ring_spots(self, box: BoundingBox, width: float = AGENT_SIZE,
+                    rings: tuple[float, ...] = _RINGS) -> Iterator[Spot]:
+        hx, hz = box.size[0] / 2, box.size[2] / 2
+        for ring in rings:
+            for k in range(_DIRECTIONS):
+                a = 2 * math.pi * ((k + self.rotation) % _DIRECTIONS) / _DIRECTIONS
+                dx, dz = math.cos(a), math.sin(a)
+                # Distance from the centre to the footprint's edge along (dx, dz).
+                edge = min(hx / abs(dx) if abs(dx) > 1e-9 else math.inf,
+                           hz / abs(dz) if abs(dz) > 1e-9 else math.inf)
+                r = edge + width / 2 + ring
+                yield (box.center[0] + r * dx, box.center[2] + r * dz)
+
+    def _room_spot(self, room: int, box: BoundingBox) -> Spot | None:
+        """For walking into a room: the free spot nearest the room's centre."""
+        floors, _ = self._room_parts(room)
+        cx, cz = box.center[0], box.center[2]
+        candidates = []
+        for f in floors:
+            for fx in (-0.25, 0.0, 0.25):
+                for fz in (-0.25, 0.0, 0.25):
+                    candidates.append((f.center[0] + fx * f.size[0],
+                                       f.center[2] + fz * f.size[2]))
+        candidates.sort(key=lambda s: ((s[0] - cx) ** 2 + (s[1] - cz) ** 2, s))
+        return next((s for s in candidates if self.is_free(room, *s)), None)
+
+
+def _contents(graph: EnvironmentGraph, room: int) -> Iterator[int]:
+    """Ids of the nodes directly INSIDE a room."""
+    return iter(graph.sources(room, INSIDE))

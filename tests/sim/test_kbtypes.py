@@ -1,0 +1,15 @@
+from homesim.knowledge import load_kb
+from homesim.sim.kbtypes import class_names_for
+
+
+def test_script_names_reach_scene_classes_and_back():
+    kb = load_kb()
+    assert class_names_for("television", kb)[0] == "television"
+    assert "tv" in class_names_for("television", kb)
+    assert "television" in class_names_for("tv", kb)
+    assert "livingroom" in class_names_for("home_office", kb)
+    assert "kitchen" in class_names_for("dining_room", kb)
+
+
+def test_unknown_name_stands_for_itself():
+    assert class_names_for("flux_capacitor", load_kb()) == ["flux_capacitor"]

@@ -1,0 +1,46 @@
+import math
+
+from homesim.sim.standing import AGENT_SIZE, FloorPlan, has_geometry
+from homesim.world import load_home
+
+
+def test_has_geometry():
+    assert has_geometry(load_home("scene1"))
+    assert not has_geometry(load_home("scene1_trimmed"))
+
+
+def test_spot_near_is_free_floor_next_to_the_object():
+    home = load_home("scene1")
+    plan = FloorPlan(home)
+    for cls in ("tv", "sofa", "fridge", "computer", "bed", "toilet"):
+        for node in home.nodes_of_class(cls):
+            spot = plan.spot_near(node.id)
+            assert spot is not None, node.label()
+            room = home.room_of(node.id)
+            assert plan.is_free(room, *spot)
+            box = node.bounding_box
+            # outside the object's footprint, and within reach of it
+            dx = max(0.0, abs(spot[0] - box.center[0]) - box.size[0] / 2)
+            dz = max(0.0, abs(spot[1] - box.center[2]) - box.size[2] / 2)
+            assert math.hypot(dx, dz) >= AGENT_SIZE / 2 - 1e-9
+            assert math.hypot(dx, dz) <= 1.6
+
+
+def test_obstacles_and_walls_are_not_free():
+    home = load_home("scene1")
+    plan = FloorPlan(home)
+    fridge = home.nodes_of_class("fridge")[0]
+    room = home.room_of(fridge.id)
+    assert not plan.is_free(room, fridge.bounding_box.center[0], fridge.bounding_box.center[2])
+    far = home.node(room).bounding_box
+    assert not plan.is_free(room, far.center[0] + far.size[0], far.center[2])
+
+
+def test_free_floor_finds_room_for_a_footprint():
+    import random
+
+    home = load_home("scene1")
+    plan = FloorPlan(home)
+    room = home.room_ids and sorted(home.room_ids)[0]
+    spot = plan.free_floor(room, 0.5, 0.5, random.Random(0))
+    assert spot is not None and plan.is_free(room, *spot, 0.5, 0.5)
