@@ -27,3 +27,10 @@ def test_can_run_leaves_the_state_and_try_step_binds(tiny_splits):
 def test_missing_class_cannot_run(tiny_splits):
     e = replace(tiny_splits.train[0], bindings={})
     assert not StepRunner(e).try_step(("WALK", ("no_such_thing",)))
+
+
+def test_greedy_runner_and_grounding_agree_on_truth(tiny_splits):
+    from homesim.learn.execution import runs_greedily
+
+    for e in tiny_splits.test:
+        assert runs_greedily(e.program, e) and executable(e.program, e)

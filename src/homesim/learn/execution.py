@@ -1,22 +1,24 @@
-"""Execute ungrounded predicted steps in an example's home, binding objects as they come.
+"""Execute predicted (ungrounded) programs in an example's home.
 
-`StepRunner` binds each class name the first time a step uses it: it tries the node the
-true program used for that class (the home was set up for it), then every other node of
-the class, and keeps the first that lets the step run. This is a greedy stand-in for
-`homesim.ground` (backtracking search), used until grounding lands. The same runner serves
-the simulator reward (is the whole program executable?) and constrained decoding (which
-next steps can run now?).
+`executable` grounds the whole program in the home with `homesim.ground` (backtracking
+search over bindings) and executes it: this is the simulator reward and the Simulator %
+column. `StepRunner` serves constrained decoding, which must decide step by step: it binds
+each object the first time a step uses it (the node the true program used for it first,
+then the other nodes of its class) and keeps the first that lets the step run. A program
+it accepts is executable under that binding, so `ground` finds one too.
 """
 
 from __future__ import annotations
 
 from itertools import product
 
+from homesim.errors import GroundingError
 from homesim.learn.data import Example
 from homesim.learn.vocab import StepKey
 from homesim.program.actions import ACTIONS
 from homesim.program.model import ObjectRef, Program, Step
-from homesim.sim.execute import run_step
+from homesim.sim.execute import execute, run_step
+from homesim.sim.ground import ground
 from homesim.sim.state import SimState
 
 _MAX_CHOICES = 64  # cap on node combinations tried for one step
@@ -74,7 +76,17 @@ class StepRunner:
 
 
 def executable(program: Program, example: Example) -> bool:
-    """Whether `program` runs to its end in the example's home (greedy binding)."""
+    """Whether `program` can be grounded in the example's home and then executes."""
+    graph = example.graph()
+    try:
+        grounding = ground(program, graph, seed=0)
+    except GroundingError:
+        return False
+    return execute(program, graph, bindings=grounding.bindings).executable
+
+
+def runs_greedily(program: Program, example: Example) -> bool:
+    """Whether `StepRunner` accepts every step of `program` in turn."""
     runner = StepRunner(example)
     return all(runner.try_refs(s.action.key, tuple(r.key for r in s.args))
                for s in program.steps)
