@@ -57,7 +57,7 @@ def word2vec_vectors(words: list[str], texts: list[str], seed: int,
     try:
         from gensim.models import Word2Vec
     except ImportError:
-        raise HomesimError("word2vec needs gensim: install homesim with its 'learn' extra") from None
+        raise HomesimError("word2vec needs gensim: install homesim's 'learn' extra") from None
     from homesim.learn.vocab import tokenize
 
     sentences = [tokenize(t) for t in texts]
