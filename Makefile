@@ -25,6 +25,7 @@ test: setup
 bench: setup
 	$(BIN)/homesim data fetch
 	$(BIN)/python benchmarks/executor.py
+	$(BIN)/python benchmarks/grounding.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache

@@ -64,4 +64,6 @@ class GroundingError(HomesimError):
         self.step = step
         self.obj = obj
         self.tried = tried
+        self.bindings: dict[tuple[str, int], int] = {}
+        """The search's choices when it failed (program object -> node id), if any."""
         super().__init__(message)

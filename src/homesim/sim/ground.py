@@ -24,7 +24,7 @@ Grounding finds node ids for them under which every step executes:
 >>> p = parse_program("[Walk] <television> (1)\\n[SwitchOn] <television> (1)")
 >>> g = ground(p, load_home("scene1_trimmed"))
 >>> str(g.program.steps[1])
-'[SwitchOn] <television> (1.247)'
+'[SwitchOn] <television> (1.409)'
 """
 
 from __future__ import annotations
@@ -91,7 +91,8 @@ class _Search:
         self.domains: dict[Key, list[int]] = {}
         self.tried: dict[Key, list[int]] = {}
         self.deepest: tuple[int, str] = (-1, "")
-        self.plan = FloorPlan(graph, rotation=seed) if geometry else None
+        self.deepest_bindings: dict[Key, int] = {}
+        self.plan = FloorPlan.for_graph(graph, rotation=seed) if geometry else None
         self.needs: dict[Key, list[frozenset[str]]] = {}
         for step in program.steps:
             for pos, ref in enumerate(step.args):
@@ -109,6 +110,9 @@ class _Search:
                     f"<{ref.name}> ({ref.instance}); prepare() adds missing objects",
                     n, str(ref), ", ".join(classes))
             self.domains[ref.key] = ids
+        # Nodes that can only be one program object (often one scene preparation added
+        # where the program needs it): candidates next to them are preferred too.
+        self.fixed = [d[0] for d in self.domains.values() if len(d) == 1]
 
     # ------------------------------------------------------------------ search
     def solve(self, i: int) -> set[Key] | None:
@@ -125,13 +129,15 @@ class _Search:
             raise _OutOfBudget
         st = self.st
         mark = st.mark()
-        holding_before = set(st.targets(st.char, HOLDS_RH)) | set(st.targets(st.char, HOLDS_LH))
-        reason = run_step(st, step, ids)
-        if reason is None and self.plan is not None:
-            reason = self.stand(i, step, ids, holding_before)
+        if self.plan is None:
+            reason = run_step(st, step, ids)
+        else:
+            held = set(st.targets(st.char, HOLDS_RH)) | set(st.targets(st.char, HOLDS_LH))
+            reason = run_step(st, step, ids) or self.stand(i, ids, held)
         if reason is not None:
             if i > self.deepest[0]:
                 self.deepest = (i, reason)
+                self.deepest_bindings = dict(self.assign)
             st.undo(mark)
             return self.blame(step)
         blame = self.solve(i + 1)
@@ -187,6 +193,7 @@ class _Search:
         st = self.st
         char_room = st.room_of(st.char)
         bound = [n for n in self.assign.values() if n not in st.rooms]
+        anchors = bound + [n for n in self.fixed if n not in self.owner and n not in st.rooms]
         used_rooms = {st.room_of(n) for n in self.assign.values()}
         boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
                              if n in self.graph.nodes) if b is not None]
@@ -196,10 +203,10 @@ class _Search:
             props = st.properties(node)
             lacking = sum(1 for need in needs if props.isdisjoint(need))
             related = 0
-            if bound:
+            if anchors:
                 near = st.targets(node, CLOSE)
                 under = st.targets(node, ON) | st.targets(node, INSIDE)
-                for b in bound:
+                for b in anchors:
                     if b in near or b in under or not under.isdisjoint(st.targets(b, ON)):
                         related += 1
             room = st.room_of(node)
@@ -217,8 +224,7 @@ class _Search:
         return [s[-1] for s in scored]
 
     # ------------------------------------------------------------------ standing
-    def stand(self, i: int, step: Step, ids: tuple[int, ...],
-              holding_before: set[int]) -> str | None:
+    def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:
         """Choose where the agent stands for step i; a reason if there is no free floor."""
         previous = self.spots[i - 1] if i > 0 else None
         if not ids:
@@ -229,8 +235,6 @@ class _Search:
         if target in holding_before or target == st.char or target in st.body_parts:
             self.spots[i] = previous
             return None
-        plan = self.plan
-        assert plan is not None
         spot = self._spot(target)
         if spot is None:
             return f"no free floor next to {st.label(target)} for the agent to stand on"
@@ -313,8 +317,10 @@ def _failure(search: _Search, stopped: bool) -> GroundingError:
     tail = f" (search stopped after {search.runs} step runs)" if stopped else ""
     what = "; ".join(tried) or "no objects"
     obj = str(step.args[0]) if step.args else None
-    return GroundingError(f"step {index + 1} {step}: cannot be grounded: {reason}; "
-                          f"tried {what}{tail}", index + 1, obj, what)
+    error = GroundingError(f"step {index + 1} {step}: cannot be grounded: {reason}; "
+                           f"tried {what}{tail}", index + 1, obj, what)
+    error.bindings = search.deepest_bindings
+    return error
 
 
 def unground(program: Program) -> Program:
@@ -351,8 +357,9 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
 
     When grounding fails at a step because no instance of one of its objects can be used
     there (every phone of the home is far from the table the program grabs it at), a
-    fresh instance of that object is added where the program needs it and the search
-    runs again, at most `repairs` times.
+    fresh instance of that object is added where the program needs it (next to the
+    instances the search had chosen when it failed) and the search runs again, at most
+    `repairs` times.
 
     Returns:
         (the preparation, the grounding in the prepared home).
@@ -362,11 +369,12 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     extra: list[Key] = []
+    pins: dict[Key, int] = {}
     rooms = {n.class_name for n in graph.rooms()}
     failure: GroundingError | None = None
     while True:
         try:
-            prepared = prepare(program, graph, seed=seed, kb=kb, extra=extra)
+            prepared = prepare(program, graph, seed=seed, kb=kb, extra=extra, pins=pins)
         except GroundingError:
             if failure is None:
                 raise
@@ -383,4 +391,6 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
             if not new:
                 raise failure from None
             extra += new
+            # Put the new instances next to what the search had chosen when it failed.
+            pins = {k: n for k, n in e.bindings.items() if n in graph}
             repairs -= 1

@@ -31,8 +31,9 @@ Two things are prepared, on a copy of the home (the input graph is never changed
 from __future__ import annotations
 
 import random
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
@@ -157,7 +158,8 @@ def instances_of(graph: EnvironmentGraph, classes: list[str]) -> list[int]:
 
 def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
             kb: ObjectKnowledge | None = None,
-            extra: Sequence[tuple[str, int]] = ()) -> Prepared:
+            extra: Sequence[tuple[str, int]] = (),
+            pins: Mapping[tuple[str, int], int] | None = None) -> Prepared:
     """Add the objects `program` needs and set the initial states it presupposes.
 
     Args:
@@ -168,6 +170,8 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         extra: program objects (class name, instance) to add a new instance for even
             when the home has enough (grounding asks for these when the home's
             instances are all out of reach; see `prepare_and_ground`).
+        pins: program object -> node of the home, for objects whose instance is known
+            (from a failed grounding): what is added near one goes next to that node.
 
     Returns:
         `Prepared`: the new graph, the additions and the state changes.
@@ -198,7 +202,7 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
     added: list[Addition] = []
     by_key: dict[Key, int] = {}
     for ref in missing:
-        addition = _add(st, ref, program, context, kb, rng, plan, added, by_key)
+        addition = _add(st, ref, program, context, kb, rng, plan, added, by_key, pins or {})
         added.append(addition)
         by_key[ref.key] = addition.node_id
         groups = required.get(_first_of_class(required, ref.name), {})
@@ -206,7 +210,12 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         new = _apply(node.states, node.properties, groups)
         if new != node.states:
             st.set_states(addition.node_id, new)
-    return Prepared(st.to_graph(), added, changed)
+    prepared = st.to_graph()
+    if plan is not None:
+        # Let standing spots of the prepared home reuse those of this one (see FloorPlan).
+        floor_rooms = frozenset(a.room for a in added if a.destination_id == a.room)
+        prepared._derived["prepared_from"] = (graph, floor_rooms)
+    return Prepared(prepared, added, changed)
 
 
 Key = tuple[str, int]
@@ -233,10 +242,24 @@ class _Context:
         classes = {c for names in self.names.values() for c in names}
         self.classes = classes
         self.rooms = [r.id for r in graph.rooms() if r.class_name in classes]
+        needs: dict[str, set[frozenset[str]]] = {}
+        for step in program.steps:
+            for pos, ref in enumerate(step.args):
+                need = NEEDS.get((step.action.key, pos))
+                if need is not None:
+                    needs.setdefault(ref.name, set()).add(need)
+        # Objects on a seat take its place (the simulator counts them), so nothing is put
+        # on what the program sits or lies on.
+        self.seats = {c for step in program.steps if step.action.key in ("SIT", "LIE")
+                      for ref in step.args for c in self.names[ref.name]}
         self.missing: list[ObjectRef] = []
         for name, refs in self.refs_by_name.items():
-            have = len(instances_of(graph, self.names[name]))
-            self.missing += refs[have:]
+            ids = instances_of(graph, self.names[name])
+            wanted = needs.get(name, set())
+            if wanted and not any(all(not graph.nodes[i].properties.isdisjoint(w)
+                                      for w in wanted) for i in ids):
+                ids = []  # none can do what the program does with it (folded clothes)
+            self.missing += refs[len(ids):]
         room_classes = {r.class_name for r in graph.rooms()}
         self.is_room = {n: bool(room_classes.intersection(c)) for n, c in self.names.items()}
         self.used_before: dict[Key, set[str]] = {}
@@ -420,7 +443,7 @@ def _instances(st: SimState, classes: list[str], added: list[Addition]) -> list[
 
 def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
          kb: ObjectKnowledge, rng: random.Random, plan: FloorPlan | None,
-         added: list[Addition], by_key: dict[Key, int]) -> Addition:
+         added: list[Addition], by_key: dict[Key, int], pins: Mapping[Key, int]) -> Addition:
     graph = st.graph
     name = ref.name
     step_no, step_text = first_use(program, ref.key)
@@ -453,7 +476,7 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     anchors: list[int] = []
     anchor = context.anchor.get(ref.key)
     if anchor is not None:
-        exact = by_key.get(anchor)
+        exact = by_key.get(anchor, pins.get(anchor))
         if exact is not None:
             anchors = [exact]
         else:
@@ -470,6 +493,8 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             if room_classes is not None and graph.nodes[room].class_name not in room_classes:
                 continue
             cls = st.class_name(dest)
+            if relation == ON and cls in context.seats:
+                continue
             hidden = relation == INSIDE and S_CLOSED in st.states(dest) and cls not in opened
             near = 0 if dest in anchors else (
                 1 if not st.targets(dest, CLOSE).isdisjoint(anchors) else 2)
@@ -485,7 +510,8 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
             continue
         props = st.properties(a)
         hidden = S_CLOSED in st.states(a) and st.class_name(a) not in opened
-        for relation, prop, blocked in ((ON, SURFACES, False), (INSIDE, CONTAINERS, hidden)):
+        seat = st.class_name(a) in context.seats
+        for relation, prop, blocked in ((ON, SURFACES, seat), (INSIDE, CONTAINERS, hidden)):
             if prop in props and not blocked and (a, relation) not in listed:
                 options.append(((False, 0, False, room_rank(room), rng.random()),
                                 a, relation, room))
@@ -564,6 +590,12 @@ def _put(st: SimState, ref: ObjectRef, names: list[str], kb: ObjectKnowledge,
 
 
 def _size(names: list[str], kb: ObjectKnowledge) -> tuple[float, float, float]:
+    return _size_cached(kb, tuple(names))
+
+
+@lru_cache(maxsize=4096)
+def _size_cached(kb: ObjectKnowledge, names: tuple[str, ...]) -> tuple[float, float, float]:
+    # Cached: the knowledge base's size lookup scans its classes for equivalent names.
     for c in names:
         size = kb.prefab_size(c)
         if size is not None:

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Iterator
+from typing import Any
 
 from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE
@@ -46,15 +47,44 @@ def has_geometry(graph: EnvironmentGraph) -> bool:
 class FloorPlan:
     """Free floor per room of a home, built lazily, for choosing standing spots."""
 
-    def __init__(self, graph: EnvironmentGraph, rotation: int = 0):
-        """`rotation` (from the seed) picks which direction around an object is tried first."""
+    def __init__(self, graph: EnvironmentGraph, rotation: int = 0,
+                 parent: FloorPlan | None = None, changed_rooms: frozenset[int] = frozenset()):
+        """`rotation` (from the seed) picks which direction around an object is tried first.
+
+        A plan for a prepared home may lean on the plan of the home it was prepared from
+        (`parent`): rooms whose floor did not change share its obstacles and spots."""
         self.graph = graph
         self.rotation = rotation % _DIRECTIONS
         self._floors: dict[int, list[BoundingBox]] = {}
         self._obstacles: dict[int, list[BoundingBox]] = {}
         self._spots: dict[int, Spot | None] = {}
+        self._parent = parent
+        self._changed = changed_rooms
+        self._rect_cache: dict[int, tuple[Any, tuple[list[_Rect], list[_Rect]]]] = {}
+
+    @classmethod
+    def for_graph(cls, graph: EnvironmentGraph, rotation: int = 0) -> FloorPlan:
+        """The plan of a home, cached with the (read-only) graph.
+
+        Spots are computed once per home and rotation, not once per program: a home that
+        `prepare` made says which home it came from and which rooms got new floor
+        obstacles, and its plan asks the original's for everything else."""
+        cache = graph._derived.setdefault("floor_plans", {})
+        plan = cache.get(rotation % _DIRECTIONS)
+        if plan is None:
+            origin = graph._derived.get("prepared_from")
+            if origin is None:
+                plan = cls(graph, rotation)
+            else:
+                base, changed = origin
+                plan = cls(graph, rotation, cls.for_graph(base, rotation), changed)
+            cache[rotation % _DIRECTIONS] = plan
+        return plan
 
     def _room_parts(self, room: int) -> tuple[list[BoundingBox], list[BoundingBox]]:
+        parent = self._parent
+        if parent is not None and room not in self._changed:
+            return parent._room_parts(room)
         floors = self._floors.get(room)
         if floors is None:
             g = self.graph
@@ -80,19 +110,31 @@ class FloorPlan:
                 size_z: float = AGENT_SIZE, ignore: list[BoundingBox] | None = None) -> bool:
         """Whether a footprint (default: the agent's) centred at (x, z) lies on the room's
         free floor."""
-        floors, obstacles = self._room_parts(room)
+        floors, obstacles = self._rects(room)
         hx, hz = size_x / 2, size_z / 2
-        for cx, cz in ((x - hx, z - hz), (x - hx, z + hz), (x + hx, z - hz), (x + hx, z + hz)):
-            if not any(abs(cx - f.center[0]) <= f.size[0] / 2 and abs(cz - f.center[2])
-                       <= f.size[2] / 2 for f in floors):
+        x0, x1, z0, z1 = x - hx, x + hx, z - hz, z + hz
+        for cx, cz in ((x0, z0), (x0, z1), (x1, z0), (x1, z1)):
+            for fx0, fx1, fz0, fz1, _ in floors:
+                if fx0 <= cx <= fx1 and fz0 <= cz <= fz1:
+                    break
+            else:
                 return False
-        for o in obstacles:
-            if ignore and any(o is i for i in ignore):
-                continue
-            if (abs(x - o.center[0]) * 2 < o.size[0] + size_x
-                    and abs(z - o.center[2]) * 2 < o.size[2] + size_z):
+        for ox0, ox1, oz0, oz1, box in obstacles:
+            if x1 > ox0 and x0 < ox1 and z1 > oz0 and z0 < oz1:
+                if ignore and any(box is i for i in ignore):
+                    continue
                 return False
         return True
+
+    def _rects(self, room: int) -> tuple[list[_Rect], list[_Rect]]:
+        """Floors and obstacles of a room as (x0, x1, z0, z1, box): is_free runs often."""
+        floors, obstacles = self._room_parts(room)
+        key = (id(floors), id(obstacles), len(obstacles))
+        cached = self._rect_cache.get(room)
+        if cached is None or cached[0] != key:
+            cached = (key, ([_rect(b) for b in floors], [_rect(b) for b in obstacles]))
+            self._rect_cache[room] = cached
+        return cached[1]
 
     def free_floor(self, room: int, size_x: float, size_z: float,
                    rng: random.Random, tries: int = 64) -> Spot | None:
@@ -125,6 +167,11 @@ class FloorPlan:
         """Free floor next to the object (cached), or None if there is none in its room."""
         if node_id in self._spots:
             return self._spots[node_id]
+        parent = self._parent
+        if parent is not None and node_id in parent.graph.nodes:
+            room = parent.graph.room_of(node_id)
+            if room is not None and room not in self._changed:
+                return parent.spot_near(node_id)
         spot = None
         g = self.graph
         node = g.nodes[node_id]
@@ -171,6 +218,14 @@ class FloorPlan:
                                        f.center[2] + fz * f.size[2]))
         candidates.sort(key=lambda s: ((s[0] - cx) ** 2 + (s[1] - cz) ** 2, s))
         return next((s for s in candidates if self.is_free(room, *s)), None)
+
+
+_Rect = tuple[float, float, float, float, BoundingBox]
+
+
+def _rect(box: BoundingBox) -> _Rect:
+    hx, hz = box.size[0] / 2, box.size[2] / 2
+    return (box.center[0] - hx, box.center[0] + hx, box.center[2] - hz, box.center[2] + hz, box)
 
 
 def _contents(graph: EnvironmentGraph, room: int) -> Iterator[int]:
