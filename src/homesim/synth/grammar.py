@@ -1,0 +1,349 @@
+"""A probabilistic grammar of programs that are executable by construction.
+
+Glossary:
+    task: a short sub-activity ("put the cup on the table") that expands to 1-6 steps over
+        the 12 animated actions; a program is 1-4 tasks.
+    expansion: the task's steps with concrete nodes of a home. Every step is run on the
+        simulator state of the home as it is chosen (`run_step`); a step whose
+        preconditions fail undoes the task (`SimState.undo`) and another task or object
+        is drawn. What is kept therefore executes, in order, from the home's initial state.
+
+The program is written ungrounded (``<cup> (1)``: instance numbers count distinct nodes of
+a class within the program); the nodes it used are kept as `bindings` beside the home name.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from functools import cache
+
+from homesim.program.actions import ACTIONS
+from homesim.program.model import ObjectRef, Program, Step
+from homesim.sim.execute import run_step
+from homesim.sim.state import SimState
+from homesim.synth import templates
+from homesim.world.graph import EnvironmentGraph
+from homesim.world.homes import load_home
+from homesim.world.vocab import (
+    CAN_OPEN,
+    FACING,
+    GRABBABLE,
+    HAS_SWITCH,
+    INSIDE,
+    LOOKABLE,
+    SITTABLE,
+    SURFACES,
+)
+
+DEFAULT_HOMES: tuple[str, ...] = tuple(f"scene{i}_trimmed" for i in range(1, 6))
+"""The five VirtualHome apartments, with the class names programs use (``television``)."""
+
+_STRUCTURE = frozenset({"floor", "wall", "ceiling", "doorjamb", "closetdrawer", "character",
+                        "window", "ceilinglamp", "walllamp"})
+_SAYABLE = frozenset({GRABBABLE, SURFACES, SITTABLE, CAN_OPEN, HAS_SWITCH, LOOKABLE})
+
+StepSpec = tuple[str, tuple[int, ...]]
+"""An action key and the node ids of its objects."""
+
+
+@dataclass(frozen=True)
+class Expansion:
+    """A task made concrete: its phrase kind, slot nodes and steps."""
+
+    kind: str
+    slots: dict[str, int]
+    steps: list[StepSpec]
+    ends_program: bool = False  # sitting with no stand-up: nothing can follow
+
+
+@dataclass(frozen=True)
+class SynthProgram:
+    """A synthetic program with its description, its home and the nodes it was built on.
+
+    Attributes:
+        id: ``synth-<seed>-<index>``.
+        home: built-in home name (`homesim.load_home`).
+        program: ungrounded program with title and description.
+        bindings: (class name, instance) -> node id of `home`; executing `program` with
+            these bindings on the home succeeds.
+    """
+
+    id: str
+    home: str
+    program: Program
+    bindings: dict[tuple[str, int], int] = field(default_factory=dict)
+
+    def to_json(self) -> dict:
+        return {"id": self.id, "home": self.home, "title": self.program.title,
+                "description": self.program.description,
+                "steps": [str(s) for s in self.program.steps],
+                "bindings": [[n, i, v] for (n, i), v in sorted(self.bindings.items())]}
+
+    @classmethod
+    def from_json(cls, data: dict) -> SynthProgram:
+        from homesim.program.parse import parse_program
+
+        text = f"{data['title']}\n{data['description']}\n\n" + "\n".join(data["steps"])
+        program = parse_program(text, source=data["id"])
+        bindings = {(n, int(i)): int(v) for n, i, v in data["bindings"]}
+        return cls(data["id"], data["home"], program, bindings)
+
+
+@cache
+def _home(name: str) -> EnvironmentGraph:
+    return load_home(name)
+
+
+class _Context:
+    """The home, the simulated state and the random source of one program being built."""
+
+    def __init__(self, graph: EnvironmentGraph, rng: random.Random):
+        self.graph = graph
+        self.state = SimState(graph)
+        self.rng = rng
+        objects = [n for n in graph if n.class_name not in _STRUCTURE
+                   and n.id not in graph.room_ids and n.properties & _SAYABLE]
+        self.objects = objects
+
+    def with_property(self, prop: str) -> list[int]:
+        return [n.id for n in self.objects if prop in n.properties]
+
+    def pick(self, ids: list[int]) -> int | None:
+        return self.rng.choice(ids) if ids else None
+
+    def closed_container(self, n: int) -> int | None:
+        for x in self.state.targets(n, INSIDE):
+            if x not in self.graph.room_ids and "CLOSED" in self.state.states(x):
+                return x
+        return None
+
+    def step(self, key: str, ids: tuple[int, ...]) -> Step:
+        refs = tuple(ObjectRef(self.state.class_name(i), 1, i) for i in ids)
+        return Step(ACTIONS[key], refs)
+
+    def apply(self, steps: list[StepSpec]) -> bool:
+        """Run the steps; on the first failure undo them all and return False."""
+        mark = self.state.mark()
+        for key, ids in steps:
+            if run_step(self.state, self.step(key, ids), ids) is not None:
+                self.state.undo(mark)
+                return False
+        return True
+
+
+# ----------------------------------------------------------------------- tasks
+# A task draws its objects and returns an Expansion (or None when the home offers none).
+Task = Callable[[_Context, bool], Expansion | None]
+
+
+def _to_room(ctx: _Context, key: str, kind: str) -> Expansion | None:
+    here = ctx.state.room_of(ctx.state.char)
+    room = ctx.pick([r for r in ctx.graph.room_ids if r != here])
+    return None if room is None else Expansion(kind, {"room": room}, [(key, (room,))])
+
+
+def walk_room(ctx: _Context, last: bool) -> Expansion | None:
+    return _to_room(ctx, "WALK", "walk_room")
+
+
+def run_room(ctx: _Context, last: bool) -> Expansion | None:
+    return _to_room(ctx, "RUN", "run_room")
+
+
+def _switch(ctx: _Context, on: bool) -> Expansion | None:
+    want = "OFF" if on else "ON"
+    x = ctx.pick([i for i in ctx.with_property(HAS_SWITCH) if want in ctx.state.states(i)])
+    if x is None:
+        return None
+    key = "SWITCHON" if on else "SWITCHOFF"
+    return Expansion("switch_on" if on else "switch_off", {"x": x},
+                     [("WALK", (x,)), (key, (x,))])
+
+
+def switch_on(ctx: _Context, last: bool) -> Expansion | None:
+    return _switch(ctx, True)
+
+
+def switch_off(ctx: _Context, last: bool) -> Expansion | None:
+    return _switch(ctx, False)
+
+
+def fetch(ctx: _Context, last: bool) -> Expansion | None:
+    x = ctx.pick(ctx.with_property(GRABBABLE))
+    y = ctx.pick(ctx.with_property(SURFACES))
+    if x is None or y is None or x == y:
+        return None
+    c = ctx.closed_container(x)
+    put = [("WALK", (y,)), ("PUTBACK", (x, y))]
+    if c is None:
+        return Expansion("fetch", {"x": x, "y": y}, [("WALK", (x,)), ("GRAB", (x,)), *put])
+    if ctx.rng.random() < 0.5:
+        return Expansion("fetch_open", {"x": x, "y": y, "c": c},
+                         [("WALK", (x,)), ("OPEN", (c,)), ("GRAB", (x,)), *put])
+    return Expansion("fetch_open_close", {"x": x, "y": y, "c": c},
+                     [("WALK", (x,)), ("OPEN", (c,)), ("GRAB", (x,)), ("CLOSE", (c,)), *put])
+
+
+def grab(ctx: _Context, last: bool) -> Expansion | None:
+    x = ctx.pick(ctx.with_property(GRABBABLE))
+    if x is None:
+        return None
+    c = ctx.closed_container(x)
+    if c is None:
+        return Expansion("grab", {"x": x}, [("WALK", (x,)), ("GRAB", (x,))])
+    return Expansion("grab_open", {"x": x, "c": c},
+                     [("WALK", (x,)), ("OPEN", (c,)), ("GRAB", (x,))])
+
+
+def touch(ctx: _Context, last: bool) -> Expansion | None:
+    x = ctx.pick([n.id for n in ctx.objects])
+    return None if x is None else Expansion("touch", {"x": x},
+                                            [("WALK", (x,)), ("TOUCH", (x,))])
+
+
+def open_container(ctx: _Context, last: bool) -> Expansion | None:
+    x = ctx.pick([i for i in ctx.with_property(CAN_OPEN) if "CLOSED" in ctx.state.states(i)])
+    if x is None:
+        return None
+    if ctx.rng.random() < 0.4:
+        return Expansion("open_close", {"x": x},
+                         [("WALK", (x,)), ("OPEN", (x,)), ("CLOSE", (x,))])
+    return Expansion("open", {"x": x}, [("WALK", (x,)), ("OPEN", (x,))])
+
+
+def close_container(ctx: _Context, last: bool) -> Expansion | None:
+    x = ctx.pick([i for i in ctx.with_property(CAN_OPEN) if "OPEN" in ctx.state.states(i)])
+    return None if x is None else Expansion("close", {"x": x},
+                                            [("WALK", (x,)), ("CLOSE", (x,))])
+
+
+def _seated(ctx: _Context, kind: str, slots: dict[str, int], steps: list[StepSpec],
+            last: bool) -> Expansion:
+    # Seated, the agent cannot walk: stand up, or end the program here.
+    if not last and ctx.rng.random() < 0.6:
+        return Expansion(kind, slots, [*steps, ("STANDUP", ())])
+    return Expansion(kind, slots, steps, ends_program=True)
+
+
+def sit(ctx: _Context, last: bool) -> Expansion | None:
+    x = ctx.pick(ctx.with_property(SITTABLE))
+    if x is None:
+        return None
+    steps: list[StepSpec] = [("WALK", (x,)), ("SIT", (x,))]
+    faced = [y for y in ctx.state.targets(x, FACING) if LOOKABLE in ctx.state.properties(y)]
+    if faced and ctx.rng.random() < 0.6:
+        y = ctx.rng.choice(sorted(faced))
+        return _seated(ctx, "sit_look", {"x": x, "y": y}, [*steps, ("LOOKAT", (y,))], last)
+    return _seated(ctx, "sit", {"x": x}, steps, last)
+
+
+def watch(ctx: _Context, last: bool) -> Expansion | None:
+    screens = [i for i in ctx.with_property(LOOKABLE)
+               if HAS_SWITCH in ctx.state.properties(i) and "OFF" in ctx.state.states(i)]
+    x = ctx.pick(screens)
+    if x is None:
+        return None
+    seats = [s for s in ctx.with_property(SITTABLE) if x in ctx.state.targets(s, FACING)]
+    y = ctx.pick(seats)
+    if y is None:
+        return None
+    steps: list[StepSpec] = [("WALK", (x,)), ("SWITCHON", (x,)), ("WALK", (y,)),
+                             ("SIT", (y,)), ("LOOKAT", (x,))]
+    return _seated(ctx, "watch", {"x": x, "y": y}, steps, last)
+
+
+TASKS: dict[str, tuple[float, Task]] = {
+    "walk_room": (1.0, walk_room), "run_room": (0.4, run_room),
+    "switch_on": (1.5, switch_on), "switch_off": (0.8, switch_off),
+    "fetch": (2.0, fetch), "grab": (1.0, grab), "touch": (0.8, touch),
+    "open": (1.0, open_container), "close": (0.3, close_container),
+    "sit": (1.0, sit), "watch": (1.0, watch),
+}
+"""Task name -> (weight, expansion function): the grammar's choices for one task."""
+
+_TASK_COUNTS = (1, 2, 2, 3, 3, 4)
+_TRIES_PER_TASK = 12
+_STAND_UP_PHRASE = "stand_up"
+
+
+class Grammar:
+    """Draws programs over the animated actions in a set of homes.
+
+    >>> import random
+    >>> sp = Grammar().sample(random.Random(0), "synth-0-0")
+    >>> from homesim.sim import execute
+    >>> from homesim.world import load_home
+    >>> execute(sp.program, load_home(sp.home), bindings=sp.bindings).executable
+    True
+    """
+
+    def __init__(self, homes: tuple[str, ...] = DEFAULT_HOMES):
+        self.homes = homes
+
+    def sample(self, rng: random.Random, program_id: str) -> SynthProgram:
+        """One program; every random choice comes from `rng`."""
+        while True:
+            home = rng.choice(self.homes)
+            ctx = _Context(_home(home), rng)
+            chosen = self._expand(ctx, rng.choice(_TASK_COUNTS))
+            if chosen:
+                return _write(program_id, home, chosen, ctx, rng)
+
+    def _expand(self, ctx: _Context, n_tasks: int) -> list[Expansion]:
+        names = list(TASKS)
+        weights = [TASKS[n][0] for n in names]
+        chosen: list[Expansion] = []
+        for i in range(n_tasks):
+            last = i == n_tasks - 1
+            for _ in range(_TRIES_PER_TASK):
+                name = ctx.rng.choices(names, weights)[0]
+                exp = TASKS[name][1](ctx, last)
+                if exp is not None and ctx.apply(exp.steps):
+                    chosen.append(exp)
+                    break
+            else:
+                break
+            if chosen[-1].ends_program:
+                break
+        return chosen
+
+
+def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
+           rng: random.Random) -> SynthProgram:
+    """The ungrounded program, its description and bindings from the chosen expansions."""
+    instance: dict[int, tuple[str, int]] = {}
+    counts: dict[str, int] = {}
+
+    def ref(node: int) -> ObjectRef:
+        if node not in instance:
+            name = ctx.state.class_name(node)
+            counts[name] = counts.get(name, 0) + 1
+            instance[node] = (name, counts[name])
+        return ObjectRef(*instance[node])
+
+    steps: list[Step] = []
+    phrases: list[str] = []
+    for exp in chosen:
+        for key, ids in exp.steps:
+            steps.append(Step(ACTIONS[key], tuple(ref(i) for i in ids)))
+        slots = {k: ctx.state.class_name(v) for k, v in exp.slots.items()}
+        text = templates.phrase(exp.kind, rng, **slots)
+        if exp.steps[-1][0] == "STANDUP":
+            text += " " + templates.phrase(_STAND_UP_PHRASE, rng)
+        phrases.append(text)
+    first = chosen[0].kind
+    title = next(t for k, t in templates.TITLES.items() if first.startswith(k))
+    program = Program(tuple(steps), title, templates.join(phrases, rng))
+    bindings = {key: node for node, key in instance.items()}
+    return SynthProgram(program_id, home, program, bindings)
+
+
+def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES) -> Iterator[SynthProgram]:
+    """`n` programs; the same seed gives the same programs."""
+    rng = random.Random(seed)
+    grammar = Grammar(homes)
+    for i in range(n):
+        yield grammar.sample(rng, f"synth-{seed}-{i}")
+

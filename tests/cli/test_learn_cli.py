@@ -1,0 +1,30 @@
+import pytest
+
+from homesim.cli.main import main
+
+pytest.importorskip("torch")
+
+
+def test_train_then_eval_prints_table_3(tmp_path, capsys):
+    runs = tmp_path / "runs"
+    args = ["learn", "train", "--task", "text2prog", "--data", "synthetic", "--synth-n", "30",
+            "--mle-epochs", "1", "--pg-epochs", "1", "--batch-size", "8", "--out", str(runs)]
+    assert main(args) == 0
+    assert (runs / "synthetic" / "pg_lcs_sim.pt").is_file()
+    assert main(args) == 2
+    assert "pass --force" in capsys.readouterr().err
+    md = tmp_path / "results.md"
+    assert main(["learn", "eval", "--runs", str(runs), "--data", "synthetic",
+                 "--markdown", str(md)]) == 0
+    out = capsys.readouterr().out
+    assert "Simulator %" in out and "NN retrieval (MiniLM)" in out
+    assert "| PG (LCS+Sim) + constrained decoding |" in md.read_text()
+    assert (runs / "synthetic" / "results.json").is_file()
+
+
+def test_unknown_task_and_missing_checkpoints_are_one_line(tmp_path, capsys):
+    assert main(["learn", "train", "--task", "video2prog", "--out", str(tmp_path)]) == 2
+    assert "--task video2prog: only text2prog" in capsys.readouterr().err
+    assert main(["learn", "eval", "--runs", str(tmp_path), "--data", "real"]) == 2
+    err = capsys.readouterr().err
+    assert "checkpoint not found" in err and "Traceback" not in err
