@@ -109,3 +109,12 @@ def test_no_ground_reads_ids_as_nodes(tmp_path, capsys):
     p.write_text("[Walk] <tv> (410)\n[SwitchOn] <tv> (410)\n")
     assert main(["run", str(p), "--home", "scene1", "--no-ground"]) == 0
     assert "tv 410: OFF → ON" in capsys.readouterr().out
+
+
+def test_errors_keep_bracketed_text_and_stay_on_one_line(tmp_path, capsys):
+    """Text from the user's file is printed as is (no rich markup), on one line."""
+    p = tmp_path / "[bold]odd name with a long path to make the line wide.txt"
+    assert main(["run", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert f"{p}: cannot read program" in err
+    assert err.count("\n") == 1

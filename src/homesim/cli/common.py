@@ -13,8 +13,9 @@ from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 
-console = Console(highlight=False)
-err_console = Console(stderr=True, highlight=False)
+# soft_wrap: a message stays one line however narrow the terminal (no hard wrapping).
+console = Console(highlight=False, soft_wrap=True)
+err_console = Console(stderr=True, highlight=False, soft_wrap=True)
 
 MAX_PROGRAM_BYTES = 1024 * 1024
 """Largest program file the CLI reads (real programs are under 2 KB)."""

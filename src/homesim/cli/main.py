@@ -6,6 +6,7 @@ import os
 import sys
 
 import typer
+from rich.markup import escape
 
 from homesim.cli import data, learn, render, run, serve, synth
 from homesim.cli.common import console, err_console
@@ -41,12 +42,12 @@ def main(argv: list[str] | None = None) -> int:
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
     except HomesimError as e:
-        err_console.print(f"[red]error[/]: {e}")
+        err_console.print(f"[red]error[/]: {escape(str(e))}")
         return 2
     except Exception as e:  # a bug of ours: one line, the traceback only on request
         if os.environ.get("HOMESIM_DEBUG"):
             raise
-        err_console.print(f"[red]internal error[/]: {type(e).__name__}: {e} "
+        err_console.print(f"[red]internal error[/]: {type(e).__name__}: {escape(str(e))} "
                           "(set HOMESIM_DEBUG=1 for the traceback, and please report it)")
         return 70
     return 0

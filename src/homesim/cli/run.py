@@ -6,6 +6,7 @@ import json
 from typing import Annotated
 
 import typer
+from rich.markup import escape
 from rich.table import Table
 
 from homesim.cli.common import console, read_graph, read_program
@@ -133,7 +134,7 @@ def run(
                 console.print_json(json.dumps({"program": str(prog), "executable": False,
                                                "grounding_error": str(e)}))
             else:
-                console.print(f"[red]cannot ground[/] in {gname}: {e}")
+                console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(str(e))}")
             raise typer.Exit(1) from None
         g = prepared.graph
         prog = grounding.program
@@ -166,5 +167,5 @@ def run(
     if result.executable:
         console.print(f"[green]executable[/]: all {len(prog.steps)} steps ran")
     else:
-        console.print(f"[red]not executable[/]: {result.message}")
+        console.print(f"[red]not executable[/]: {escape(result.message)}")
         raise typer.Exit(1)
