@@ -43,3 +43,28 @@ def test_render_errors_are_one_line(tmp_path, args, pattern, capsys):
     assert code == 2
     err = capsys.readouterr().err
     assert pattern in err and "Traceback" not in err
+
+
+def test_an_ungrounded_program_is_grounded_before_rendering(tmp_path, graph_file, capsys):
+    from homesim.render import gl_available, load_recording
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    prog = tmp_path / "p.txt"
+    prog.write_text("[Walk] <apple> (1)\n[Grab] <apple> (1)\n")
+    out = tmp_path / "rec"
+    assert main(["render", str(prog), "--graph", str(graph_file), "--out", str(out),
+                 "--width", "32", "--height", "24", "--fps", "5"]) == 0
+    assert "grounded in" in capsys.readouterr().out
+    steps = load_recording(out).meta["steps"]
+    assert [s["step"] for s in steps] == ["[Walk] <apple> (1.24)", "[Grab] <apple> (1.24)"]
+
+
+def test_a_program_that_cannot_be_grounded_is_one_line(tmp_path, graph_file, capsys):
+    prog = tmp_path / "p.txt"
+    prog.write_text("[Walk] <unicorn> (1)\n")
+    assert main(["render", str(prog), "--graph", str(graph_file),
+                 "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "cannot ground the program in" in err and "unicorn" in err
+    assert err.count("\n") == 1

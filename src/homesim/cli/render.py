@@ -9,8 +9,9 @@ import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
 from homesim.cli.common import console, read_graph, read_program
-from homesim.errors import HomesimError
+from homesim.errors import GroundingError, HomesimError
 from homesim.examples import DEMO_HOME, load_example
+from homesim.sim.ground import prepare_and_ground
 
 
 def _render_module():
@@ -25,8 +26,9 @@ def _render_module():
 
 def render(
     program: Annotated[str | None, typer.Argument(
-        help="Program file whose objects carry node ids of the home (<tv> (1.410)); "
-             "'-' reads stdin. Without it, renders the demo.")] = None,
+        help="Program file: grounded (<tv> (1.410)) or not (<tv> (1)), which is then "
+             "prepared and grounded in the home first; '-' reads stdin. Without it, "
+             "renders the demo.")] = None,
     out: Annotated[Path, typer.Option(help="Output folder (must not hold a recording).")]
     = Path("out/render"),
     home: Annotated[str | None, typer.Option(
@@ -41,11 +43,23 @@ def render(
         help="male1, female1, male2 or female2 (default: chosen by the seed).")] = None,
     preview: Annotated[bool, typer.Option(
         help="Also write preview.png: a contact sheet of each step's last frame.")] = False,
+    no_ground: Annotated[bool, typer.Option(
+        "--no-ground", help="Render an ungrounded program as is, reading (N) as node N.")]
+    = False,
 ) -> None:
     """Animate a program in 3D and record RGB video, depth, segmentation, flow and poses."""
     r = _render_module()
     prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
+    if prog.steps and not prog.is_grounded and not no_ground:
+        try:
+            prepared, grounding = prepare_and_ground(prog, g, seed=seed)
+        except GroundingError as e:
+            raise HomesimError(f"cannot ground the program in {gname}: {e}") from None
+        g, prog = prepared.graph, grounding.program
+        added = ", ".join(g.node(a.node_id).label() for a in prepared.added)
+        console.print(f"grounded in {gname} (seed {seed})" + (f"; added {added}" if added else ""),
+                      markup=False)
     bar = Progress(TextColumn("rendering"), BarColumn(), MofNCompleteColumn(),
                    TimeRemainingColumn(), console=console)
     task = None

@@ -158,10 +158,10 @@ def run(
     for rec in result.trace or []:
         mark = "[green]✓[/]" if rec.ok else "[red]✗[/]"
         detail = (_describe(rec.changes, label, all_changes) or "no change") if rec.ok \
-            else f"[red]{rec.reason}[/]"
-        table.add_row(str(rec.index + 1), mark, str(rec.step), detail)
+            else f"[red]{escape(rec.reason or '')}[/]"
+        table.add_row(str(rec.index + 1), mark, escape(str(rec.step)), detail)
     for index in range(result.steps_run + 1, len(prog.steps)):
-        table.add_row(str(index + 1), "[dim]·[/]", f"[dim]{prog.steps[index]}[/]",
+        table.add_row(str(index + 1), "[dim]·[/]", f"[dim]{escape(str(prog.steps[index]))}[/]",
                       "[dim]not run[/]")
     console.print(table)
     if result.executable:
