@@ -1,5 +1,5 @@
 from homesim.program import parse_program
-from homesim.serve.results import describe_changes, execution_json, program_json, step_lines
+from homesim.serve.results import execution_json, program_json, step_lines
 from homesim.sim import execute
 
 
@@ -28,5 +28,5 @@ def test_execution_json_on_tiny_home(tiny_home):
 
 def test_describe_changes_counts_close_edges(tiny_home):
     result = execute(parse_program("[Walk] <fridge> (1.11)"), tiny_home, trace=True)
-    text = describe_changes(result.trace[0].changes, result.state.label)
+    text = result.trace[0].changes.describe(result.state.label)
     assert "CLOSE" in text and "fridge 11 CLOSE" not in text

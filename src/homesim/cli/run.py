@@ -15,25 +15,7 @@ from homesim.examples import DEMO_HOME, load_example
 from homesim.sim.execute import ExecutionResult, execute
 from homesim.sim.ground import Grounding, prepare_and_ground
 from homesim.sim.prepare import Prepared
-from homesim.sim.state import Changes
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.vocab import CLOSE
-
-
-def _describe(changes: Changes, label, all_changes: bool) -> str:
-    parts = []
-    for node, before, after in changes.states:
-        gone = ",".join(sorted(before - after)) or "-"
-        new = ",".join(sorted(after - before)) or "-"
-        parts.append(f"{label(node)}: {gone} → {new}")
-    for sign, edges in (("+", changes.added), ("-", changes.removed)):
-        shown = [e for e in edges if all_changes or e[1] != CLOSE]
-        parts += [f"{sign}{label(a)} {r} {label(b)}" for a, r, b in shown]
-        hidden = len(edges) - len(shown)
-        if hidden:
-            parts.append(f"{sign}{hidden} CLOSE")
-    parts += [f"added {label(n)}" for n in changes.nodes]
-    return "; ".join(parts)
 
 
 def result_to_json(result: ExecutionResult) -> dict:
@@ -157,7 +139,7 @@ def run(
     table.add_column(overflow="fold")
     for rec in result.trace or []:
         mark = "[green]✓[/]" if rec.ok else "[red]✗[/]"
-        detail = (_describe(rec.changes, label, all_changes) or "no change") if rec.ok \
+        detail = rec.changes.describe(label, all_changes) if rec.ok \
             else f"[red]{escape(rec.reason or '')}[/]"
         table.add_row(str(rec.index + 1), mark, escape(str(rec.step)), detail)
     for index in range(result.steps_run + 1, len(prog.steps)):

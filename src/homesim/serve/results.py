@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 from homesim.program.model import Program, Step
 from homesim.sim.execute import ExecutionResult
 from homesim.sim.state import Changes
-from homesim.world.vocab import CLOSE
 
 
 def step_lines(text: str) -> list[int]:
@@ -54,22 +52,6 @@ def changes_json(changes: Changes) -> dict[str, Any]:
     }
 
 
-def describe_changes(changes: Changes, label: Callable[[int], str]) -> str:
-    """One line for people: ``tv 410: OFF → ON; +character 1 SITTING...``; CLOSE counted."""
-    parts = []
-    for node, before, after in changes.states:
-        gone = ",".join(sorted(before - after)) or "-"
-        new = ",".join(sorted(after - before)) or "-"
-        parts.append(f"{label(node)}: {gone} → {new}")
-    for sign, edges in (("+", changes.added), ("-", changes.removed)):
-        shown = [e for e in edges if e[1] != CLOSE]
-        parts += [f"{sign}{label(a)} {r} {label(b)}" for a, r, b in shown]
-        if len(edges) > len(shown):
-            parts.append(f"{sign}{len(edges) - len(shown)} CLOSE")
-    parts += [f"added {label(n)}" for n in changes.nodes]
-    return "; ".join(parts) or "no change"
-
-
 def execution_json(result: ExecutionResult, lines: list[int]) -> dict[str, Any]:
     """Each attempted step ✓/✗ with its reason and changes; the steps after a failure."""
     label = result.state.label
@@ -83,7 +65,7 @@ def execution_json(result: ExecutionResult, lines: list[int]) -> dict[str, Any]:
             "ok": rec.ok,
             "reason": rec.reason,
             "changes": changes_json(rec.changes),
-            "summary": describe_changes(rec.changes, label) if rec.ok else rec.reason,
+            "summary": rec.changes.describe(label) if rec.ok else rec.reason,
         })
     program = result.program
     not_run = [{"index": i, "line": lines[i], "step": str(program.steps[i])}

@@ -12,7 +12,7 @@ node's edge set is copied once, on its first change.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -50,6 +50,24 @@ class Changes:
 
     def __bool__(self) -> bool:
         return bool(self.added or self.removed or self.states or self.nodes)
+
+    def describe(self, label: Callable[[int], str], all_close: bool = False) -> str:
+        """One line for people: ``tv 410: OFF → ON; +character 1 ON sofa 352; -2 CLOSE``.
+
+        CLOSE edges are counted unless `all_close`; ``no change`` when there is none.
+        """
+        parts = []
+        for node, before, after in self.states:
+            gone = ",".join(sorted(before - after)) or "-"
+            new = ",".join(sorted(after - before)) or "-"
+            parts.append(f"{label(node)}: {gone} → {new}")
+        for sign, edges in (("+", self.added), ("-", self.removed)):
+            shown = [e for e in edges if all_close or e[1] != CLOSE]
+            parts += [f"{sign}{label(a)} {r} {label(b)}" for a, r, b in shown]
+            if len(edges) > len(shown):
+                parts.append(f"{sign}{len(edges) - len(shown)} CLOSE")
+        parts += [f"added {label(n)}" for n in self.nodes]
+        return "; ".join(parts) or "no change"
 
 
 class SimState:
