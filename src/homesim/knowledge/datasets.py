@@ -95,15 +95,19 @@ def _check(program: Program, where: str) -> Program:
     return program
 
 
-def read_program_file(path: Path) -> Program:
-    """Read one ActivityPrograms file; `DataError` naming the file if it is bad."""
+def _read_text(path: Path) -> str:
+    """A file's UTF-8 text (a BOM is dropped); `DataError` naming the file if unreadable."""
     try:
-        text = path.read_bytes().decode("utf-8-sig")
+        return path.read_bytes().decode("utf-8-sig")
     except UnicodeDecodeError as e:
         raise DataError(f"{path}: not UTF-8 text (byte {e.start})") from None
     except OSError as e:
         raise DataError(f"{path}: cannot read ({e.strerror or e})") from None
-    return _check(parse_program(text, source=str(path)), str(path))
+
+
+def read_program_file(path: Path) -> Program:
+    """Read one ActivityPrograms file; `DataError` naming the file if it is bad."""
+    return _check(parse_program(_read_text(path), source=str(path)), str(path))
 
 
 class ActivityDataset(Sequence[ActivityProgram]):
@@ -195,12 +199,7 @@ class ActivityDataset(Sequence[ActivityProgram]):
     def from_jsonl(cls, path: str | Path, skip_bad: bool = False) -> ActivityDataset:
         """A JSONL file (see the module docstring); errors name the file and line."""
         path = Path(path)
-        try:
-            text = path.read_bytes().decode("utf-8-sig")
-        except UnicodeDecodeError as e:
-            raise DataError(f"{path}: not UTF-8 text (byte {e.start})") from None
-        except OSError as e:
-            raise DataError(f"{path}: cannot read ({e.strerror or e})") from None
+        text = _read_text(path)
         items, skipped = [], []
         for lineno, line in enumerate(text.splitlines(), 1):
             if not line.strip():

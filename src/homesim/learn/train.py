@@ -72,10 +72,7 @@ def train_mle(t2p: Text2Prog, train: list[Example], config: TrainConfig,
         for chunk in _batches(usable, config.batch_size, rng):
             words, mask = t2p.batch(chunk)
             loss = t2p.model(words, mask, _targets(t2p, chunk))
-            opt.zero_grad()
-            loss.backward()
-            torch.nn.utils.clip_grad_norm_(t2p.model.parameters(), config.clip)
-            opt.step()
+            _update(opt, t2p, loss, config.clip)
             losses.append(loss.item())
             done += 1
             if progress:
@@ -84,6 +81,15 @@ def train_mle(t2p: Text2Prog, train: list[Example], config: TrainConfig,
         if after_epoch:
             after_epoch(len(history) - 1)
     return history
+
+
+def _update(opt: torch.optim.Optimizer, t2p: Text2Prog, loss: torch.Tensor,
+            clip: float) -> None:
+    """One optimiser step on `loss`, with the gradient norm clipped to `clip`."""
+    opt.zero_grad()
+    loss.backward()
+    torch.nn.utils.clip_grad_norm_(t2p.model.parameters(), clip)
+    opt.step()
 
 
 def reward(pred: Program, example: Example, use_sim: bool) -> float:
@@ -119,10 +125,7 @@ def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim:
             r_g = torch.tensor([reward(t2p.steps.decode(p), e, use_sim)
                                 for p, e in zip(base_ids, chunk, strict=True)])
             loss = -((r_s - r_g) * logp).mean()
-            opt.zero_grad()
-            loss.backward()
-            torch.nn.utils.clip_grad_norm_(t2p.model.parameters(), config.clip)
-            opt.step()
+            _update(opt, t2p, loss, config.clip)
             rewards.extend(r_s.tolist())
             done += 1
             if progress:
