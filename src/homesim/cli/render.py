@@ -51,7 +51,7 @@ def render(
     r = _render_module()
     prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
-    if prog.steps and not prog.is_grounded and not no_ground:
+    if not prog.is_grounded and not no_ground:
         try:
             prepared, grounding = prepare_and_ground(prog, g, seed=seed)
         except GroundingError as e:
