@@ -37,9 +37,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from homesim.errors import HomesimError
+from homesim.ground import prepare_and_ground, unground
 from homesim.knowledge import load_kb, real_programs
 from homesim.knowledge.fetch import dataset_dir
-from homesim.sim import execute, prepare_and_ground, unground
+from homesim.sim import execute
 from homesim.world import EnvironmentGraph, load_home
 
 HOMES = [f"scene{i}{t}" for t in ("_trimmed", "") for i in range(1, 6)]

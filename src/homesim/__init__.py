@@ -16,8 +16,9 @@ from homesim.errors import (
     ProgramError,
     UnknownActionError,
 )
+from homesim.ground import prepare, prepare_and_ground, unground
 from homesim.program import ObjectRef, Program, Step, parse_program
-from homesim.sim import ExecutionResult, execute, ground, prepare, prepare_and_ground, unground
+from homesim.sim import ExecutionResult, execute
 from homesim.world import EnvironmentGraph, load_home
 
 __version__ = "0.1.0"
@@ -37,7 +38,6 @@ __all__ = [
     "Step",
     "UnknownActionError",
     "execute",
-    "ground",
     "load_home",
     "parse_program",
     "prepare",

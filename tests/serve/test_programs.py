@@ -94,14 +94,14 @@ def test_execute_on_unknown_home_is_404(client, watch_tv):
 
 
 def test_ungrounded_refs_without_grounding_say_what_to_do(client, monkeypatch):
-    monkeypatch.setattr(optional, "grounding", lambda: (None, "homesim.sim.ground is missing"))
+    monkeypatch.setattr(optional, "grounding", lambda: (None, "homesim.ground.search is missing"))
     text = "[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1)\n"
     r = client.post("/api/execute", json={"program": text, "home": "scene1"})
     assert r.status_code == 422
     error = r.json()["error"]
     assert error["kind"] == "grounding" and error["line"] == 2
     assert "<tv> (1) names no node of the home" in error["message"]
-    assert "homesim.sim.ground is missing" in error["message"]
+    assert "homesim.ground.search is missing" in error["message"]
     r = client.post("/api/execute", json={"program": text, "home": "scene1", "ground": True})
     assert r.status_code == 501 and "grounding is not available" in r.json()["error"]["message"]
 

@@ -11,7 +11,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from homesim.cli.common import console, read_graph, read_program
 from homesim.errors import GroundingError, HomesimError
 from homesim.examples import DEMO_HOME, load_example
-from homesim.sim.ground import prepare_and_ground
+from homesim.ground.search import prepare_and_ground
 
 
 def _render_module():

@@ -12,9 +12,9 @@ from rich.table import Table
 from homesim.cli.common import console, read_graph, read_program
 from homesim.errors import GroundingError, HomesimError
 from homesim.examples import DEMO_HOME, load_example
+from homesim.ground.prepare import Prepared
+from homesim.ground.search import Grounding, prepare_and_ground
 from homesim.sim.execute import ExecutionResult, execute
-from homesim.sim.ground import Grounding, prepare_and_ground
-from homesim.sim.prepare import Prepared
 from homesim.world.graph import EnvironmentGraph
 
 

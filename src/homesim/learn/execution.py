@@ -13,12 +13,12 @@ from __future__ import annotations
 from itertools import product
 
 from homesim.errors import GroundingError
+from homesim.ground.search import ground
 from homesim.learn.data import Example
 from homesim.learn.vocab import StepKey
 from homesim.program.actions import ACTIONS
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import execute, run_step
-from homesim.sim.ground import ground
 from homesim.sim.state import SimState
 
 _MAX_CHOICES = 64  # cap on node combinations tried for one step

@@ -1,7 +1,7 @@
 """Optional parts the API uses when they are installed: grounding and rendering.
 
 Both are looked up at request time, so the server picks them up as soon as they land
-(``homesim.sim.ground``, ``homesim.render``) and says clearly when they are missing.
+(``homesim.ground.search``, ``homesim.render``) and says clearly when they are missing.
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ def _optional_function(module: str, name: str) -> tuple[Callable[..., Any] | Non
 
 
 def grounding() -> tuple[Callable[..., Any] | None, str]:
-    """``ground(program, graph, seed=0) -> Grounding`` from `homesim.sim.ground`, if any."""
-    return _optional_function("homesim.sim.ground", "ground")
+    """``ground(program, graph, seed=0) -> Grounding`` from `homesim.ground.search`, if any."""
+    return _optional_function("homesim.ground.search", "ground")
 
 
 def keyframe_renderer() -> tuple[Callable[..., Any] | None, str]:

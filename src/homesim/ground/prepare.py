@@ -38,10 +38,10 @@ from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
+from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
+from homesim.ground.placement import place_box
+from homesim.ground.standing import FloorPlan, has_geometry
 from homesim.program.model import ObjectRef, Program
-from homesim.sim.kbtypes import ObjectKnowledge, class_names_for, default_kb
-from homesim.sim.placement import place_box
-from homesim.sim.standing import FloorPlan, has_geometry
 from homesim.sim.state import SimState
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.vocab import (

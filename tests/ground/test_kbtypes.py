@@ -1,5 +1,5 @@
+from homesim.ground.kbtypes import class_names_for
 from homesim.knowledge import load_kb
-from homesim.sim.kbtypes import class_names_for
 
 
 def test_script_names_reach_scene_classes_and_back():

@@ -3,10 +3,11 @@ import copy
 import pytest
 
 from homesim.errors import GroundingError
+from homesim.ground import ground, prepare
+from homesim.ground.placement import overlaps_xz, overlaps_y
 from homesim.knowledge import load_kb
 from homesim.program import parse_program
-from homesim.sim import execute, ground, prepare
-from homesim.sim.placement import overlaps_xz, overlaps_y
+from homesim.sim import execute
 from homesim.world import load_home
 
 WINE = "[Walk] <dining_room> (1)\n[Find] <wine_glass> (1)\n[Grab] <wine_glass> (1)"

@@ -1,6 +1,6 @@
 import math
 
-from homesim.sim.standing import AGENT_SIZE, FloorPlan, has_geometry
+from homesim.ground.standing import AGENT_SIZE, FloorPlan, has_geometry
 from homesim.world import load_home
 
 

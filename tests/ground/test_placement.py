@@ -1,6 +1,6 @@
 import random
 
-from homesim.sim.placement import overlaps_xz, overlaps_y, place_box
+from homesim.ground.placement import overlaps_xz, overlaps_y, place_box
 from homesim.world.graph import BoundingBox
 
 TABLE = BoundingBox((0.0, 0.4, 0.0), (1.0, 0.8, 0.6))

@@ -4,9 +4,10 @@ import math
 import pytest
 
 from homesim.errors import GroundingError
+from homesim.ground import ground, prepare, prepare_and_ground, unground
+from homesim.ground.standing import FloorPlan
 from homesim.program import parse_program
-from homesim.sim import execute, ground, prepare, prepare_and_ground, unground
-from homesim.sim.standing import FloorPlan
+from homesim.sim import execute
 from homesim.world import load_home
 from homesim.world.graph import EnvironmentGraph
 from tests.conftest import tiny_home_dict
