@@ -31,5 +31,5 @@ def grounding() -> tuple[Callable[..., Any] | None, str]:
 
 
 def keyframe_renderer() -> tuple[Callable[..., Any] | None, str]:
-    """``render_keyframes(program, graph, *, width, height, seed)`` from `homesim.render`."""
-    return _optional_function("homesim.render", "render_keyframes")
+    """``iter_keyframes(program, graph, *, width, height, seed)`` from `homesim.render`."""
+    return _optional_function("homesim.render", "iter_keyframes")
