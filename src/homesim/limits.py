@@ -73,9 +73,9 @@ RENDER_KEEP_JOBS = 16
 RENDER_KEEP_S = 600.0
 """Seconds a finished render job's frames stay available."""
 
-INLINE_PROGRAM_BYTES = 16 * 1024
-"""Programs up to this size are checked and run in the server process; larger ones go
-to a program worker process, so their parsing never holds up other requests."""
+INLINE_PROGRAM_CHARS = 16 * 1024
+"""Programs up to this many characters are checked and run in the server process; larger
+ones go to a program worker process, so their parsing never holds up other requests."""
 
 PROGRAM_WORKERS = 1
 """Worker processes for large programs."""

@@ -16,7 +16,7 @@ from homesim.serve import create_app
 
 @pytest.fixture(scope="session")
 def client() -> TestClient:
-    return TestClient(create_app(), raise_server_exceptions=False)
+    return TestClient(create_app(), base_url="http://127.0.0.1", raise_server_exceptions=False)
 
 
 @pytest.fixture(scope="session")
