@@ -9,6 +9,7 @@ from pathlib import Path
 
 from fastapi import FastAPI
 
+from homesim.limits import BODY_TIMEOUT_S
 from homesim.serve import homes, programs, renders
 from homesim.serve.errors import CatchBugs, SafeJSONResponse, install_error_handlers
 from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
@@ -27,6 +28,7 @@ async def _lifespan(app: FastAPI) -> AsyncIterator[None]:
 
 def create_app(static_dir: Path | None = None,
                max_body_bytes: int = MAX_BODY_BYTES,
+               body_timeout: float = BODY_TIMEOUT_S,
                allowed_hosts: Iterable[str] = LOOPBACK_HOSTS,
                render_jobs: renders.RenderJobs | None = None) -> FastAPI:
     """Build the editor's web app.
@@ -34,6 +36,7 @@ def create_app(static_dir: Path | None = None,
     Args:
         static_dir: the built editor (default: the package's ``static/``).
         max_body_bytes: larger request bodies get 413.
+        body_timeout: bodies not received within this many seconds get 408.
         allowed_hosts: Host header names served (default: loopback names; ``*``: any).
         render_jobs: the render queue (default: one with the limits of `homesim.limits`).
     """
@@ -48,7 +51,7 @@ def create_app(static_dir: Path | None = None,
     app.include_router(homes.router)
     app.include_router(programs.router)
     app.include_router(renders.router)
-    app.add_middleware(BodySizeLimit, max_bytes=max_body_bytes)
+    app.add_middleware(BodySizeLimit, max_bytes=max_body_bytes, timeout=body_timeout)
     app.add_middleware(HostCheck, allowed=allowed_hosts)
     app.add_middleware(CatchBugs)  # last: outermost, so a bug anywhere answers 500
     mount_editor(app, static_dir or default_static_dir())  # last: "/" catches the rest
