@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import atexit
-import contextlib
 import json
 import os
 import secrets
@@ -46,15 +45,12 @@ from homesim.serve.errors import ApiError, SafeJSONResponse, error_of
 from homesim.serve.images import encode_png
 from homesim.serve.programs import is_large, render_frames, render_plan
 from homesim.serve.schemas import RenderRequest
-from homesim.serve.workers import busy, worker_context
+from homesim.serve.workers import busy, lower_priority, worker_context
 
 router = APIRouter(prefix="/api", tags=["programs"])
 
 FrameSource = Callable[[Any], Iterable[tuple[int, Any]]]
 """``source(request) -> (step index, RGB frame) ...``, called in the worker process."""
-
-WORKER_NICE = 10
-"""Render workers run at a lower priority than the server's request handlers."""
 
 _POLL_S = 0.05
 
@@ -74,8 +70,7 @@ def run_job(source: FrameSource, request: Any, out_dir: str) -> None:
     """The body of a render worker process: PNGs as frames come, then ``done.json`` or
     ``error.json`` (status and error body, as the API answers them)."""
     out = Path(out_dir)
-    with contextlib.suppress(OSError):  # not allowed here: run at normal priority
-        os.nice(WORKER_NICE)
+    lower_priority()
     try:
         count = 0
         for index, rgb in source(request):
@@ -289,7 +284,8 @@ def _jobs(http: Request) -> RenderJobs:
 @router.post("/render", status_code=202, response_class=SafeJSONResponse)
 async def render(request: RenderRequest, http: Request) -> Response:
     """Queue a render of a program's key frames (one per step); 202 with the job's URL."""
-    function, why = optional.keyframe_renderer()
+    # In a thread: the first look imports mujoco (seconds), which must not stop the loop.
+    function, why = await run_in_threadpool(optional.keyframe_renderer)
     if function is None:
         raise ApiError(501, "render", f"rendering is not available on this server: {why} "
                        "(install the 'render' extra)")

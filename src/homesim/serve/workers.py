@@ -10,7 +10,9 @@ milliseconds, and none of them inherits the server's threads.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import multiprocessing
+import os
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -38,9 +40,22 @@ def worker_context() -> BaseContext:
     return multiprocessing.get_context("spawn")
 
 
+WORKER_NICE = 10
+"""Worker processes run at a lower priority than the server's request handlers."""
+
+
+def lower_priority() -> None:
+    """Nice the calling worker process (where allowed)."""
+    with contextlib.suppress(OSError):
+        os.nice(WORKER_NICE)
+
+
 def warm_up() -> None:
     """Start the fork server now (it imports `PRELOAD`, a second or two), not on the
-    first request that needs a worker."""
+    first request that needs a worker; and look for the renderer (imports mujoco)."""
+    from homesim.serve import optional
+
+    optional.keyframe_renderer()
     context = worker_context()
     if context.get_start_method() == "forkserver":
         from multiprocessing import forkserver
@@ -78,7 +93,8 @@ class ProgramPool:
         if self._pending >= self.workers + self.queue:
             raise busy(f"{self._pending} large programs are being checked")
         if self._executor is None:
-            self._executor = ProcessPoolExecutor(self.workers, mp_context=worker_context())
+            self._executor = ProcessPoolExecutor(self.workers, mp_context=worker_context(),
+                                                 initializer=lower_priority)
         self._pending += 1
         try:
             future = self._executor.submit(answer_in_worker, handler, request)
@@ -92,6 +108,11 @@ class ProgramPool:
         return Response(body, status_code=status, media_type="application/json")
 
     def close(self) -> None:
+        """Stop the workers now, even one in the middle of a request."""
         if self._executor is not None:
+            # shutdown() alone lets a busy worker finish (and outlive a stopping server)
+            processes = list((getattr(self._executor, "_processes", None) or {}).values())
             self._executor.shutdown(wait=False, cancel_futures=True)
+            for process in processes:
+                process.kill()
             self._executor = None
