@@ -54,7 +54,7 @@ class Bindings(Mapping[Key, int]):
                 if known != node:
                     raise BindingError(
                         f"{_where(index, step)}: <{ref.name}> ({ref.instance}) is node {node} "
-                        f"here but node {known} elsewhere; one object is one node",
+                        f"here but node {known} at an earlier step; one object is one node",
                         index + 1, f"<{ref.name}> ({ref.instance})", node)
         return cls(nodes)
 
