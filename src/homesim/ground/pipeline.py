@@ -144,17 +144,37 @@ def run_program(program: Program | str, home: EnvironmentGraph | str, *,
     prepared: Prepared | None = None
     graph = home
     try:
-        if program.is_grounded:
-            grounding = Grounding(program, Bindings.of(program), None, 0)
-        elif prepare:
-            prepared, grounding = prepare_and_ground(program, home, seed=seed, kb=kb)
+        prepared, grounding = _ground(program, home, prepare, seed, kb)
+        if prepared is not None:
             graph = prepared.graph
-        else:
-            grounding = ground(program, home, seed=seed, kb=kb)
         result = execute(grounding.program, graph, trace=trace, kb=kb)
     except (GroundingError, BindingError) as e:
         return _failed(program, e, e.step or None, graph)
     return _finished(program, result, prepared, grounding, graph)
+
+
+def runs(program: Program, home: EnvironmentGraph, *, prepare: bool = True, seed: int = 0,
+         kb: ObjectKnowledge | None = None) -> bool:
+    """``run_program(program, home, ...).executable``, for a program that is not grounded,
+    without the final execution (grounding's search has run every step already): the
+    check constrained decoding makes for each candidate step."""
+    if program.is_grounded:
+        return run_program(program, home, prepare=prepare, seed=seed, kb=kb).executable
+    try:
+        _ground(program, home, prepare, seed, kb or default_kb())
+    except GroundingError:
+        return False
+    return True
+
+
+def _ground(program: Program, home: EnvironmentGraph, prepare: bool, seed: int,
+            kb: ObjectKnowledge) -> tuple[Prepared | None, Grounding]:
+    """Preparation (if asked) and grounding; a grounded program is taken as it is."""
+    if program.is_grounded:
+        return None, Grounding(program, Bindings.of(program), None, 0)
+    if prepare:
+        return prepare_and_ground(program, home, seed=seed, kb=kb)
+    return None, ground(program, home, seed=seed, kb=kb)
 
 
 def _finished(program: Program, result: ExecutionResult, prepared: Prepared | None,

@@ -9,7 +9,7 @@ that step passes `run_program`, so a decoded program is executable by the same r
 
 from __future__ import annotations
 
-from homesim.ground.pipeline import Run, run_program
+from homesim.ground.pipeline import run_program, runs
 from homesim.learn.data import Example
 from homesim.learn.vocab import StepKey
 from homesim.program.actions import ACTIONS
@@ -23,29 +23,27 @@ SEED = 0
 class StepRunner:
     """A program growing one ungrounded step at a time in an example's home.
 
-    A step is accepted when `run_program` runs the steps accepted so far plus it. Verdicts
-    on candidate steps are kept until the program grows (decoding asks about the same
-    steps for every position of a batch).
+    A step is accepted when `run_program` runs the steps accepted so far plus it (checked
+    with `homesim.ground.pipeline.runs`: preparation and grounding, whose search runs every
+    step). Verdicts on candidate steps are kept until the program grows.
     """
 
     def __init__(self, example: Example):
         self.graph = example.graph()
         self.steps: tuple[Step, ...] = ()
-        self.last: Run | None = None
-        self._verdicts: dict[Step, Run] = {}
+        self._verdicts: dict[Step, bool] = {}
 
     @property
     def bound(self) -> Bindings:
-        """Program objects -> nodes of the prepared home, as the last accepted run bound them."""
-        bindings = None if self.last is None else self.last.bindings
+        """Program objects -> nodes of the prepared home, as `run_program` binds them."""
+        bindings = run_program(Program(self.steps), self.graph, seed=SEED).bindings
         return bindings if bindings is not None else Bindings()
 
-    def _run(self, step: Step) -> Run:
-        run = self._verdicts.get(step)
-        if run is None:
-            run = run_program(Program((*self.steps, step)), self.graph, seed=SEED)
-            self._verdicts[step] = run
-        return run
+    def _runs(self, step: Step) -> bool:
+        ok = self._verdicts.get(step)
+        if ok is None:
+            ok = self._verdicts[step] = runs(Program((*self.steps, step)), self.graph, seed=SEED)
+        return ok
 
     def try_refs(self, action: str, refs: tuple[tuple[str, int], ...]) -> bool:
         """Append the step if the program with it runs; else change nothing.
@@ -53,12 +51,11 @@ class StepRunner:
         `refs` are the step's objects as (class name, instance).
         """
         step = Step(ACTIONS[action], tuple(ObjectRef(*r) for r in refs))
-        run = self._run(step)
-        if run.executable:
+        ok = self._runs(step)
+        if ok:
             self.steps += (step,)
-            self.last = run
             self._verdicts = {}
-        return run.executable
+        return ok
 
     def try_step(self, key: StepKey) -> bool:
         """`try_refs` for a vocabulary step (every object is instance 1)."""
@@ -67,7 +64,7 @@ class StepRunner:
     def can_run(self, key: StepKey) -> bool:
         """Whether the step could be appended now (nothing changes)."""
         step = Step(ACTIONS[key[0]], tuple(ObjectRef(name, 1) for name in key[1]))
-        return self._run(step).executable
+        return self._runs(step)
 
 
 def executable(program: Program, example: Example) -> bool:
