@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import random
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
 
@@ -140,6 +140,12 @@ class Prepared:
     graph: EnvironmentGraph
     added: list[Addition]
     states: list[tuple[int, frozenset[str], frozenset[str]]] = field(default_factory=list)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: additions (as `Addition` fields) and states {node, before, after}."""
+        return {"added": [asdict(a) for a in self.added],
+                "states": [{"node": n, "before": sorted(a), "after": sorted(b)}
+                           for n, a, b in self.states]}
 
 
 def first_use(program: Program, key: tuple[str, int]) -> tuple[int, str]:

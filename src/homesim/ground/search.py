@@ -31,11 +31,13 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass, field
+from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
 from homesim.ground.standing import FloorPlan, Spot, has_geometry
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
@@ -54,7 +56,7 @@ class Grounding:
 
     Attributes:
         program: the program with every object ref bound to a node (``<cup> (1.417)``).
-        bindings: (class name, instance) -> node id, for `homesim.sim.execute`.
+        bindings: (class name, instance) -> node id: the same binding as a map.
         standing: step index (0-based) -> (x, z) where the agent stands for that step,
             when the home has geometry; else None. Steps that act on what the agent holds
             keep the previous spot.
@@ -62,9 +64,18 @@ class Grounding:
     """
 
     program: Program
-    bindings: dict[Key, int]
+    bindings: Bindings
     standing: dict[int, Spot] | None
     step_runs: int
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: grounded program, bindings, standing spots ({"0": [x, z]}), effort."""
+        standing = None
+        if self.standing is not None:
+            standing = {str(i): [round(x, 3), round(z, 3)]
+                        for i, (x, z) in sorted(self.standing.items())}
+        return {"program": str(self.program), "bindings": self.bindings.to_list(),
+                "standing": standing, "step_runs": self.step_runs}
 
 
 class _OutOfBudget(Exception):
@@ -333,7 +344,7 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     if not program.steps:
-        return Grounding(program, {}, None, 0)
+        return Grounding(program, Bindings(), None, 0)
     geometry = has_geometry(graph)
     search = _Search(program, graph, seed, kb, budget, geometry)
     stopped = False
@@ -343,7 +354,7 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
         result, stopped = set(), True
     if result is not None:
         raise _failure(search, stopped)
-    bindings = dict(search.assign)
+    bindings = Bindings(search.assign)
     grounded = program.with_steps([
         Step(step.action, tuple(ref.ground(bindings[ref.key]) for ref in step.args))
         for step in program.steps])
