@@ -8,7 +8,7 @@ export interface Action {
   key: string; name: string; arity: number; category: string; animated: boolean;
   description: string;
   connector: string | null; // the word between the two objects of a block (PutBack: "on")
-  aliases: string[]; // other spellings of the key (PUT for PutBack)
+  aliases: string[]; // other spellings of the key, as data sets write it
   needs: string[][][]; // per argument, requirements: properties of which one is needed
 }
 export interface Category { id: string; label: string; actions: Action[] }
