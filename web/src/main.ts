@@ -88,7 +88,7 @@ function placeBubble(block: Blockly.BlockSvg, bubble: Blockly.bubbles.Bubble): v
   bubble.setPositionRelativeToAnchor(0, 0); // offsets count from the anchor: find it
   const anchor = bubble.getRelativeToSurfaceXY();
   const left = fitsBeside ? at.x + block.width + 8 : at.x;
-  const top = fitsBeside ? at.y - 8 : at.y + block.height + 8;
+  const top = fitsBeside ? at.y : at.y + block.height + 4;
   bubble.setPositionRelativeToAnchor(left - anchor.x, top - anchor.y);
   const placed = bubble.getRelativeToSurfaceXY();
   ws.scrollBoundsIntoView(new Blockly.utils.Rect(placed.y, placed.y + box.height, placed.x,
