@@ -336,6 +336,10 @@ async function main() {
     await runAndWait(page);
     check(await page.locator("#results li.ok").count() === 5, "the README program does not run");
     if (opts.shots) await page.screenshot({ path: `${opts.shots}/readme.png` });
+    // Picked nodes beside unbound objects are bound again by the server: the status says so.
+    await page.locator("#text").fill("[Walk] <tv> (1)\n[Walk] <sofa> (1.352)\n");
+    await page.waitForFunction(() => document.querySelector("#status").textContent
+      .includes("picks every object anew"));
 
     check(errors.length === 0, `browser errors: ${errors.join(" | ")}`);
     console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000,

@@ -51,6 +51,14 @@ function asShown(message: string, line: number | null): string {
   return line === null ? message : message.replace(/^line \d+:/, `line ${lineShown(line)}:`);
 }
 
+/** Whether `text` has both objects picked from the home and unbound ones: the server
+ * then binds them all again (a partly grounded program counts as ungrounded). */
+function mixesBoundAndUnbound(text: string): boolean {
+  const refs = [...text.matchAll(/<[^<>]*>\s*\(\s*\d+\s*(\.\s*\d+)?\s*\)/g)];
+  const bound = refs.filter((m) => m[1] !== undefined).length;
+  return bound > 0 && bound < refs.length;
+}
+
 function clearResults(): void {
   resultList.replaceChildren();
   frameBox.replaceChildren();
@@ -152,7 +160,9 @@ async function validate(): Promise<void> {
       markBlock(problem.line, asShown(problem.message, problem.line));
     }
     if (result.ok) {
-      setStatus(`✓ valid program, ${generated.blockAtLine.size} steps`, "ok");
+      const note = mixesBoundAndUnbound(sent)
+        ? " (it has \"any\" objects, so the server picks every object anew when it runs)" : "";
+      setStatus(`✓ valid program, ${generated.blockAtLine.size} steps${note}`, "ok");
     } else {
       clearResults(); // they were for an earlier program
       const first = result.problems[0];
