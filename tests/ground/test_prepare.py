@@ -140,3 +140,19 @@ def test_clothes_taken_off_first_are_worn():
     assert {a.class_name for a in worn} == {"clothes_pants", "clothes_shirt"}
     assert all(a.relation == "ON" and g.node(a.room).class_name == "bedroom" for a in worn)
     assert execute(ground(p, g).program, g).executable
+
+
+def test_a_second_character_outside_every_room_is_a_grounding_error_not_a_key_error():
+    from homesim.ground import prepare_and_ground
+    from homesim.world.graph import EnvironmentGraph
+    from tests.conftest import tiny_home_dict
+
+    d = tiny_home_dict()
+    d["nodes"].append({"id": 20, "class_name": "character", "category": "Characters"})
+    home = EnvironmentGraph.from_dict(d)
+    # the book is placed near the character the program walks to, which has no room
+    program = parse_program("[Walk] <character> (1)\n[Grab] <book> (1)")
+    with pytest.raises(GroundingError, match="character 20 is not in any room"):
+        prepare_and_ground(program, home)
+    prep = prepare(program, home)  # was KeyError: None (room_rank of no room)
+    assert [a.class_name for a in prep.added] == ["book"]

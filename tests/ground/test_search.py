@@ -73,6 +73,19 @@ def test_backtracks_over_earlier_choices_without_touching_the_graph():
     assert home.to_dict() == before
 
 
+def test_a_thousand_steps_ground_and_backtrack_without_recursion():
+    # The API accepts 1000 steps; a recursive search hit RecursionError near 990 (issue 12).
+    home = two_tv_home(["ON"])
+    p = parse_program("[Walk] <tv> (1)\n" + "[TurnTo] <tv> (1)\n" * 998 + "[SwitchOn] <tv> (1)")
+    chose_on_first = 0
+    for seed in range(4):
+        g = ground(p, home, seed=seed)
+        assert g.bindings[("tv", 1)] == 14 and len(g.program.steps) == 1000
+        chose_on_first += g.step_runs > 1000  # the tv that is on was tried first, undone
+    assert chose_on_first  # some seed backtracked over all 999 steps
+    assert execute(g.program, home).executable
+
+
 def test_prefers_objects_near_the_ones_already_chosen():
     home = load_home("scene1_trimmed")
     p = parse_program("[Walk] <computer> (1)\n[SwitchOn] <computer> (1)\n"

@@ -61,7 +61,9 @@ def test_too_many_steps_is_422(client):
     text = "[Walk] <tv> (1.410)\n" * 1001
     r = client.post("/api/execute", json={"program": text, "home": "scene1"})
     assert r.status_code == 422
-    assert "1001 steps, over the limit of 1000" in r.json()["error"]["message"]
+    error = r.json()["error"]
+    assert "more than 1000 steps, over the limit of 1000 steps" in error["message"]
+    assert error["kind"] == "limit" and error["limit"] == "MAX_STEPS"
 
 
 def test_execute_watch_tv_every_step_passes(client, watch_tv):
@@ -200,3 +202,13 @@ def test_every_real_program_file_validates_with_its_lines(client, real_data):
         data = r.json()
         lines = text.splitlines()
         assert all(lines[s["line"] - 1].strip().startswith("[") for s in data["steps"]), path.name
+
+
+@pytest.mark.parametrize("route", ["/api/validate", "/api/execute"])
+def test_huge_id_is_422_naming_the_limit(client, route):
+    text = "[Walk] <tv> (" + "9" * 4301 + ")"  # was a 500 (ValueError from int())
+    r = client.post(route, json={"program": text, "home": "scene1"})
+    assert r.status_code == 422
+    error = r.json()["error"]
+    assert "MAX_ID_DIGITS" in error["message"] and error["line"] == 1
+    assert len(error["text"]) <= 81

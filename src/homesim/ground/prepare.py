@@ -485,8 +485,11 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     # Where the agent is when the program needs the object: put it within reach.
     walked_into = context.room_before.get(ref.key, [])
 
-    def room_rank(room: int) -> int:
-        """0: the room the agent walked into before; 1: a room the program names."""
+    def room_rank(room: int | None) -> int:
+        """0: the room the agent walked into before; 1: a room the program names; 2: other
+        rooms and no room (a node outside every room, e.g. a second character)."""
+        if room is None:
+            return 2
         if graph.nodes[room].class_name in walked_into:
             return 0
         return 1 if room in context.rooms else 2

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import difflib
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
@@ -72,6 +72,24 @@ class _OutOfBudget(Exception):
     pass
 
 
+@dataclass(slots=True)
+class _Ran:
+    """A step that ran; undone (to `mark`) when the steps after it fail."""
+
+    mark: int
+
+
+@dataclass(slots=True)
+class _Choice:
+    """Candidates for the first unbound object of step `step`; `pos` is the next one to
+    try, `node` the one bound now, `blame` what the tries so far blamed."""
+
+    step: int
+    ref: ObjectRef
+    candidates: list[int]
+    pos: int = 0
+    node: int = -1
+    blame: set[Key] = field(default_factory=set)
 
 
 class _Search:
@@ -116,14 +134,32 @@ class _Search:
         self.fixed = [d[0] for d in self.domains.values() if len(d) == 1]
 
     # ------------------------------------------------------------------ search
-    def solve(self, i: int) -> set[Key] | None:
-        """Bind and run steps i.. ; None on success, else the objects to blame."""
+    # The search is depth-first over steps and choices; it keeps its frames on an explicit
+    # stack (not Python's), so a program of any length grounds without a recursion limit.
+    # `_enter(i)` starts "solve steps i..": it returns the next step index to enter, or a
+    # result (None: solved; a set: the objects to blame) for the frame on top of the stack.
+
+    def solve(self) -> set[Key] | None:
+        """Bind and run every step; None on success, else the objects to blame."""
+        stack: list[_Ran | _Choice] = []
+        action = self._enter(0, stack)
+        while True:
+            if isinstance(action, int):
+                action = self._enter(action, stack)
+            elif not stack:
+                return action
+            else:
+                action = self._resume(stack.pop(), action, stack)
+
+    def _enter(self, i: int, stack: list[_Ran | _Choice]) -> int | set[Key] | None:
+        """Start solving steps i..: bind the step's first unbound object, or run it."""
         if i == len(self.steps):
             return None
         step = self.steps[i]
         for ref in step.args:
             if ref.key not in self.assign:
-                return self.choose(i, ref)
+                self.tried.setdefault(ref.key, [])
+                return self._next_choice(_Choice(i, ref, self.order(ref.key)), stack)
         ids = tuple([self.assign[ref.key] for ref in step.args])
         self.runs += 1
         if self.runs > self.budget:
@@ -141,38 +177,50 @@ class _Search:
                 self.deepest_bindings = dict(self.assign)
             st.undo(mark)
             return self.blame(step)
-        blame = self.solve(i + 1)
-        if blame is not None:
-            st.undo(mark)
-        return blame
+        stack.append(_Ran(mark))
+        return i + 1
 
-    def choose(self, i: int, ref: ObjectRef) -> set[Key] | None:
-        key = ref.key
-        blame: set[Key] = set()
-        tried = self.tried.setdefault(key, [])
-        for node in self.order(key):
+    def _resume(self, frame: _Ran | _Choice, result: set[Key] | None,
+                stack: list[_Ran | _Choice]) -> int | set[Key] | None:
+        """Hand the result of the steps after `frame` back to it."""
+        if isinstance(frame, _Ran):
+            if result is not None:
+                self.st.undo(frame.mark)
+            return result
+        if result is None:
+            return None
+        key = frame.ref.key
+        del self.assign[key]
+        del self.owner[frame.node]
+        if key not in result:
+            return result  # backjump: this object's choice is not to blame
+        frame.blame |= result
+        return self._next_choice(frame, stack)
+
+    def _next_choice(self, frame: _Choice, stack: list[_Ran | _Choice]) -> int | set[Key]:
+        """Bind the frame's object to its next free candidate, or give up with the blame."""
+        key = frame.ref.key
+        tried = self.tried[key]
+        while frame.pos < len(frame.candidates):
+            node = frame.candidates[frame.pos]
+            frame.pos += 1
             other = self.owner.get(node)
             if other is not None:
-                blame.add(other)
+                frame.blame.add(other)
                 continue
             if node not in tried:
                 tried.append(node)
             self.assign[key] = node
             self.owner[node] = key
-            result = self.solve(i)
-            if result is None:
-                return None
-            del self.assign[key]
-            del self.owner[node]
-            if key not in result:
-                return result  # backjump: this object's choice is not to blame
-            blame |= result
-        if self.owner.keys() >= set(self.domains[key]) and i >= self.deepest[0]:
+            frame.node = node
+            stack.append(frame)
+            return frame.step
+        if self.owner.keys() >= set(self.domains[key]) and frame.step >= self.deepest[0]:
             taken = len(self.domains[key])
-            self.deepest = (i, f"all {taken} instances of <{ref.name}> in the home are "
-                               "bound to other objects of the program")
-        blame.discard(key)
-        return blame
+            self.deepest = (frame.step, f"all {taken} instances of <{frame.ref.name}> in the "
+                                        "home are bound to other objects of the program")
+        frame.blame.discard(key)
+        return frame.blame
 
     def blame(self, step: Step) -> set[Key]:
         """The objects a failed step may depend on: its own and those the character is
@@ -298,7 +346,7 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     search = _Search(program, graph, seed, kb, budget, geometry)
     stopped = False
     try:
-        result = search.solve(0)
+        result = search.solve()
     except _OutOfBudget:
         result, stopped = set(), True
     if result is not None:

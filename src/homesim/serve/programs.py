@@ -14,7 +14,7 @@ from homesim.serve.errors import ApiError
 from homesim.serve.homes import get_home
 from homesim.serve.images import png_data_url
 from homesim.serve.results import execution_json, program_json, step_lines
-from homesim.serve.schemas import MAX_STEPS, ExecuteRequest, ProgramRequest, RenderRequest
+from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest
 from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
@@ -24,13 +24,13 @@ _SOURCE = None  # messages read "line 3: ..."; the editor has one text
 
 
 def parse_request(text: str) -> tuple[Program, list[int]]:
-    """Parse a program from a request, with the line of each step; 422 when it is empty."""
-    program = parse_program(text, source=_SOURCE)  # a ProgramError answers 422 with its line
+    """Parse a program from a request, with the line of each step; 422 when it is empty.
+
+    A ProgramError answers 422 with its line, a LimitError (over `homesim.limits`) 413 or
+    422 naming the limit."""
+    program = parse_program(text, source=_SOURCE)
     if not program.steps:
         raise ApiError(422, "program", "the program has no steps")
-    if len(program.steps) > MAX_STEPS:
-        raise ApiError(422, "program", f"{len(program.steps)} steps, over the "
-                       f"limit of {MAX_STEPS} steps per request")
     return program, step_lines(text)
 
 

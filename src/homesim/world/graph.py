@@ -20,10 +20,8 @@ from pathlib import Path
 from typing import Any
 
 from homesim.errors import GraphError
+from homesim.limits import MAX_GRAPH_BYTES
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS, ROOM_CATEGORY
-
-MAX_GRAPH_BYTES = 256 * 1024 * 1024
-"""Largest graph file `EnvironmentGraph.load` reads (a home is a few MB at most)."""
 
 _EMPTY: frozenset[int] = frozenset()
 _NODE_KEYS = ("id", "class_name", "category", "properties", "states", "prefab_name",
