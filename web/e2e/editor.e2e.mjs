@@ -320,6 +320,14 @@ async function main() {
       return bubbleInPane(page, GRAB_REASON);
     })();
     check(grabBubble?.inside, `the Grab bubble is not inside the pane: ${JSON.stringify(grabBubble)}`);
+    // A narrow window: no room beside the block, so the bubble goes under it.
+    await page.setViewportSize({ width: 900, height: 820 });
+    await runAndWait(page);
+    await page.locator(".blocklyBubble", { hasText: GRAB_REASON }).first().waitFor({ state: "visible" });
+    const narrowBubble = await bubbleInPane(page, GRAB_REASON);
+    check(narrowBubble?.inside,
+      `in a 900 px window the Grab bubble is not inside the pane: ${JSON.stringify(narrowBubble)}`);
+    await page.setViewportSize({ width: 1400, height: 820 });
 
     // 10. A README-style program (objects by class, no node ids) becomes action blocks with
     // unbound objects ("any tv (1)"), keeps its refs as written, and runs (the server binds them).
