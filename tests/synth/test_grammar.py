@@ -1,8 +1,8 @@
 import random
 
+from homesim.knowledge.datasets import ActivityProgram
 from homesim.program.actions import ANIMATED
 from homesim.sim import execute
-from homesim.knowledge.datasets import ActivityProgram
 from homesim.synth import Grammar, generate
 from homesim.world import load_home
 

@@ -87,12 +87,12 @@ def _tidy(typer_app: typer.Typer) -> None:
 _tidy(app)
 
 
-class _Terminated(KeyboardInterrupt):
-    """SIGTERM, raised like Ctrl-C so that `finally` blocks clean up before we exit."""
+class _Terminated(SystemExit):
+    """SIGTERM as an exception, so that `finally` blocks clean up before we exit (143)."""
 
 
 def _raise_terminated(signum: int, frame: object) -> None:
-    raise _Terminated
+    raise _Terminated(128 + signum)
 
 
 @contextmanager
@@ -119,7 +119,7 @@ def main(argv: list[str] | None = None) -> int:
 
     With ``--json`` the error is a JSON object ``{"error": message}`` on standard output.
     Ctrl-C and SIGTERM stop the command after its clean-up (temporary files, child
-    processes) and exit with 130 and 143.
+    processes: `finally` blocks run) and exit with 130 and 143.
     """
     try:
         with _terminate_as_exception():
@@ -132,10 +132,8 @@ def main(argv: list[str] | None = None) -> int:
         else:
             err_console.print(f"[red]error[/]: {escape(str(e))}")
         return 2
-    except KeyboardInterrupt as e:
-        terminated = isinstance(e, _Terminated)
-        err_console.print("[red]terminated[/]" if terminated else "[red]interrupted[/]")
-        return 128 + (signal.SIGTERM if terminated else signal.SIGINT)
+    except KeyboardInterrupt:  # typer turns Ctrl-C during a command into exit code 130
+        return 128 + signal.SIGINT
     except Exception as e:  # a bug of ours: one line, the traceback only on request
         if os.environ.get("HOMESIM_DEBUG"):
             raise

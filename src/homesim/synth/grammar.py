@@ -313,7 +313,8 @@ def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
     return ActivityProgram(program_id, program, SOURCE, home=home, bindings=bindings)
 
 
-def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES) -> Iterator[ActivityProgram]:
+def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES
+             ) -> Iterator[ActivityProgram]:
     """`n` programs; the same seed gives the same programs."""
     rng = random.Random(seed)
     grammar = Grammar(homes)
