@@ -14,11 +14,14 @@ import homesim
 SRC = str(Path(homesim.__file__).resolve().parents[1])
 
 
-def start_cli(args: list[str], env: dict[str, str] | None = None) -> subprocess.Popen:
-    """`homesim ARGS` in a child process of this Python, with this checkout's sources."""
+def start_cli(args: list[str], env: dict[str, str] | None = None,
+              prelude: str = "") -> subprocess.Popen:
+    """`homesim ARGS` in a child process of this Python, with this checkout's sources;
+    `prelude` is Python code run first (e.g. to put a stand-in for pip)."""
     full_env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [SRC, *filter(None, [os.environ.get("PYTHONPATH")])]), **(env or {})}
-    return subprocess.Popen([sys.executable, "-m", "homesim.cli.main", *args], env=full_env,
+    code = f"{prelude}\nimport sys\nfrom homesim.cli.main import main\nsys.exit(main({args!r}))"
+    return subprocess.Popen([sys.executable, "-c", code], env=full_env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
