@@ -31,7 +31,7 @@ def wait_for(condition: Callable[[], bool], proc: subprocess.Popen,
     deadline = time.monotonic() + timeout
     while not condition():
         if proc.poll() is not None:
-            out, err = proc.communicate()
+            _, err = proc.communicate()
             raise AssertionError(f"homesim exited with {proc.returncode} too early: {err}")
         if time.monotonic() > deadline:
             proc.kill()
