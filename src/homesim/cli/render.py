@@ -73,7 +73,7 @@ def render(
 
     try:
         result = r.render_program(prog, g, out, width=width, height=height, fps=fps,
-                                  seed=seed, progress=progress, agent=agent)
+                                  seed=seed, progress=progress, agent=agent, home=gname)
     finally:
         if task is not None:
             bar.stop()
