@@ -20,7 +20,7 @@ def test_write_replaces_in_one_step_with_the_usual_mode(tmp_path):
 def test_refuses_to_overwrite_without_force(tmp_path):
     path = tmp_path / "a.txt"
     path.write_text("mine")
-    with pytest.raises(HomesimError, match="a.txt: already exists; pass --force"):
+    with pytest.raises(HomesimError, match=r"a\.txt: already exists; pass --force"):
         write_text(path, "new", force=False)
     assert path.read_text() == "mine"
 
