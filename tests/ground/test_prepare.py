@@ -124,7 +124,7 @@ def test_a_missing_room_cannot_be_added():
 
 def test_an_unknown_object_cannot_be_placed():
     with pytest.raises(GroundingError, match=r"step 2 \[Grab\] <flux_capacitor> \(1\): the "
-                       "home has too few flux_capacitor.*does not know 'flux_capacitor'"):
+                       "home has no flux_capacitor.*does not know 'flux_capacitor'"):
         prepare(parse_program("[Walk] <dining_room> (1)\n[Grab] <flux_capacitor> (1)"),
                 load_home("scene1_trimmed"))
 

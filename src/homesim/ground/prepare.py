@@ -473,7 +473,8 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     step_no, step_text = first_use(program, ref.key)
     where = f"step {step_no} {step_text}: " if step_no else ""
     names = context.names[name]
-    lacks = f"the home has too few {' or '.join(names)} for <{name}> ({ref.instance})"
+    lacks = (f"the home has {'too few' if _instances(st, names, added) else 'no'} "
+             f"{' or '.join(names)} for <{name}> ({ref.instance})")
     if (name == CHARACTER_CLASS or ROOM_NAMES.intersection(names)
             or any(n.is_room for c in names for n in graph.nodes_of_class(c))):
         raise GroundingError(f"{where}{lacks}; rooms and characters cannot be added",
