@@ -46,24 +46,31 @@ def test_schema_error_names_the_field():
 def test_a_lone_surrogate_in_a_request_is_answered_not_500(client):
     # JSON may escape a lone surrogate; Python decodes it, UTF-8 cannot encode it.
     body = '{"program": "Title \\ud800\\nabout\\n\\n[Walk] <tv> (1.410)", "home": "scene1"}'
-    for route in ("validate", "execute"):
+    for route in ("validate", "execute", "render"):
         r = client.post(f"/api/{route}", content=body,
                         headers={"content-type": "application/json"})
-        assert r.status_code == 200, r.text
-    assert r.json()["program"].startswith("Title \ufffd\n")
-    r = client.post("/api/validate", content='{"program": "[W\\udfff] <tv> (1)"}',
+        assert r.status_code == 422 and "lone surrogate" in r.json()["error"]["message"]
+    r = client.post("/api/validate", content='{"program": "[Walk] <tv> (1)", "home": "\\udfff"}',
                     headers={"content-type": "application/json"})
-    assert r.status_code == 422 and "W\ufffd" in r.json()["error"]["message"]
+    assert r.status_code == 404
+
+
+def test_every_json_answer_serialises_lone_surrogates_as_replacement_characters():
+    from homesim.serve.errors import SafeJSONResponse, error_response
+
+    assert SafeJSONResponse({"text": "a\ud800b"}).body == '{"text":"a\ufffdb"}'.encode()
+    assert b"\xef\xbf\xbd" in error_response(422, "program", "line 1: W\udfff").body
 
 
 def test_long_error_texts_are_clipped(client):
     from homesim.limits import MAX_MESSAGE_CHARS
+    from homesim.serve.errors import error_response
 
     r = client.post("/api/validate", json={"program": "[Walk] <tv> (1) " * 4000})
-    assert r.status_code == 422
-    error = r.json()["error"]
-    assert len(error["message"]) <= MAX_MESSAGE_CHARS and error["message"].endswith("…")
-    assert len(r.content) < 4 * MAX_MESSAGE_CHARS
+    assert r.status_code == 422 and len(r.content) < 4 * MAX_MESSAGE_CHARS
+    body = error_response(422, "program", "x" * 10_000, text="y" * 10_000).body.decode()
+    assert body == ('{"error":{"kind":"program","message":"' + "x" * (MAX_MESSAGE_CHARS - 1)
+                    + '…","text":"' + "y" * (MAX_MESSAGE_CHARS - 1) + '…"}}')
 
 
 def _exchange(sock, request: bytes) -> bytes:

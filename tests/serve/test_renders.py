@@ -114,6 +114,25 @@ def test_a_render_job_over_its_time_is_stopped(watch_tv):
         assert client.get(status["frames"][0]["url"]).status_code == 200
 
 
+def test_render_grounds_an_ungrounded_program_first(monkeypatch):
+    from homesim.serve import programs
+
+    def fake_render(program, graph, *, width, height, seed):
+        assert str(program).startswith("[Walk] <tv> (1.")  # grounded to a node of scene1
+        yield 0, [[[0, 0, 0]] * width] * height
+
+    monkeypatch.setattr(programs, "keyframe_renderer", lambda: fake_render)  # forked workers
+    with _client() as client:
+        job = client.post("/api/render", json={"program": "[Walk] <tv> (1)", "home": "scene1",
+                                               "width": 16, "height": 16}).json()
+        assert _wait(client, job)["status"] == "done"
+        job = client.post("/api/render",
+                          json={"program": "[Walk] <garage> (1)", "home": "scene1"}).json()
+        status = _wait(client, job)
+        assert status["status"] == "failed" and status["error"]["kind"] == "grounding"
+        assert status["error"]["status"] == 422
+
+
 def test_unknown_render_job_is_404(client):
     r = client.get("/api/render/0123456789abcdef")
     assert r.status_code == 404 and "no render job" in r.json()["error"]["message"]

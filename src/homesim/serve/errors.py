@@ -18,7 +18,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException
 
-from homesim.errors import HomesimError, ProgramError
+from homesim.errors import HomesimError, LimitError, ProgramError
 from homesim.limits import MAX_JSON_DEPTH, MAX_MESSAGE_CHARS
 
 log = logging.getLogger(__name__)
@@ -92,10 +92,17 @@ def error_of(e: Exception) -> tuple[int, dict[str, Any]]:
         return e.status, error_body(e.kind, e.message, **e.extra)
     if isinstance(e, ProgramError):
         return 422, error_body("program", str(e), **program_error_fields(e))
+    if isinstance(e, LimitError):
+        return limit_status(e), error_body("limit", str(e), limit=e.limit)
     if isinstance(e, HomesimError):
         return 422, error_body(type(e).__name__, str(e))
     log.error("internal error", exc_info=e)
     return 500, error_body("internal", bug_message(e))
+
+
+def limit_status(e: LimitError) -> int:
+    """413 for a size in bytes over its limit, 422 for other limits."""
+    return 413 if e.limit.endswith("_BYTES") else 422
 
 
 def bug_message(e: BaseException) -> str:
@@ -130,6 +137,10 @@ def install_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(ProgramError)
     async def _program(_: Request, e: ProgramError) -> JSONResponse:
         return error_response(422, "program", str(e), **program_error_fields(e))
+
+    @app.exception_handler(LimitError)
+    async def _limit(_: Request, e: LimitError) -> JSONResponse:
+        return error_response(limit_status(e), "limit", str(e), limit=e.limit)
 
     @app.exception_handler(HomesimError)
     async def _homesim(_: Request, e: HomesimError) -> JSONResponse:

@@ -10,10 +10,10 @@ import time
 from collections.abc import Awaitable, Callable, MutableMapping
 from typing import Any
 
-from homesim.limits import BODY_TIMEOUT_S, MAX_JSON_DEPTH
+from homesim.limits import BODY_TIMEOUT_S, MAX_JSON_DEPTH, MAX_REQUEST_BYTES
 
-MAX_BODY_BYTES = 256 * 1024
-"""Largest request body the API accepts (real programs are under 2 KB)."""
+MAX_BODY_BYTES = MAX_REQUEST_BYTES
+"""Largest request body the API accepts (see `homesim.limits`)."""
 
 Scope = MutableMapping[str, Any]
 Message = MutableMapping[str, Any]

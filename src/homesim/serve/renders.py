@@ -40,7 +40,7 @@ from homesim.limits import (
     RENDER_TIMEOUT_S,
     RENDER_WORKERS,
 )
-from homesim.serve import optional
+from homesim.serve import programs
 from homesim.serve.errors import ApiError, SafeJSONResponse, error_of
 from homesim.serve.images import encode_png
 from homesim.serve.programs import is_large, render_frames, render_plan
@@ -285,10 +285,7 @@ def _jobs(http: Request) -> RenderJobs:
 async def render(request: RenderRequest, http: Request) -> Response:
     """Queue a render of a program's key frames (one per step); 202 with the job's URL."""
     # In a thread: the first look imports mujoco (seconds), which must not stop the loop.
-    function, why = await run_in_threadpool(optional.keyframe_renderer)
-    if function is None:
-        raise ApiError(501, "render", f"rendering is not available on this server: {why} "
-                       "(install the 'render' extra)")
+    await run_in_threadpool(programs.keyframe_renderer)  # 501 without the render extra
     if is_large(request):
         checked = await http.app.state.programs.answer(render_plan, request)
         if checked.status_code != 200:

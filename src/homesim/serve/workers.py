@@ -53,9 +53,11 @@ def lower_priority() -> None:
 def warm_up() -> None:
     """Start the fork server now (it imports `PRELOAD`, a second or two), not on the
     first request that needs a worker; and look for the renderer (imports mujoco)."""
-    from homesim.serve import optional
+    from homesim.serve.errors import ApiError
+    from homesim.serve.programs import keyframe_renderer
 
-    optional.keyframe_renderer()
+    with contextlib.suppress(ApiError):  # no renderer: POST /api/render answers 501
+        keyframe_renderer()
     context = worker_context()
     if context.get_start_method() == "forkserver":
         from multiprocessing import forkserver
