@@ -134,7 +134,9 @@ class ExecutionResult:
 
         label = self.state.label
         steps = [rec.to_dict(label, line(rec.index)) for rec in self.trace or []]
-        done = len(steps) if self.trace is not None else self.steps_run
+        done = len(steps)  # without a trace: the steps after the failed one are not run
+        if self.trace is None:
+            done = len(self.program.steps) if self.failed_index is None else self.failed_index + 1
         return {
             "program": str(self.program),
             "executable": self.executable,

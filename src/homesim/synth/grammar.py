@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from functools import cache
 
 from homesim.program.actions import ACTIONS
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
@@ -66,14 +67,14 @@ class SynthProgram:
         id: ``synth-<seed>-<index>``.
         home: built-in home name (`homesim.load_home`).
         program: ungrounded program with title and description.
-        bindings: (class name, instance) -> node id of `home`; executing `program` with
-            these bindings on the home succeeds.
+        bindings: (class name, instance) -> node id of `home` (`homesim.program.Bindings`);
+            executing `program` with these bindings on the home succeeds.
     """
 
     id: str
     home: str
     program: Program
-    bindings: dict[tuple[str, int], int] = field(default_factory=dict)
+    bindings: Bindings = field(default_factory=Bindings)
 
     def to_json(self) -> dict:
         return {"id": self.id, "home": self.home, "title": self.program.title,
@@ -87,7 +88,7 @@ class SynthProgram:
 
         text = f"{data['title']}\n{data['description']}\n\n" + "\n".join(data["steps"])
         program = parse_program(text, source=data["id"])
-        bindings = {(n, int(i)): int(v) for n, i, v in data["bindings"]}
+        bindings = Bindings(((n, int(i)), int(v)) for n, i, v in data["bindings"])
         return cls(data["id"], data["home"], program, bindings)
 
 
@@ -336,7 +337,7 @@ def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
     first = chosen[0].kind
     title = next(t for k, t in templates.TITLES.items() if first.startswith(k))
     program = Program(tuple(steps), title, templates.join(phrases, rng))
-    bindings = {key: node for node, key in instance.items()}
+    bindings = Bindings((key, node) for node, key in instance.items())
     return SynthProgram(program_id, home, program, bindings)
 
 
