@@ -83,7 +83,7 @@ def test_every_entry_point_gives_the_same_verdict_and_message(
     assert _cli(home, text, tmp_path) == library
     assert _api(client, home, text) == library
     program = homesim.parse_program(text)
-    example = Example("case", "", program, "", home)
+    example = Example("case", program, home=home)
     assert reward_executable(program, example) == executable
     if not program.is_grounded:  # decoding builds ungrounded programs step by step
         assert runs_greedily(program, example) == executable

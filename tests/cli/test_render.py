@@ -31,7 +31,8 @@ def test_render_writes_a_recording_and_preview(tmp_path, graph_file, capsys):
     text = capsys.readouterr().out
     assert "frames" in text and "preview" in text
     assert (out / "preview.png").stat().st_size > 0
-    assert load_recording(out).meta["seed"] == 2
+    meta = load_recording(out).meta
+    assert meta["seed"] == 2 and meta["home"] == str(graph_file)
 
 
 @pytest.mark.parametrize(("args", "pattern"), [

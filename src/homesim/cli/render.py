@@ -80,7 +80,8 @@ def render(
 
     try:
         result = r.render_program(prog, g, out, width=width, height=height, fps=fps,
-                                  seed=seed, progress=progress, agent=agent, **extra)
+                                  seed=seed, progress=progress, agent=agent, home=gname,
+                                  **extra)
     finally:
         if task is not None:
             bar.stop()

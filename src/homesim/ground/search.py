@@ -29,6 +29,7 @@ Grounding finds node ids for them under which every step executes:
 
 from __future__ import annotations
 
+import difflib
 import random
 from dataclasses import dataclass, field
 from typing import Any
@@ -136,7 +137,7 @@ class _Search:
                 n, text = first_use(program, ref.key)
                 raise GroundingError(
                     f"step {n} {text}: the home has no {' or '.join(classes)} for "
-                    f"<{ref.name}> ({ref.instance}); prepare() adds missing objects",
+                    f"<{ref.name}> ({ref.instance}){_similar(ref.name, graph)}",
                     n, str(ref), ", ".join(classes))
             self.domains[ref.key] = ids
         # Nodes that can only be one program object (often one scene preparation added
@@ -323,6 +324,12 @@ class _Search:
         return None
 
 
+def _similar(name: str, graph: EnvironmentGraph) -> str:
+    """``"; did you mean television?"``: the home's classes spelled like `name`, if any."""
+    close = difflib.get_close_matches(name, sorted(graph.class_names()), n=3, cutoff=0.6)
+    return f"; did you mean {' or '.join(close)}?" if close else ""
+
+
 def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
            kb: ObjectKnowledge | None = None, budget: int = DEFAULT_BUDGET) -> Grounding:
     """Bind every object of `program` to a node of `graph` so that the program executes.
@@ -330,7 +337,8 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     Args:
         program: the program; node ids it may carry are ignored (use `unground` to see
             it as the search does).
-        graph: the home, with every object the program needs (see `prepare`).
+        graph: the home, with every object the program needs (`prepare` adds missing
+            ones; this search only binds what is there).
         seed: breaks ties between equally preferred candidates and picks standing spots.
         kb: the object knowledge base, for name equivalences (default: `load_kb()`).
         budget: how many step runs the search may spend.
