@@ -70,3 +70,9 @@ def test_a_home_without_character_raises():
     d["edges"] = [e for e in d["edges"] if 10 not in (e["from_id"], e["to_id"])]
     with pytest.raises(ExecutionError, match="no character"):
         run_program("[Walk] <tv> (1.14)", EnvironmentGraph.from_dict(d))
+
+
+def test_a_program_without_objects_is_prepared(trimmed):
+    run = run_program("[StandUp]", trimmed)  # presupposes a seated character
+    assert run.executable and run.prepared is not None
+    assert not run_program("[StandUp]", trimmed, reference=True).executable
