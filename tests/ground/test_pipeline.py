@@ -76,3 +76,17 @@ def test_a_program_without_objects_is_prepared(trimmed):
     run = run_program("[StandUp]", trimmed)  # presupposes a seated character
     assert run.executable and run.prepared is not None
     assert not run_program("[StandUp]", trimmed, reference=True).executable
+
+
+def test_runs_agrees_with_run_program(trimmed):
+    from homesim.ground.pipeline import runs
+
+    text = ("[Walk] <television> (1)\n[SwitchOn] <television> (1)\n[Grab] <television> (1)\n"
+            "[Walk] <wine_glass> (1)\n[Grab] <wine_glass> (1)\n[SwitchOn] <television> (1)")
+    program = parse_program(text)
+    verdicts = []
+    for k in range(1, len(program) + 1):
+        prefix = program.with_steps(program.steps[:k])
+        verdicts.append(runs(prefix, trimmed))
+        assert verdicts[-1] == run_program(prefix, trimmed).executable
+    assert verdicts == [True, True, False, False, False, False]
