@@ -70,6 +70,22 @@ class ExecutionError(HomesimError):
     """A program cannot be executed on a graph at all (e.g. no character in the graph)."""
 
 
+class BindingError(ExecutionError):
+    """A program whose object refs name no node, or a node of another class.
+
+    Attributes:
+        step: 1-based number of the first step that uses the object.
+        obj: the program object (``<tv> (1)``).
+        node: the node id it names, if any.
+    """
+
+    def __init__(self, message: str, step: int, obj: str, node: int | None = None):
+        self.step = step
+        self.obj = obj
+        self.node = node
+        super().__init__(message)
+
+
 class DataError(HomesimError):
     """A data set or resource that is missing, corrupt or of the wrong shape."""
 

@@ -124,11 +124,16 @@ def test_standing_spots_with_geometry():
     assert g.standing[3] == g.standing[2]
 
 
-def test_missing_object_names_step_and_classes():
-    with pytest.raises(GroundingError, match=r"step 2 \[Grab\] <wine_glass> \(1\): the home "
-                       r"has no wine_glass.*prepare\(\) adds missing objects"):
+def test_missing_object_names_step_and_classes_in_plain_words():
+    with pytest.raises(GroundingError) as e:
         ground(parse_program("[Walk] <dining_room> (1)\n[Grab] <wine_glass> (1)"),
                load_home("scene1_trimmed"))
+    # No function names: web users read this message too.
+    assert str(e.value) == ("step 2 [Grab] <wine_glass> (1): the home has no wine_glass or "
+                            "wineglass for <wine_glass> (1)")
+    with pytest.raises(GroundingError, match=r"no television_set for <television_set> \(1\); "
+                       r"did you mean television\?$"):
+        ground(parse_program("[Walk] <television_set> (1)"), load_home("scene1_trimmed"))
 
 
 def test_contradictory_steps_fail_with_the_reason_and_what_was_tried():

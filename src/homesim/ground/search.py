@@ -29,13 +29,16 @@ Grounding finds node ids for them under which every step executes:
 
 from __future__ import annotations
 
+import difflib
 import random
 from dataclasses import dataclass, field
+from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
 from homesim.ground.standing import FloorPlan, Spot, has_geometry, square_distance
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
@@ -54,7 +57,7 @@ class Grounding:
 
     Attributes:
         program: the program with every object ref bound to a node (``<cup> (1.417)``).
-        bindings: (class name, instance) -> node id, for `homesim.sim.execute`.
+        bindings: (class name, instance) -> node id: the same binding as a map.
         standing: step index (0-based) -> (x, z) where the agent stands for that step,
             when the home has geometry; else None. Steps that act on what the agent holds
             keep the previous spot.
@@ -62,9 +65,18 @@ class Grounding:
     """
 
     program: Program
-    bindings: dict[Key, int]
+    bindings: Bindings
     standing: dict[int, Spot] | None
     step_runs: int
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: grounded program, bindings, standing spots ({"0": [x, z]}), effort."""
+        standing = None
+        if self.standing is not None:
+            standing = {str(i): [round(x, 3), round(z, 3)]
+                        for i, (x, z) in sorted(self.standing.items())}
+        return {"program": str(self.program), "bindings": self.bindings.to_list(),
+                "standing": standing, "step_runs": self.step_runs}
 
 
 class _OutOfBudget(Exception):
@@ -125,7 +137,7 @@ class _Search:
                 n, text = first_use(program, ref.key)
                 raise GroundingError(
                     f"step {n} {text}: the home has no {' or '.join(classes)} for "
-                    f"<{ref.name}> ({ref.instance}); prepare() adds missing objects",
+                    f"<{ref.name}> ({ref.instance}){_similar(ref.name, graph)}",
                     n, str(ref), ", ".join(classes))
             self.domains[ref.key] = ids
         # Nodes that can only be one program object (often one scene preparation added
@@ -311,6 +323,12 @@ class _Search:
         return None
 
 
+def _similar(name: str, graph: EnvironmentGraph) -> str:
+    """``"; did you mean television?"``: the home's classes spelled like `name`, if any."""
+    close = difflib.get_close_matches(name, sorted(graph.class_names()), n=3, cutoff=0.6)
+    return f"; did you mean {' or '.join(close)}?" if close else ""
+
+
 def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
            kb: ObjectKnowledge | None = None, budget: int = DEFAULT_BUDGET) -> Grounding:
     """Bind every object of `program` to a node of `graph` so that the program executes.
@@ -318,7 +336,8 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     Args:
         program: the program; node ids it may carry are ignored (use `unground` to see
             it as the search does).
-        graph: the home, with every object the program needs (see `prepare`).
+        graph: the home, with every object the program needs (`prepare` adds missing
+            ones; this search only binds what is there).
         seed: breaks ties between equally preferred candidates and picks standing spots.
         kb: the object knowledge base, for name equivalences (default: `load_kb()`).
         budget: how many step runs the search may spend.
@@ -332,7 +351,7 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     if not program.steps:
-        return Grounding(program, {}, None, 0)
+        return Grounding(program, Bindings(), None, 0)
     geometry = has_geometry(graph)
     search = _Search(program, graph, seed, kb, budget, geometry)
     stopped = False
@@ -342,7 +361,7 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
         result, stopped = set(), True
     if result is not None:
         raise _failure(search, stopped)
-    bindings = dict(search.assign)
+    bindings = Bindings(search.assign)
     grounded = program.with_steps([
         Step(step.action, tuple(ref.ground(bindings[ref.key]) for ref in step.args))
         for step in program.steps])

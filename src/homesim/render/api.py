@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from homesim.errors import HomesimError
+from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
@@ -17,7 +18,7 @@ from homesim.render.groundtruth import RecordingWriter, StepSpan
 from homesim.render.recorder import record, still_frames
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
-from homesim.sim.execute import Bindings, execute
+from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
 Progress = Callable[[int, int], None]
@@ -60,7 +61,10 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
         raise HomesimError("the program has no steps to render")
     name = agent or list(AGENTS)[seed % len(AGENTS)]
     shape = agent_shape(name)
-    result = execute(program, graph, trace=True, bindings=bindings)
+    # A program with plain ids (``<tv> (410)``) and no bindings names nodes by id, as
+    # documented in `render_program`; grounded ones are checked by `execute`.
+    reference = bindings is None and not program.is_grounded
+    result = execute(program, graph, trace=True, bindings=bindings, reference=reference)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
     timeline = Animator(scene, graph, shape, fps=fps, seed=seed).run(result)
     return scene, timeline, name
@@ -69,11 +73,12 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
 def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Path, *,
                    width: int = 640, height: int = 480, fps: int = 30, seed: int = 0,
                    bindings: Bindings | None = None, progress: Progress | None = None,
-                   agent: str | None = None) -> RenderResult:
+                   agent: str | None = None, home: str | None = None) -> RenderResult:
     """Animate a grounded program in a home with geometry and record it with ground truth.
 
     The program's objects name nodes of `graph` (``<tv> (1.410)``, or plain ``(410)``), or
-    `bindings` maps (class, instance) to node ids. Writes the folder layout described in
+    `bindings` maps (class, instance) to node ids. `home` names the home in ``meta.json``
+    (a built-in home's name or the graph file). Writes the folder layout described in
     `homesim.render.groundtruth`; read it back with `load_recording`.
     """
     t0 = time.perf_counter()
@@ -96,12 +101,12 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
         raise
     steps = [StepSpan(i, str(program.steps[i]), a, b)
              for i, (a, b) in enumerate(timeline.step_frames)]
-    meta = _meta(program, graph, scene, name, width, height, fps, seed, total, steps)
+    meta = _meta(program, home or "graph", scene, name, width, height, fps, seed, total, steps)
     writer.close(meta)
     return RenderResult(out, total, width, height, fps, name, steps, time.perf_counter() - t0)
 
 
-def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, total,
+def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed, total,
           steps) -> dict:
     from homesim.render.agent import JOINTS
     from homesim.render.flow import intrinsics
@@ -110,7 +115,7 @@ def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, to
     return {
         "program": str(program),
         "title": program.title,
-        "home": getattr(graph, "source", None) or "graph",
+        "home": home,
         "agent": agent,
         "seed": seed,
         "width": width,
