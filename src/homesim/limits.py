@@ -97,3 +97,25 @@ SHUTDOWN_GRACE_S = 3
 
 MAX_MESSAGE_CHARS = 500
 """Longest error message (and quoted text) in an API answer (then an ellipsis)."""
+
+
+def deeper_than(value: object, depth: int) -> bool:
+    """Whether JSON data (dicts, lists, scalars) nests more than `depth` levels.
+
+    Iterative, so it is safe on data of any depth. Loaders call it on the parts of a
+    document they keep without reading (a node's unknown keys).
+
+    >>> deeper_than([[1]], 1), deeper_than([[1]], 2)
+    (True, False)
+    """
+    stack = [(value, 0)]
+    while stack:
+        item, level = stack.pop()
+        if isinstance(item, dict):
+            item = list(item.values())
+        elif not isinstance(item, list):
+            continue
+        if level + 1 > depth:
+            return True
+        stack.extend((child, level + 1) for child in item)
+    return False
