@@ -186,9 +186,10 @@ class RenderJobs:
         self.jobs[job_id] = job
         self._start_ready()
         loop = asyncio.get_running_loop()
-        if (self._supervisor is None or self._supervisor.done()
-                or self._supervisor.get_loop() is not loop):
-            self._supervisor = loop.create_task(self._supervise())
+        old = self._supervisor
+        if old is not None and not old.done() and old.get_loop() is loop:
+            old.cancel()  # it may be idling for minutes: watch closely from now on
+        self._supervisor = loop.create_task(self._supervise())
         return job
 
     def cancel(self, job_id: str) -> Job:
