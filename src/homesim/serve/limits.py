@@ -30,6 +30,8 @@ ASGIApp = Callable[[Scope, Receive, Send], Awaitable[None]]
 
 
 _STRING = re.compile(rb'"[^"]*"')  # after escaped backslashes and quotes are dropped
+STOPPING = "the server is stopping; retry in a moment"
+
 _BRACKETS = bytes.maketrans(b"[{]}", b"(())")
 _NOT_BRACKETS = bytes(b for b in range(256) if b not in b"[]{}")
 
@@ -100,6 +102,9 @@ class BodySizeLimit:
             except asyncio.TimeoutError:
                 await _refuse(send, 408, f"request body not received within {self.timeout:g} s "
                               f"({received} bytes arrived)", close=True)
+                return
+            except asyncio.CancelledError:  # the server is stopping: answer, no traceback
+                await _refuse(send, 503, STOPPING, close=True, kind="busy")
                 return
             if message["type"] != "http.request":  # the client went away
                 return
@@ -180,6 +185,9 @@ class LargeBodyGate:
         self._waiters += 1
         try:
             await gate.acquire()
+        except asyncio.CancelledError:  # the server is stopping: answer, no traceback
+            await _refuse(send, 503, STOPPING, close=True, kind="busy")
+            return
         finally:
             self._waiters -= 1
         try:
