@@ -39,7 +39,8 @@ def _torch(threads: int) -> None:
                            "'learn' extra") from None
     if threads < 1:
         raise HomesimError(f"--threads must be at least 1, got {threads}")
-    torch.set_num_threads(threads)
+    torch.set_num_threads(threads)  # the thread count changes float sums: keep it fixed
+    torch.use_deterministic_algorithms(True)  # refuse ops without a deterministic kernel
 
 
 def _bar() -> Progress:
