@@ -16,7 +16,9 @@ def test_json_output(capsys):
     assert main(["run", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["executable"] is True and len(data["steps"]) == 5
-    assert data["steps"][1]["changes"]["states"] == [[410, ["OFF"], ["ON"]]]
+    assert data["steps"][1]["changes"]["states"] == [
+        {"node": 410, "before": ["OFF"], "after": ["ON"]}]
+    assert data["stage"] is None and data["preparation"] is None  # came grounded
 
 
 def test_failing_program_exits_1_with_reason(tmp_path, capsys):
@@ -88,10 +90,26 @@ def test_ungrounded_program_json_has_the_grounding(tmp_path, capsys):
     p.write_text(DRINK)
     assert main(["run", str(p), "--home", "scene3_trimmed", "--json", "--seed", "2"]) == 0
     data = json.loads(capsys.readouterr().out)
+    assert [a["class_name"] for a in data["preparation"]["added"]] == ["wine_glass"]
     grounding = data["grounding"]
-    assert [a["class_name"] for a in grounding["added"]] == ["wine_glass"]
-    assert {"object": "<television> (1)", "node_id": 216} in grounding["bindings"]
+    assert {"name": "television", "instance": 1, "node_id": 216} in grounding["bindings"]
     assert grounding["standing"] is None and data["executable"] is True
+    assert "[SwitchOn] <television> (1.216)" in grounding["program"]
+
+
+def test_grounded_program_of_the_wrong_class_is_refused(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1.352)\n")
+    assert main(["run", str(p), "--home", "scene1", "--json"]) == 1
+    data = json.loads(capsys.readouterr().out)
+    assert data["stage"] == "grounding" and data["failed_step"] == 2
+    assert data["message"] == ("step 2 [SwitchOn] <tv> (1.352): <tv> (1) is node 352 here "
+                               "but node 410 at an earlier step; one object is one node")
+    p.write_text("[Walk] <tv> (1.410)\n[Walk] <tv> (2.352)\n")
+    assert main(["run", str(p), "--home", "scene1"]) == 1
+    out = " ".join(capsys.readouterr().out.split())
+    assert "cannot ground in scene1: step 2 [Walk] <tv> (2.352): <tv> (2) is node 352, a sofa, " \
+           "not a tv" in out
 
 
 def test_program_that_cannot_be_grounded_exits_1_with_reason(tmp_path, capsys):

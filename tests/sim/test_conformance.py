@@ -19,7 +19,7 @@ def outcomes(real_data):
     results = []
     for rp in real_programs(real_data):
         init, final = rp.graphs()
-        r = execute(rp.program, init)
+        r = execute(rp.program, init, reference=True)
         results.append((rp, r, compare_graphs(r.final_graph, final) if r.executable else None))
     return results
 
@@ -54,7 +54,7 @@ def test_input_graphs_are_left_unchanged(real_data):
     rp = real_programs(real_data)[0]
     init, _ = rp.graphs()
     before = init.to_dict()
-    execute(rp.program, init, trace=True)
+    execute(rp.program, init, trace=True, reference=True)
     assert init.to_dict() == before
 
 

@@ -2,8 +2,14 @@
 // shape {"error": {"kind", "message", "line"?}}; `ApiError` carries it.
 
 export interface Home { name: string; geometry: boolean }
+/** A row of the server's action catalog (`ActionSpec.to_dict()`); the editor's only
+ * source of per-action facts. */
 export interface Action {
-  key: string; name: string; arity: number; animated: boolean; description: string;
+  key: string; name: string; arity: number; category: string; animated: boolean;
+  description: string;
+  connector: string | null; // the word between the two objects of a block (PutBack: "on")
+  aliases: string[]; // other spellings of the key, as data sets write it
+  needs: string[][][]; // per argument, requirements: properties of which one is needed
 }
 export interface Category { id: string; label: string; actions: Action[] }
 export interface HomeObject {

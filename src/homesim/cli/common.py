@@ -8,6 +8,7 @@ from pathlib import Path
 from rich.console import Console
 
 from homesim.errors import HomesimError
+from homesim.limits import MAX_PROGRAM_BYTES
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
@@ -16,9 +17,6 @@ from homesim.world.homes import load_home
 # soft_wrap: a message stays one line however narrow the terminal (no hard wrapping).
 console = Console(highlight=False, soft_wrap=True)
 err_console = Console(stderr=True, highlight=False, soft_wrap=True)
-
-MAX_PROGRAM_BYTES = 1024 * 1024
-"""Largest program file the CLI reads (real programs are under 2 KB)."""
 
 
 def read_program(path: str) -> Program:

@@ -33,14 +33,14 @@ from __future__ import annotations
 
 import random
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.placement import place_box
-from homesim.ground.standing import FloorPlan, has_geometry
+from homesim.ground.standing import FloorPlan, has_geometry, note_prepared
 from homesim.program.model import ObjectRef, Program
 from homesim.sim.state import SimState
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
@@ -141,6 +141,12 @@ class Prepared:
     added: list[Addition]
     states: list[tuple[int, frozenset[str], frozenset[str]]] = field(default_factory=list)
 
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: additions (as `Addition` fields) and states {node, before, after}."""
+        return {"added": [asdict(a) for a in self.added],
+                "states": [{"node": n, "before": sorted(a), "after": sorted(b)}
+                           for n, a, b in self.states]}
+
 
 def first_use(program: Program, key: tuple[str, int]) -> tuple[int, str]:
     """The 1-based number and text of the first step that names the object `key`."""
@@ -216,7 +222,7 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
     if plan is not None:
         # Let standing spots of the prepared home reuse those of this one (see FloorPlan).
         floor_rooms = frozenset(a.room for a in added if a.destination_id == a.room)
-        prepared._derived["prepared_from"] = (graph, floor_rooms)
+        note_prepared(prepared, graph, floor_rooms)
     return Prepared(prepared, added, changed)
 
 
@@ -486,8 +492,11 @@ def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
     # Where the agent is when the program needs the object: put it within reach.
     walked_into = context.room_before.get(ref.key, [])
 
-    def room_rank(room: int) -> int:
-        """0: the room the agent walked into before; 1: a room the program names."""
+    def room_rank(room: int | None) -> int:
+        """0: the room the agent walked into before; 1: a room the program names; 2: other
+        rooms and no room (a node outside every room, e.g. a second character)."""
+        if room is None:
+            return 2
         if graph.nodes[room].class_name in walked_into:
             return 0
         return 1 if room in context.rooms else 2

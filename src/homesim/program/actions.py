@@ -11,6 +11,7 @@ from __future__ import annotations
 import difflib
 from dataclasses import dataclass
 from enum import Enum
+from typing import Any
 
 
 class Category(str, Enum):
@@ -27,6 +28,10 @@ class Category(str, Enum):
     EATING = "eating"
 
 
+Requirement = frozenset[str]
+"""Properties of which an object needs at least one (``{"DRINKABLE", "RECIPIENT"}``)."""
+
+
 @dataclass(frozen=True, slots=True)
 class ActionSpec:
     """One action of the catalog.
@@ -38,6 +43,14 @@ class ActionSpec:
         category: editor block category.
         animated: True for the 12 actions the paper animates in 3D.
         description: a short English gloss, used by the editor and the CLI.
+        needs: per argument, the requirements its object must meet, each a set of
+            properties of which it needs one (the editor lists such objects first).
+        connector: the word between the two objects in the editor's block (PutBack
+            <plate> *on* <table>); None for actions with fewer than two.
+        aliases: other spellings of the key found in data (``PUT`` for PutBack).
+
+    >>> ACTIONS["PUTIN"].to_dict()["connector"]
+    'into'
     """
 
     key: str
@@ -46,9 +59,22 @@ class ActionSpec:
     category: Category
     animated: bool
     description: str
+    needs: tuple[tuple[Requirement, ...], ...] = ()
+    connector: str | None = None
+    aliases: tuple[str, ...] = ()
 
     def __str__(self) -> str:
         return self.name
+
+    def to_dict(self) -> dict[str, Any]:
+        """The row as JSON-ready data (sets become sorted lists)."""
+        return {
+            "key": self.key, "name": self.name, "arity": self.arity,
+            "category": self.category.value, "animated": self.animated,
+            "description": self.description,
+            "needs": [[sorted(r) for r in arg] for arg in self.needs],
+            "connector": self.connector, "aliases": list(self.aliases),
+        }
 
 
 _M, _A, _H, _P, _O, _D, _B, _C, _E = (
@@ -109,19 +135,47 @@ _ROWS: tuple[tuple[str, int, Category, bool, str], ...] = (
     ("Cut", 1, _E, False, "cut food while holding a knife"),
 )
 
+
+
+def _needs(*args: str) -> tuple[tuple[Requirement, ...], ...]:
+    """Per argument: requirements joined by ``&``, alternatives by ``|``
+    (``"DRINKABLE|RECIPIENT"``; ``""``: none)."""
+    return tuple(tuple(frozenset(r.split("|")) for r in arg.split("&") if r) for arg in args)
+
+
+# The other columns, for the rows that have them.
+_MORE: dict[str, dict[str, Any]] = {
+    "LookAt": dict(aliases=("LOOKAT_SHORT", "LOOKAT_MEDIUM", "LOOKAT_LONG")),
+    "Watch": dict(needs=_needs("LOOKABLE")),
+    "Read": dict(needs=_needs("READABLE")),
+    "Greet": dict(needs=_needs("PERSON")),
+    "Grab": dict(needs=_needs("GRABBABLE")),
+    "PutBack": dict(needs=_needs("GRABBABLE", ""), connector="on", aliases=("PUT",)),
+    "PutIn": dict(needs=_needs("GRABBABLE", ""), connector="into"),
+    "Pour": dict(needs=_needs("POURABLE|DRINKABLE", "RECIPIENT"), connector="into"),
+    "Open": dict(needs=_needs("CAN_OPEN")),
+    "Close": dict(needs=_needs("CAN_OPEN")),
+    "SwitchOn": dict(needs=_needs("HAS_SWITCH")),
+    "SwitchOff": dict(needs=_needs("HAS_SWITCH")),
+    "PlugIn": dict(needs=_needs("HAS_PLUG")),
+    "PlugOut": dict(needs=_needs("HAS_PLUG")),
+    "Sit": dict(needs=_needs("SITTABLE")),
+    "Lie": dict(needs=_needs("LIEABLE")),
+    "PutOn": dict(needs=_needs("CLOTHES")),
+    "PutOff": dict(needs=_needs("CLOTHES")),
+    "Drink": dict(needs=_needs("DRINKABLE|RECIPIENT")),
+    "Cut": dict(needs=_needs("CUTTABLE")),
+}
+
 ACTIONS: dict[str, ActionSpec] = {
-    name.upper(): ActionSpec(name.upper(), name, arity, category, animated, description)
+    name.upper(): ActionSpec(name.upper(), name, arity, category, animated, description,
+                             **_MORE.get(name, {}))
     for name, arity, category, animated, description in _ROWS
 }
 """Every action by its upper-case key (``ACTIONS["SWITCHON"].name == "SwitchOn"``)."""
 
 # Spellings found in VirtualHome data that name a catalog action.
-_ALIASES: dict[str, str] = {
-    "PUT": "PUTBACK",
-    "LOOKAT_SHORT": "LOOKAT",
-    "LOOKAT_MEDIUM": "LOOKAT",
-    "LOOKAT_LONG": "LOOKAT",
-}
+_ALIASES: dict[str, str] = {alias: a.key for a in ACTIONS.values() for alias in a.aliases}
 
 ANIMATED: frozenset[str] = frozenset(k for k, a in ACTIONS.items() if a.animated)
 

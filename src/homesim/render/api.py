@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from homesim.errors import HomesimError
+from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
@@ -17,7 +18,7 @@ from homesim.render.groundtruth import RecordingWriter, StepSpan
 from homesim.render.recorder import record, still_frames
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
-from homesim.sim.execute import Bindings, execute
+from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
 Progress = Callable[[int, int], None]
@@ -60,7 +61,10 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
         raise HomesimError("the program has no steps to render")
     name = agent or list(AGENTS)[seed % len(AGENTS)]
     shape = agent_shape(name)
-    result = execute(program, graph, trace=True, bindings=bindings)
+    # A program with plain ids (``<tv> (410)``) and no bindings names nodes by id, as
+    # documented in `render_program`; grounded ones are checked by `execute`.
+    reference = bindings is None and not program.is_grounded
+    result = execute(program, graph, trace=True, bindings=bindings, reference=reference)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
     timeline = Animator(scene, graph, shape, fps=fps, seed=seed).run(result)
     return scene, timeline, name

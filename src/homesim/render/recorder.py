@@ -101,9 +101,9 @@ class SceneState:
             lid = self._light_ids.get(n, -1)
             if lid >= 0:
                 m.light_active[lid] = on
-        off, on = self.scene.screen_mats
+        screen_off, screen_on = self.scene.screen_mats
         for n, g in self.scene.screen_geom.items():
-            m.geom_matid[g] = on if n in tl.screens[i] else off
+            m.geom_matid[g] = screen_on if n in tl.screens[i] else screen_off
         mujoco.mj_kinematics(m, d)
         mujoco.mj_camlight(m, d)
         return d

@@ -15,7 +15,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException
 
-from homesim.errors import HomesimError, ProgramError
+from homesim.errors import HomesimError, LimitError, ProgramError
 
 log = logging.getLogger(__name__)
 
@@ -68,6 +68,11 @@ def install_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(ProgramError)
     async def _program(_: Request, e: ProgramError) -> JSONResponse:
         return error_response(422, "program", str(e), **program_error_fields(e))
+
+    @app.exception_handler(LimitError)
+    async def _limit(_: Request, e: LimitError) -> JSONResponse:
+        status = 413 if e.limit.endswith("_BYTES") else 422
+        return error_response(status, "limit", str(e), limit=e.limit)
 
     @app.exception_handler(HomesimError)
     async def _homesim(_: Request, e: HomesimError) -> JSONResponse:

@@ -47,11 +47,10 @@ def list_homes() -> dict[str, Any]:
 
 @router.get("/actions")
 def list_actions() -> dict[str, Any]:
-    """The action catalog by editor category."""
+    """The action catalog by editor category: every row as `ActionSpec.to_dict()`."""
     categories = []
     for category, label in CATEGORY_LABELS.items():
-        actions = [{"key": a.key, "name": a.name, "arity": a.arity, "animated": a.animated,
-                    "description": a.description} for a in actions_in(category)]
+        actions = [a.to_dict() for a in actions_in(category)]
         categories.append({"id": category.value, "label": label, "actions": actions})
     return {"count": len(ACTIONS), "categories": categories}
 

@@ -6,8 +6,10 @@ import json
 from collections.abc import Awaitable, Callable, MutableMapping
 from typing import Any
 
-MAX_BODY_BYTES = 256 * 1024
-"""Largest request body the API accepts (real programs are under 2 KB)."""
+from homesim.limits import MAX_REQUEST_BYTES
+
+MAX_BODY_BYTES = MAX_REQUEST_BYTES
+"""Largest request body the API accepts (see `homesim.limits`)."""
 
 Scope = MutableMapping[str, Any]
 Message = MutableMapping[str, Any]

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from pydantic import BaseModel, Field
 
-MAX_STEPS = 1000
-"""Most steps a program sent to the API may have (real programs have under 100)."""
+from homesim.limits import MAX_RENDER_HEIGHT, MAX_RENDER_WIDTH, MAX_STEPS, MIN_RENDER_SIDE
+
+__all__ = ["MAX_STEPS", "ExecuteRequest", "ProgramRequest", "RenderRequest"]
 
 
 class ProgramRequest(BaseModel):
@@ -33,6 +34,6 @@ class RenderRequest(BaseModel):
 
     program: str
     home: str
-    width: int = Field(default=320, ge=16, le=1280)
-    height: int = Field(default=240, ge=16, le=960)
+    width: int = Field(default=320, ge=MIN_RENDER_SIDE, le=MAX_RENDER_WIDTH)
+    height: int = Field(default=240, ge=MIN_RENDER_SIDE, le=MAX_RENDER_HEIGHT)
     seed: int = 0
