@@ -125,8 +125,8 @@ def evaluate(
 ) -> None:
     """Score every row of Table 3 on the test splits and print it.
 
-    With --data both, a data set that was not trained (no OUT/<data set>/mle.pt) is left
-    out with a note; the others are scored.
+    With --data both, a data set with no checkpoints in RUNS/<data set> is left out with
+    a note; the others are scored.
     """
     _torch(threads)
     datasets = _datasets(data)
