@@ -62,3 +62,25 @@ RENDER_WORKERS = 1
 
 RENDER_QUEUE = 4
 """Render requests that may wait for a worker; more are refused with 503."""
+
+
+def deeper_than(value: object, depth: int) -> bool:
+    """Whether JSON data (dicts, lists, scalars) nests more than `depth` levels.
+
+    Iterative, so it is safe on data of any depth. Loaders call it on the parts of a
+    document they keep without reading (a node's unknown keys).
+
+    >>> deeper_than([[1]], 1), deeper_than([[1]], 2)
+    (True, False)
+    """
+    stack = [(value, 0)]
+    while stack:
+        item, level = stack.pop()
+        if isinstance(item, dict):
+            item = list(item.values())
+        elif not isinstance(item, list):
+            continue
+        if level + 1 > depth:
+            return True
+        stack.extend((child, level + 1) for child in item)
+    return False

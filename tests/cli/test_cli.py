@@ -38,6 +38,11 @@ def test_failing_program_exits_1_with_reason(tmp_path, capsys):
         ("[Walk] <tv> (1.410)\n", ["--graph", "missing.json"], "cannot read graph file"),
         ("Title\nDesc\n\n", [], "the program has no steps"),
         (b"\xff\xfe\xfa", [], "not UTF-8"),
+        ("[Walk] <tv> (" + "9" * 4301 + ")", [], "over the limit of 9 (MAX_ID_DIGITS)"),
+        ("[Walk] <tv> (1)\n" * 1001, [], "over the limit of 1000 steps (MAX_STEPS)"),
+        ("[Walk] " + "<tv> (1) " * 120_000, [], "over the limit of 256 KiB for a program "
+                                                "(MAX_PROGRAM_BYTES)"),
+        ("[Walk] " + "<tv> (1) " * 25_000, [], "[Walk] takes 1 object, got 25000"),
     ],
 )
 def test_bad_input_gives_one_line_and_no_traceback(tmp_path, capsys, content, args, pattern):
@@ -50,6 +55,7 @@ def test_bad_input_gives_one_line_and_no_traceback(tmp_path, capsys, content, ar
     err = capsys.readouterr().err
     assert pattern in " ".join(err.split())
     assert "Traceback" not in err
+    assert len(err) < 500  # user text is quoted as a short excerpt
 
 
 def test_broken_graph_file(tmp_path, capsys):

@@ -37,7 +37,7 @@ from typing import Any
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
-from homesim.ground.standing import FloorPlan, Spot, has_geometry
+from homesim.ground.standing import FloorPlan, Spot, has_geometry, square_distance
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
@@ -274,8 +274,7 @@ class _Search:
             dist = 0.0
             box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
             if boxes and box is not None:
-                dist = min((box.center[0] - b.center[0]) ** 2 + (box.center[2] - b.center[2]) ** 2
-                           for b in boxes)
+                dist = min(square_distance(box.center, b.center) for b in boxes)
             tie = self.tie.get(node)
             if tie is None:
                 tie = self.tie[node] = self.rng.random()
