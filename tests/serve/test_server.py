@@ -64,7 +64,7 @@ def test_sigterm_stops_the_server_within_5_s_with_slow_clients_open():
             sock = socket.create_connection(("127.0.0.1", port))
             sock.sendall(start)
             slow.append(sock)
-        time.sleep(0.3)
+        time.sleep(1.0)  # the server's start-up thread (imports, fork server) is done by now
         t0 = time.monotonic()
         server.send_signal(signal.SIGTERM)
         _, err = server.communicate(timeout=10)
