@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,7 +53,8 @@ def _check_size(width: int, height: int, fps: int) -> None:
 
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
-            seed: int, bindings: Bindings | None, agent: str | None
+            seed: int, bindings: Bindings | None, agent: str | None,
+            standing: Mapping[int, tuple[float, float]] | None = None
             ) -> tuple[SceneModel, Timeline, str]:
     """Execute, build the scene and animate: everything before drawing."""
     if not program.steps:
@@ -62,18 +63,22 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     shape = agent_shape(name)
     result = execute(program, graph, trace=True, bindings=bindings)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
-    timeline = Animator(scene, graph, shape, fps=fps, seed=seed).run(result)
+    timeline = Animator(scene, graph, shape, fps=fps, seed=seed,
+                        standing=standing).run(result)
     return scene, timeline, name
 
 
 def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Path, *,
                    width: int = 640, height: int = 480, fps: int = 30, seed: int = 0,
                    bindings: Bindings | None = None, progress: Progress | None = None,
-                   agent: str | None = None) -> RenderResult:
+                   agent: str | None = None,
+                   standing: Mapping[int, tuple[float, float]] | None = None) -> RenderResult:
     """Animate a grounded program in a home with geometry and record it with ground truth.
 
     The program's objects name nodes of `graph` (``<tv> (1.410)``, or plain ``(410)``), or
-    `bindings` maps (class, instance) to node ids. Writes the folder layout described in
+    `bindings` maps (class, instance) to node ids. `standing` (step index -> (x, z), as
+    `Grounding.standing`) gives where the agent stands for each step; without it render
+    picks spots next to the objects on its own. Writes the folder layout described in
     `homesim.render.groundtruth`; read it back with `load_recording`.
     """
     t0 = time.perf_counter()
@@ -82,7 +87,8 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
     if (out / "meta.json").exists() or (out / "video.mp4").exists():
         raise HomesimError(f"{out}: already holds a recording; choose another folder")
     scene, timeline, name = prepare(program, graph, width=width, height=height, fps=fps,
-                                    seed=seed, bindings=bindings, agent=agent)
+                                    seed=seed, bindings=bindings, agent=agent,
+                                    standing=standing)
     total = len(timeline)
     writer = RecordingWriter(out, width, height, fps)
     try:
@@ -137,11 +143,15 @@ def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, to
 
 def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
                      height: int = 240, seed: int = 0, bindings: Bindings | None = None,
-                     agent: str | None = None) -> list[tuple[int, np.ndarray]]:
-    """(step index, RGB frame at the end of that step) for each step; nothing is written."""
+                     agent: str | None = None,
+                     standing: Mapping[int, tuple[float, float]] | None = None
+                     ) -> list[tuple[int, np.ndarray]]:
+    """(step index, RGB frame at the end of that step) for each step; nothing is written.
+
+    `standing`: as for `render_program`."""
     _check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
-                                 seed=seed, bindings=bindings, agent=agent)
+                                 seed=seed, bindings=bindings, agent=agent, standing=standing)
     ends = [end for _, end in timeline.step_frames]
     with Renderer(scene, width, height) as renderer:
         stills = still_frames(scene, timeline, renderer, ends)
