@@ -246,9 +246,9 @@ class _Context:
         for name, refs in self.refs_by_name.items():
             ids = instances_of(graph, self.names[name])
             wanted = needs.get(name, set())
-            if wanted and not any(all(not graph.nodes[i].properties.isdisjoint(w)
-                                      for w in wanted) for i in ids):
-                ids = []  # none can do what the program does with it (folded clothes)
+            if wanted:  # only those that can do what the program does with it (eat it)
+                ids = [i for i in ids if all(not graph.nodes[i].properties.isdisjoint(w)
+                                             for w in wanted)]
             missing += [r for r in refs[len(ids):] if r.key not in self.worn]
         # A fresh instance of each, worn by the character (none of the home's is worn).
         missing += [r for refs in self.refs_by_name.values() for r in refs

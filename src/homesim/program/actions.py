@@ -222,11 +222,11 @@ _ROWS: tuple[tuple[str, int, Category, bool, str, dict[str, Any]], ...] = (
     ("Rinse", 1, _C, False, "rinse an object", _REACH),
     ("Scrub", 1, _C, False, "scrub an object", _REACH),
     ("Eat", 1, _E, False, "eat food, or food on a plate",
-     dict(reach=True, motion="use_held")),
+     dict(reach=True, motion="use_held", needs=_needs("EATABLE"))),
     ("Drink", 1, _E, False, "drink from a held recipient",
      dict(motion="use_held", needs=_needs("DRINKABLE|RECIPIENT"))),
     ("Cut", 1, _E, False, "cut food while holding a knife",
-     dict(_REACH, needs=_needs("CUTTABLE"))),
+     dict(_REACH, needs=_needs("EATABLE&CUTTABLE"))),
 )
 
 ACTIONS: dict[str, ActionSpec] = {
