@@ -29,7 +29,7 @@ def animated():
 
     g = EnvironmentGraph.from_dict(box_home_dict())
     scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
-    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True)
+    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True, reference=True)
     timeline = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
     return g, scene, timeline
 
@@ -89,7 +89,7 @@ def test_agent_never_walks_through_the_table(animated):
 
 def test_same_seed_same_timeline(animated):
     g, scene, tl = animated
-    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True)
+    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True, reference=True)
     again = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
     assert len(again) == len(tl)
     np.testing.assert_array_equal(np.array(again.qpos), np.array(tl.qpos))
@@ -118,7 +118,8 @@ def _run(program: str, fps: int = 10):
 
     g = EnvironmentGraph.from_dict(box_home_dict())
     scene = build_scene(g, AGENTS["female1"], max_size=(64, 48))
-    result = homesim.execute(homesim.parse_program(program), g, trace=True)
+    result = homesim.execute(homesim.parse_program(program), g, trace=True,
+                             reference=True)
     return scene, Animator(scene, g, AGENTS["female1"], fps=fps).run(result)
 
 

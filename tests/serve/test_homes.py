@@ -27,6 +27,14 @@ def test_actions_serve_the_catalog_rows(client):
     assert rows["PUTBACK"]["aliases"] == ["PUT"] and "LOOKAT_SHORT" in rows["LOOKAT"]["aliases"]
 
 
+def test_action_rows_carry_what_the_editor_draws_and_reads(client):
+    flat = {a["key"]: a for c in client.get("/api/actions").json()["categories"]
+            for a in c["actions"]}
+    assert flat["PUTIN"]["connector"] == "into" and flat["WALK"]["connector"] is None
+    assert flat["PUTBACK"]["aliases"] == ["PUT"] and flat["PUTBACK"]["category"] == "placing"
+    assert flat["POUR"]["needs"] == [[["DRINKABLE", "POURABLE"]], [["RECIPIENT"]]]
+
+
 def test_objects_of_a_home_come_with_their_rooms(client):
     data = client.get("/api/homes/scene1/objects").json()
     by_id = {o["id"]: o for o in data["objects"]}

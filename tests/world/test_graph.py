@@ -104,3 +104,16 @@ def test_loads_the_ten_shared_scenes(shared_data):
                                      for e in raw["edges"]})
         assert g.character_id is not None and g.room_of(g.character_id) in g.room_ids
         assert EnvironmentGraph.from_dict(g.to_dict()) == g
+
+
+def test_deeply_nested_json_is_a_graph_error(tmp_path):
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000 + "]" * 100_000)  # was a RecursionError
+    with pytest.raises(GraphError, match=r"deep.json: JSON nested deeper .*MAX_JSON_DEPTH"):
+        EnvironmentGraph.load(path)
+    d = tiny_home_dict()
+    d["nodes"][0]["note"] = [[[1]]]
+    assert EnvironmentGraph.from_dict(d).nodes[1].extra == {"note": [[[1]]]}
+    d["nodes"][0]["note"] = json.loads("[" * 40 + "]" * 40)
+    with pytest.raises(GraphError, match=r"nodes\[0\] \(id 1\): JSON nested deeper"):
+        EnvironmentGraph.from_dict(d)

@@ -33,14 +33,14 @@ from __future__ import annotations
 
 import random
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.placement import place_box
-from homesim.ground.standing import FloorPlan, has_geometry
+from homesim.ground.standing import FloorPlan, has_geometry, note_prepared
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.state import SimState
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
@@ -119,6 +119,12 @@ class Prepared:
     added: list[Addition]
     states: list[tuple[int, frozenset[str], frozenset[str]]] = field(default_factory=list)
 
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: additions (as `Addition` fields) and states {node, before, after}."""
+        return {"added": [asdict(a) for a in self.added],
+                "states": [{"node": n, "before": sorted(a), "after": sorted(b)}
+                           for n, a, b in self.states]}
+
 
 def first_use(program: Program, key: tuple[str, int]) -> tuple[int, str]:
     """The 1-based number and text of the first step that names the object `key`."""
@@ -185,7 +191,7 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         # Let standing spots of the prepared home reuse those of this one (see FloorPlan).
         added = adder.added
         floor_rooms = frozenset(a.room for a in added if a.destination_id == a.room)
-        prepared._derived["prepared_from"] = (graph, floor_rooms)
+        note_prepared(prepared, graph, floor_rooms)
     return Prepared(prepared, adder.added, changed)
 
 
@@ -544,7 +550,8 @@ class _Adder:
         return f"step {step_no} {step_text}: " if step_no else ""
 
     def _lacks(self, ref: ObjectRef, names: list[str]) -> str:
-        return f"the home has too few {' or '.join(names)} for <{ref.name}> ({ref.instance})"
+        few = "too few" if _instances(self.st, names, self.added) else "no"
+        return f"the home has {few} {' or '.join(names)} for <{ref.name}> ({ref.instance})"
 
     def _check_addable(self, ref: ObjectRef, names: list[str]) -> None:
         """Rooms, the character and classes the knowledge base does not know cannot be

@@ -15,8 +15,10 @@ from __future__ import annotations
 
 import math
 import random
+import threading
+import weakref
 from collections.abc import Iterator
-from typing import Any
+from typing import Any, cast
 
 from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE
@@ -61,30 +63,26 @@ class FloorPlan:
         self._parent = parent
         self._changed = changed_rooms
         self._rect_cache: dict[int, tuple[Any, tuple[list[_Rect], list[_Rect]]]] = {}
+        # A plan from `for_graph` is shared by threads: its lazy tables fill under a lock.
+        self._lock = threading.RLock()
 
     @classmethod
     def for_graph(cls, graph: EnvironmentGraph, rotation: int = 0) -> FloorPlan:
-        """The plan of a home, cached with the (read-only) graph.
+        """The plan of a home, cached per home (see `_PlanCache`) and safe to share.
 
         Spots are computed once per home and rotation, not once per program: a home that
         `prepare` made says which home it came from and which rooms got new floor
-        obstacles, and its plan asks the original's for everything else."""
-        cache = graph._derived.setdefault("floor_plans", {})
-        plan = cache.get(rotation % _DIRECTIONS)
-        if plan is None:
-            origin = graph._derived.get("prepared_from")
-            if origin is None:
-                plan = cls(graph, rotation)
-            else:
-                base, changed = origin
-                plan = cls(graph, rotation, cls.for_graph(base, rotation), changed)
-            cache[rotation % _DIRECTIONS] = plan
-        return plan
+        obstacles (`note_prepared`), and its plan asks the original's for everything else."""
+        return _PLANS.plan(graph, rotation % _DIRECTIONS)
 
     def _room_parts(self, room: int) -> tuple[list[BoundingBox], list[BoundingBox]]:
         parent = self._parent
         if parent is not None and room not in self._changed:
             return parent._room_parts(room)
+        with self._lock:
+            return self._own_room_parts(room)
+
+    def _own_room_parts(self, room: int) -> tuple[list[BoundingBox], list[BoundingBox]]:
         floors = self._floors.get(room)
         if floors is None:
             g = self.graph
@@ -113,6 +111,9 @@ class FloorPlan:
         floors, obstacles = self._rects(room)
         hx, hz = size_x / 2, size_z / 2
         x0, x1, z0, z1 = x - hx, x + hx, z - hz, z + hz
+        if not (math.isfinite(x0) and math.isfinite(x1) and math.isfinite(z0)
+                and math.isfinite(z1)):
+            return False  # huge boxes (1e308) overflow to inf: no spot there
         for cx, cz in ((x0, z0), (x0, z1), (x1, z0), (x1, z1)):
             for fx0, fx1, fz0, fz1, _ in floors:
                 if fx0 <= cx <= fx1 and fz0 <= cz <= fz1:
@@ -165,8 +166,13 @@ class FloorPlan:
 
     def spot_near(self, node_id: int) -> Spot | None:
         """Free floor next to the object (cached), or None if there is none in its room."""
-        if node_id in self._spots:
-            return self._spots[node_id]
+        spot = self._spots.get(node_id, _UNKNOWN)
+        if spot is not _UNKNOWN:
+            return spot
+        with self._lock:
+            return self._find_spot(node_id)
+
+    def _find_spot(self, node_id: int) -> Spot | None:
         parent = self._parent
         if parent is not None and node_id in parent.graph.nodes:
             room = parent.graph.room_of(node_id)
@@ -216,11 +222,83 @@ class FloorPlan:
                 for fz in (-0.25, 0.0, 0.25):
                     candidates.append((f.center[0] + fx * f.size[0],
                                        f.center[2] + fz * f.size[2]))
-        candidates.sort(key=lambda s: ((s[0] - cx) ** 2 + (s[1] - cz) ** 2, s))
+        candidates.sort(key=lambda s: (square_distance((s[0], 0.0, s[1]), (cx, 0.0, cz)), s))
         return next((s for s in candidates if self.is_free(room, *s)), None)
 
 
 _Rect = tuple[float, float, float, float, BoundingBox]
+_UNKNOWN: Any = object()
+
+
+class _PlanCache:
+    """Floor plans per home and rotation, and where prepared homes came from.
+
+    The cache belongs to homesim.ground, not to the (read-only, shared) graphs: entries
+    are keyed by the graph's id, held through a weak reference whose callback drops the
+    entry when the graph goes away (before its id can be reused), and written under a
+    lock, so threads that ground programs in one cached home share its plans.
+    """
+
+    def __init__(self) -> None:
+        self._lock = threading.RLock()
+        # id(graph) -> (weak reference to it, rotation -> plan, (base home, changed rooms))
+        self._entries: dict[int, tuple[weakref.ref[EnvironmentGraph], dict[int, FloorPlan],
+                                       list[tuple[EnvironmentGraph, frozenset[int]]]]] = {}
+
+    def _entry(self, graph: EnvironmentGraph) -> tuple[
+            dict[int, FloorPlan], list[tuple[EnvironmentGraph, frozenset[int]]]]:
+        key = id(graph)
+        entry = self._entries.get(key)
+        if entry is None or entry[0]() is not graph:
+            ref = weakref.ref(graph, lambda r, key=key: self._forget(key, r))
+            entry = self._entries[key] = (ref, {}, [])
+        return entry[1], entry[2]
+
+    def _forget(self, key: int, ref: weakref.ref[EnvironmentGraph]) -> None:
+        """Drop the entry of a graph that went away (its weak reference calls this while the
+        graph is freed, so its id is not reused yet)."""
+        entry = self._entries.get(key)
+        if entry is not None and entry[0] is ref:
+            del self._entries[key]
+
+    def plan(self, graph: EnvironmentGraph, rotation: int) -> FloorPlan:
+        with self._lock:
+            plans, origin = self._entry(graph)
+            plan = plans.get(rotation)
+            if plan is None:
+                # The plan holds its graph weakly, or the entry would keep the graph alive.
+                weak = cast(EnvironmentGraph, weakref.proxy(graph))
+                if origin:
+                    base, changed = origin[0]
+                    plan = FloorPlan(weak, rotation, self.plan(base, rotation), changed)
+                else:
+                    plan = FloorPlan(weak, rotation)
+                plans[rotation] = plan
+            return plan
+
+    def note_prepared(self, prepared: EnvironmentGraph, base: EnvironmentGraph,
+                      changed_rooms: frozenset[int]) -> None:
+        with self._lock:
+            plans, origin = self._entry(prepared)
+            origin[:] = [(base, changed_rooms)]
+            plans.clear()
+
+
+_PLANS = _PlanCache()
+
+
+def note_prepared(prepared: EnvironmentGraph, base: EnvironmentGraph,
+                  changed_rooms: frozenset[int]) -> None:
+    """Record that `prepare` made `prepared` from `base`, adding floor obstacles only in
+    `changed_rooms`: the plans of `prepared` then reuse those of `base` for other rooms."""
+    _PLANS.note_prepared(prepared, base, changed_rooms)
+
+
+def square_distance(a: tuple[float, ...], b: tuple[float, ...]) -> float:
+    """Squared distance in the floor plane (x, z) of two points (x, y, z); inf, not an
+    OverflowError, for coordinates so large that the square overflows (``** 2`` raises)."""
+    dx, dz = a[0] - b[0], a[2] - b[2]
+    return dx * dx + dz * dz
 
 
 def _rect(box: BoundingBox) -> _Rect:

@@ -73,7 +73,7 @@ class Seq2Seq(nn.Module):
     # ------------------------------------------------------------------ pieces
     def step_embeddings(self) -> torch.Tensor:
         """(steps, step_dim): mean of each step's action and object embeddings."""
-        t = self.step_table
+        t: torch.Tensor = self.step_table  # type: ignore[assignment]  # a registered buffer
         n_parts = 1 + (t[:, 1:] > 0).sum(1, keepdim=True)
         total = self.actions(t[:, 0]) + self.objects(t[:, 1]) + self.objects(t[:, 2])
         return total / n_parts

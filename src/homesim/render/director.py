@@ -7,10 +7,14 @@ agent. Candidates are probed at a small resolution to keep switching cheap.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from homesim.render.layout import room_of_point
+
+if TYPE_CHECKING:
+    from homesim.render.scene import SceneModel
 
 KEEP_SCORE = 1.3
 """Least view score (see `recorder.view_score`: capped agent pixels + share of joints in
@@ -28,7 +32,7 @@ class Director:
     """Chooses a camera per frame; `probe(camera_index)` scores how well it shows the
     agent (0: not at all)."""
 
-    scene: object  # SceneModel
+    scene: SceneModel
     current: int = -1
     held: int = 0
     since_probe: int = 0

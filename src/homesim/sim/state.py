@@ -69,6 +69,16 @@ class Changes:
         parts += [f"added {label(n)}" for n in self.nodes]
         return "; ".join(parts) or "no change"
 
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: edges as [from, relation, to]; states as {node, before, after}."""
+        return {
+            "added": [list(e) for e in self.added],
+            "removed": [list(e) for e in self.removed],
+            "states": [{"node": n, "before": sorted(a), "after": sorted(b)}
+                       for n, a, b in self.states],
+            "nodes": list(self.nodes),
+        }
+
 
 class SimState:
     """The evolving state of one execution on top of a base graph."""
@@ -86,12 +96,13 @@ class SimState:
             raise ExecutionError("the graph has no character node (class 'character')")
         self.graph = graph
         self.char = char
-        self._base_nodes = graph._nodes
-        self._base_out = graph._out
-        self._base_in = graph._in
+        index = graph.index  # the fixed home, never written (homesim.world.index)
+        self._base_nodes = index.nodes
+        self._base_out = index.out
+        self._base_in = index.incoming
         self._out: dict[str, dict[int, set[int]]] = {r: {} for r in RELATIONS}
         self._in: dict[str, dict[int, set[int]]] = {r: {} for r in RELATIONS}
-        if _close_is_symmetric(graph):
+        if index.close_symmetric:
             # CLOSE is symmetric in VirtualHome graphs and every effect keeps it so: one
             # shared overlay serves both directions and halves the work of a walk.
             self._in[CLOSE] = self._out[CLOSE]
@@ -99,8 +110,8 @@ class SimState:
         self._new_nodes: dict[int, Node] = {}
         self.memory: dict[int, tuple[int, str]] = {}
         self.journal: list[tuple[Any, ...]] = []
-        self.rooms = graph.room_ids
-        self.body_parts = _body_parts(graph)
+        self.rooms = index.rooms
+        self.body_parts = index.body_parts
 
     # ----------------------------------------------------------------- reading
     def __contains__(self, node_id: int) -> bool:
@@ -356,11 +367,12 @@ class SimState:
             nodes[node_id] = nodes[node_id].with_states(states)
 
         def merge(base_ix: dict[str, dict[int, frozenset[int]]],
-                  overlay: dict[str, dict[int, set[int]]]) -> dict[str, dict[int, frozenset[int]]]:
+                  overlay: dict[str, dict[int, set[int]]],
+                  skip: str | None = None) -> dict[str, dict[int, frozenset[int]]]:
             merged = {}
             for r, base_map in base_ix.items():
                 touched = overlay[r]
-                if not touched:
+                if not touched or r == skip:
                     merged[r] = base_map  # shared: graphs are read-only
                     continue
                 m = dict(base_map)
@@ -372,24 +384,12 @@ class SimState:
                 merged[r] = m
             return merged
 
-        return EnvironmentGraph._from_indexes(
-            nodes, merge(base._out, self._out), merge(base._in, self._in), base.meta
-        )
-
-
-def _close_is_symmetric(graph: EnvironmentGraph) -> bool:
-    cache = graph._derived
-    symmetric = cache.get("close_symmetric")
-    if symmetric is None:
-        symmetric = cache["close_symmetric"] = graph._out[CLOSE] == graph._in[CLOSE]
-    return symmetric
-
-
-def _body_parts(graph: EnvironmentGraph) -> frozenset[int]:
-    cache = graph._derived
-    parts = cache.get("body_parts")
-    if parts is None:
-        parts = cache["body_parts"] = frozenset(
-            n.id for n in graph.nodes.values() if BODY_PART in n.properties
-        )
-    return parts
+        index = base.index
+        out = merge(index.out, self._out)
+        # A shared CLOSE overlay kept CLOSE symmetric (see __init__): share the result too.
+        symmetric = self._in[CLOSE] is self._out[CLOSE]
+        inn = merge(index.incoming, self._in, skip=CLOSE if symmetric else None)
+        if symmetric:
+            inn[CLOSE] = out[CLOSE]
+        return EnvironmentGraph.from_index(
+            index.derive(nodes, out, inn, bool(self._new_nodes), symmetric or None), base.meta)

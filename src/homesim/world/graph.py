@@ -4,9 +4,9 @@ The format is VirtualHome's JSON: ``{"nodes": [{id, class_name, category, proper
 states, prefab_name, bounding_box}], "edges": [{from_id, relation_type, to_id}]}``.
 
 A graph is read-only once built: it is validated once at the edge (`from_dict`, `load`)
-and then indexed by id, by class and by relation in both directions, so the simulator can
-trust it and look things up in O(1). Executing a program never changes a graph; it yields
-a new one.
+and then indexed (`homesim.world.index.HomeIndex`: by id, by class, by relation in both
+directions), so the simulator can trust it and look things up in O(1), and threads can
+share it. Executing a program never changes a graph; it yields a new one.
 """
 
 from __future__ import annotations
@@ -14,20 +14,23 @@ from __future__ import annotations
 import gzip
 import json
 import math
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+from operator import itemgetter
 from pathlib import Path
 from typing import Any
 
 from homesim.errors import GraphError
+from homesim.files import write_bytes, write_text
+from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
+from homesim.world.index import HomeIndex, index_edges
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS, ROOM_CATEGORY
 
-MAX_GRAPH_BYTES = 256 * 1024 * 1024
-"""Largest graph file `EnvironmentGraph.load` reads (a home is a few MB at most)."""
-
 _EMPTY: frozenset[int] = frozenset()
-_NODE_KEYS = ("id", "class_name", "category", "properties", "states", "prefab_name",
-              "bounding_box")
+_EMPTY_STR: frozenset[str] = frozenset()
+_INT_TYPE = {int}
+_NODE_KEY_SET = frozenset(("id", "class_name", "category", "properties", "states",
+                           "prefab_name", "bounding_box"))
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,22 +88,6 @@ class Node:
 Edge = tuple[int, str, int]
 """An edge as (from_id, relation, to_id)."""
 
-Index = dict[str, dict[int, frozenset[int]]]
-"""relation -> node id -> the ids at the other end."""
-
-
-def _index(edges: Iterable[Edge]) -> tuple[Index, Index]:
-    out: dict[str, dict[int, set[int]]] = {r: {} for r in RELATIONS}
-    inn: dict[str, dict[int, set[int]]] = {r: {} for r in RELATIONS}
-    for a, r, b in edges:
-        out[r].setdefault(a, set()).add(b)
-        inn[r].setdefault(b, set()).add(a)
-
-    def freeze(ix: dict[str, dict[int, set[int]]]) -> Index:
-        return {r: {k: frozenset(v) for k, v in m.items()} for r, m in ix.items()}
-
-    return freeze(out), freeze(inn)
-
 
 class EnvironmentGraph:
     """A home: nodes indexed by id and class, edges indexed by relation both ways.
@@ -115,37 +102,36 @@ class EnvironmentGraph:
     ('fridge 3', [2, 3], 1)
     """
 
-    __slots__ = ("_by_class", "_character", "_derived", "_in", "_meta", "_nodes", "_out", "_rooms")
+    # _nodes, _out and _in repeat fields of the index: the queries below read them often.
+    __slots__ = ("__weakref__", "_in", "_index", "_meta", "_nodes", "_out")
 
     def __init__(self, nodes: Iterable[Node], edges: Iterable[Edge],
                  meta: Mapping[str, Any] | None = None):
         """Build from trusted parts; use `from_dict` or `load` for outside data."""
-        node_map = {n.id: n for n in nodes}
-        out, inn = _index(edges)
-        self._init(node_map, out, inn, dict(meta or {}))
+        edge_list = list(edges)
+        out, inn = index_edges([e[0] for e in edge_list], [e[1] for e in edge_list],
+                               [e[2] for e in edge_list])
+        self._adopt(HomeIndex.build({n.id: n for n in nodes}, out, inn), dict(meta or {}))
 
-    def _init(self, nodes: dict[int, Node], out: Index, inn: Index,
-              meta: dict[str, Any]) -> None:
-        self._nodes = nodes
-        self._out = out
-        self._in = inn
+    def _adopt(self, index: HomeIndex, meta: dict[str, Any]) -> None:
+        self._index = index
+        self._nodes = index.nodes
+        self._out = index.out
+        self._in = index.incoming
         self._meta = meta
-        by_class: dict[str, list[int]] = {}
-        for n in nodes.values():
-            by_class.setdefault(n.class_name, []).append(n.id)
-        self._by_class = {k: tuple(v) for k, v in by_class.items()}
-        self._rooms = frozenset(n.id for n in nodes.values() if n.is_room)
-        chars = self._by_class.get(CHARACTER_CLASS, ())
-        self._character = min(chars) if chars else None
-        self._derived: dict[str, Any] = {}  # caches of derived data, e.g. body parts
 
     @classmethod
-    def _from_indexes(cls, nodes: dict[int, Node], out: Index, inn: Index,
-                      meta: Mapping[str, Any] | None = None) -> EnvironmentGraph:
-        """Adopt ready-made indexes without copying (used by the simulator)."""
+    def from_index(cls, index: HomeIndex, meta: Mapping[str, Any] | None = None
+                   ) -> EnvironmentGraph:
+        """Adopt a ready-made index without copying (the simulator's final graphs)."""
         g = cls.__new__(cls)
-        g._init(nodes, out, inn, dict(meta or {}))
+        g._adopt(index, dict(meta or {}))
         return g
+
+    @property
+    def index(self) -> HomeIndex:
+        """The fixed index of this home (read-only; shared with the simulator)."""
+        return self._index
 
     # ----------------------------------------------------------------- loading
     @classmethod
@@ -159,19 +145,26 @@ class EnvironmentGraph:
                 raise GraphError(f"{where}'{key}' must be a list")
         nodes: dict[int, Node] = {}
         for i, raw in enumerate(data["nodes"]):
-            node = _node_from_dict(raw, f"{where}nodes[{i}]")
+            node = _node_from_dict(raw, where, i)
             if node.id in nodes:
                 raise GraphError(f"{where}nodes[{i}]: duplicate node id {node.id}")
             nodes[node.id] = node
-        edges: list[Edge] = []
-        for i, raw in enumerate(data["edges"]):
-            edges.append(_edge_from_dict(raw, nodes, f"{where}edges[{i}]"))
+        columns = _edge_columns(data["edges"], nodes)
+        if columns is None:  # something is off: find it edge by edge, for the message
+            edges = [_edge_from_dict(raw, nodes, f"{where}edges[{i}]")
+                     for i, raw in enumerate(data["edges"])]
+            columns = ([e[0] for e in edges], [e[1] for e in edges], [e[2] for e in edges])
+        out, inn = index_edges(*columns)
+        index = HomeIndex.build(nodes, out, inn)
+        _check_characters(index, where)
         meta = {k: v for k, v in data.items() if k not in ("nodes", "edges")}
-        return cls(nodes.values(), edges, meta)
+        return cls.from_index(index, meta)
 
     @classmethod
     def load(cls, path: str | Path, max_bytes: int = MAX_GRAPH_BYTES) -> EnvironmentGraph:
-        """Load a graph from a ``.json`` or ``.json.gz`` file."""
+        """Load a home from a ``.json`` or ``.json.gz`` file; it must have a character.
+
+        Every `GraphError` names the file and says why in one line."""
         path = Path(path)
         try:
             size = path.stat().st_size
@@ -183,16 +176,26 @@ class EnvironmentGraph:
                 "limit for a graph"
             )
         try:
-            raw = gzip.decompress(path.read_bytes()) if path.suffix == ".gz" else path.read_bytes()
+            raw = path.read_bytes()
+            if path.suffix == ".gz":
+                raw = gzip.decompress(raw)
             data = json.loads(raw)
-        except (OSError, EOFError) as e:
+        except EOFError:
+            raise GraphError(f"{path}: the gzip data ends early (is the file truncated?)") from None
+        except (OSError, gzip.BadGzipFile) as e:
             raise GraphError(f"{path}: cannot read graph file ({e})") from None
         except UnicodeDecodeError:
             raise GraphError(f"{path}: not UTF-8 text") from None
         except json.JSONDecodeError as e:
-            raise GraphError(f"{path}: invalid JSON at line {e.lineno} column {e.colno}: "
-                             f"{e.msg}") from None
-        return cls.from_dict(data, source=str(path))
+            raise GraphError(f"{path}: {_json_problem(e)}") from None
+        except RecursionError:
+            raise GraphError(f"{path}: JSON nested deeper than the limit of {MAX_JSON_DEPTH} "
+                             "levels (MAX_JSON_DEPTH)") from None
+        graph = cls.from_dict(data, source=str(path))
+        if graph.character_id is None:
+            raise GraphError(f"{path}: the graph has no character node (class_name "
+                             f"'{CHARACTER_CLASS}'); a home needs one to act in it")
+        return graph
 
     def to_dict(self) -> dict[str, Any]:
         """The graph as a VirtualHome JSON dict (nodes by id, edges sorted)."""
@@ -208,10 +211,10 @@ class EnvironmentGraph:
         """Write the graph as JSON (gzip-compressed when the name ends in ``.gz``)."""
         path = Path(path)
         text = json.dumps(self.to_dict())
-        if path.suffix == ".gz":
-            path.write_bytes(gzip.compress(text.encode(), mtime=0))
+        if path.suffix == ".gz":  # atomically: an interrupted save leaves the old file
+            write_bytes(path, gzip.compress(text.encode(), mtime=0))
         else:
-            path.write_text(text)
+            write_text(path, text)
 
     # ----------------------------------------------------------------- queries
     def __len__(self) -> int:
@@ -254,10 +257,10 @@ class EnvironmentGraph:
         return self._nodes.get(node_id)
 
     def nodes_of_class(self, class_name: str) -> list[Node]:
-        return [self._nodes[i] for i in self._by_class.get(class_name, ())]
+        return [self._nodes[i] for i in self._index.by_class.get(class_name, ())]
 
     def class_names(self) -> set[str]:
-        return set(self._by_class)
+        return set(self._index.by_class)
 
     def targets(self, node_id: int, relation: str) -> frozenset[int]:
         """Ids `x` with an edge ``node_id -relation-> x``."""
@@ -284,18 +287,18 @@ class EnvironmentGraph:
     @property
     def character_id(self) -> int | None:
         """Id of the acting character (the lowest-id ``character`` node), or None."""
-        return self._character
+        return self._index.character
 
     @property
     def room_ids(self) -> frozenset[int]:
-        return self._rooms
+        return self._index.rooms
 
     def rooms(self) -> list[Node]:
-        return [self._nodes[i] for i in sorted(self._rooms)]
+        return [self._nodes[i] for i in sorted(self._index.rooms)]
 
     def room_of(self, node_id: int) -> int | None:
         """The room a node is in, following INSIDE edges; None if it is in none."""
-        return room_of(node_id, self._rooms, lambda n: self.targets(n, INSIDE))
+        return room_of(node_id, self._index.rooms, lambda n: self.targets(n, INSIDE))
 
 
 def room_of(node_id: int, rooms: frozenset[int], inside: Any) -> int | None:
@@ -322,63 +325,112 @@ def room_of(node_id: int, rooms: frozenset[int], inside: Any) -> int | None:
 
 
 # --------------------------------------------------------------------- validation
+# One pass over the nodes checks each field where it is read; edges (most of a home: 14k
+# in scene1) are checked column-wise by C-level set operations, and only when a check
+# fails are they walked one by one to name the faulty edge.
+
+_NUMBER = (int, float)
+_EDGE_KEYS = itemgetter("from_id", "relation_type", "to_id")
+
+
 def _is_int(x: Any) -> bool:
     return isinstance(x, int) and not isinstance(x, bool)
 
 
-def _str_list(raw: Mapping[str, Any], key: str, where: str) -> frozenset[str]:
-    value = raw.get(key) or []
-    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-        raise GraphError(f"{where}: '{key}' must be a list of strings, got {value!r:.60}")
-    return frozenset(v.upper() for v in value)
+def _node_where(where: str, i: int, node_id: Any = None) -> str:
+    return f"{where}nodes[{i}]" + ("" if node_id is None else f" (id {node_id})")
 
 
-def _opt_str(raw: Mapping[str, Any], key: str, where: str) -> str | None:
+def _str_set(raw: Mapping[str, Any], key: str, where: str, i: int, node_id: int
+             ) -> frozenset[str]:
+    value = raw.get(key)
+    if not value:
+        return _EMPTY_STR
+    if isinstance(value, list):
+        try:
+            return frozenset(map(str.upper, value))  # TypeError on a non-string
+        except TypeError:
+            pass
+    raise GraphError(f"{_node_where(where, i, node_id)}: '{key}' must be a list of strings, "
+                     f"got {value!r:.60}")
+
+
+def _opt_str(raw: Mapping[str, Any], key: str, where: str, i: int, node_id: int) -> str | None:
     value = raw.get(key)
     if value is not None and not isinstance(value, str):
-        raise GraphError(f"{where}: '{key}' must be a string or null, got {value!r:.60}")
+        raise GraphError(f"{_node_where(where, i, node_id)}: '{key}' must be a string or null, "
+                         f"got {value!r:.60}")
     return value
 
 
-def _vec3(value: Any, what: str, where: str) -> tuple[float, float, float]:
-    ok = (isinstance(value, list) and len(value) == 3
-          and all(isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
-                  for v in value))
-    if not ok:
-        raise GraphError(f"{where}: bounding_box '{what}' must be 3 finite numbers, "
-                         f"got {value!r:.60}")
-    return (float(value[0]), float(value[1]), float(value[2]))
+def _vec3(value: Any, what: str, limit: float, low: float, where: str, i: int,
+          node_id: int) -> tuple[float, float, float]:
+    if isinstance(value, list) and len(value) == 3:
+        x, y, z = value
+        # Chained comparisons are False for NaN and infinities too.
+        if (type(x) in _NUMBER and type(y) in _NUMBER and type(z) in _NUMBER
+                and low <= x <= limit and low <= y <= limit and low <= z <= limit):
+            return (float(x), float(y), float(z))
+        if all(isinstance(v, _NUMBER) and not isinstance(v, bool) and math.isfinite(v)
+               for v in value):
+            bound = f"within ±{limit:g} m" if low < 0 else f"between 0 and {limit:g} m"
+            raise GraphError(f"{_node_where(where, i, node_id)}: bounding_box '{what}' must be "
+                             f"{bound} (homesim.limits), got {value!r:.60}")
+    raise GraphError(f"{_node_where(where, i, node_id)}: bounding_box '{what}' must be 3 finite "
+                     f"numbers, got {value!r:.60}")
 
 
-def _node_from_dict(raw: Any, where: str) -> Node:
+def _node_from_dict(raw: Any, where: str, i: int) -> Node:
+    """Node `i` of the JSON list; `where` is the source prefix for messages."""
     if not isinstance(raw, Mapping):
-        raise GraphError(f"{where}: a node must be a JSON object, got {raw!r:.60}")
+        raise GraphError(f"{_node_where(where, i)}: a node must be a JSON object, "
+                         f"got {raw!r:.60}")
     node_id = raw.get("id")
-    if not _is_int(node_id):
-        raise GraphError(f"{where}: 'id' must be an integer, got {node_id!r:.60}")
-    where = f"{where} (id {node_id})"
+    if type(node_id) is not int and not _is_int(node_id):
+        raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {node_id!r:.60}")
     class_name = raw.get("class_name")
     if not isinstance(class_name, str) or not class_name.strip():
-        raise GraphError(f"{where}: 'class_name' must be a non-empty string, "
-                         f"got {class_name!r:.60}")
+        raise GraphError(f"{_node_where(where, i, node_id)}: 'class_name' must be a non-empty "
+                         f"string, got {class_name!r:.60}")
     box = raw.get("bounding_box")
     bbox = None
     if box is not None:
         if not isinstance(box, Mapping):
-            raise GraphError(f"{where}: 'bounding_box' must be an object with center and size")
-        bbox = BoundingBox(_vec3(box.get("center"), "center", where),
-                           _vec3(box.get("size"), "size", where))
-    extra = {k: v for k, v in raw.items() if k not in _NODE_KEYS} or None
-    return Node(
-        id=node_id,
-        class_name=class_name,
-        category=_opt_str(raw, "category", where),
-        properties=_str_list(raw, "properties", where),
-        states=_str_list(raw, "states", where),
-        prefab_name=_opt_str(raw, "prefab_name", where),
-        bounding_box=bbox,
-        extra=extra,
-    )
+            raise GraphError(f"{_node_where(where, i, node_id)}: 'bounding_box' must be an "
+                             "object with center and size")
+        bbox = BoundingBox(
+            _vec3(box.get("center"), "center", MAX_COORD, -MAX_COORD, where, i, node_id),
+            _vec3(box.get("size"), "size", MAX_SIZE, 0.0, where, i, node_id))
+    extra = None
+    if not raw.keys() <= _NODE_KEY_SET:
+        extra = {k: v for k, v in raw.items() if k not in _NODE_KEY_SET}
+        if deeper_than(extra, MAX_JSON_DEPTH - 3):  # graph > nodes > node > extra
+            raise GraphError(f"{_node_where(where, i, node_id)}: JSON nested deeper than the "
+                             f"limit of {MAX_JSON_DEPTH} levels (MAX_JSON_DEPTH)")
+    return Node(node_id, class_name, _opt_str(raw, "category", where, i, node_id),
+                _str_set(raw, "properties", where, i, node_id),
+                _str_set(raw, "states", where, i, node_id),
+                _opt_str(raw, "prefab_name", where, i, node_id), bbox, extra)
+
+
+def _edge_columns(raw_edges: list[Any], nodes: Mapping[int, Node]
+                  ) -> tuple[Sequence[int], Sequence[str], Sequence[int]] | None:
+    """The edges as (from ids, relations, to ids) if every one is valid and its relation
+    is spelled in upper case; None otherwise (then `_edge_from_dict` says which is not)."""
+    if not raw_edges:
+        return ((), (), ())
+    try:
+        froms, rels, tos = zip(*map(_EDGE_KEYS, raw_edges), strict=True)
+    except (TypeError, KeyError, ValueError):
+        return None
+    ids = nodes.keys()
+    try:
+        if (set(map(type, froms)) == _INT_TYPE and set(map(type, tos)) == _INT_TYPE
+                and RELATIONS.issuperset(rels) and ids >= set(froms) and ids >= set(tos)):
+            return froms, rels, tos
+    except TypeError:  # an unhashable relation
+        pass
+    return None
 
 
 def _edge_from_dict(raw: Any, nodes: Mapping[int, Node], where: str) -> Edge:
@@ -389,8 +441,33 @@ def _edge_from_dict(raw: Any, nodes: Mapping[int, Node], where: str) -> Edge:
         raise GraphError(f"{where}: 'from_id' and 'to_id' must be integers, got {a!r}, {b!r}")
     if not isinstance(r, str) or r.upper() not in RELATIONS:
         known = ", ".join(sorted(RELATIONS))
-        raise GraphError(f"{where}: unknown relation {r!r} (known: {known})")
+        raise GraphError(f"{where}: unknown relation {r!r:.60} (known: {known})")
     for end, value in (("from_id", a), ("to_id", b)):
         if value not in nodes:
             raise GraphError(f"{where} ({a} {r} {b}): {end} {value} is not a node of the graph")
     return (a, r.upper(), b)
+
+
+def _check_characters(index: HomeIndex, where: str) -> None:
+    """Every character is INSIDE a room, when the home has rooms: grounding and rendering
+    place the agent by its room."""
+    if not index.rooms:
+        return
+    inside = index.out[INSIDE]
+    for char in index.by_class.get(CHARACTER_CLASS, ()):
+        if not inside.get(char, _EMPTY) & index.rooms:
+            raise GraphError(f"{where}character {char} is INSIDE no room; add an edge "
+                             f"{{'from_id': {char}, 'relation_type': 'INSIDE', 'to_id': ROOM}}")
+
+
+def _json_problem(e: json.JSONDecodeError) -> str:
+    """One full line for a JSON syntax error: where, what, and whether the text ends early."""
+    if not e.doc.strip():
+        return "the file is empty, not a JSON graph"
+    what = e.msg.removesuffix(" starting at").removesuffix(": line 1 column 1 (char 0)")
+    what = what[0].lower() + what[1:] if what else "syntax error"
+    if e.msg.startswith("Unterminated string"):
+        what = "a string starting there never ends"
+    ends_early = e.pos >= len(e.doc.rstrip()) or e.msg.startswith("Unterminated")
+    tail = "; the text ends early (is the file truncated?)" if ends_early else ""
+    return f"invalid JSON at line {e.lineno} column {e.colno}: {what}{tail}"

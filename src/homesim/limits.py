@@ -1,0 +1,121 @@
+"""Every limit of homesim in one place.
+
+The CLI (``homesim run``, reading program and graph files) and the web API apply the same
+limits; input over a limit is refused with one line (a 4xx answer) naming the limit.
+Real data is far below each of them: the 518 VirtualHome programs have under 100 steps
+and under 2 KB of text, and the five apartments are under 4 MB of JSON with coordinates
+within 30 m. docs/limits.md lists them in a table.
+"""
+
+from __future__ import annotations
+
+# ------------------------------------------------------------------ programs
+MAX_PROGRAM_BYTES = 256 * 1024
+"""Largest program text (UTF-8 bytes), from a file, stdin or a request."""
+
+MAX_STEPS = 1000
+"""Most steps a program may have."""
+
+MAX_ID_DIGITS = 9
+"""Most digits of an instance number or node id in a step (``(1.417)``); keeps ids
+within 32-bit integers, which MuJoCo and numpy indexes use."""
+
+MAX_NAME_CHARS = 100
+"""Longest action or object name between brackets (``[Walk]``, ``<sofa>``)."""
+
+EXCERPT_CHARS = 80
+"""Most characters of user text an error message quotes (then an ellipsis)."""
+
+# ------------------------------------------------------------------ graphs
+MAX_GRAPH_BYTES = 256 * 1024 * 1024
+"""Largest environment graph file (bytes of JSON, after gunzip)."""
+
+MAX_JSON_DEPTH = 32
+"""Deepest nesting of JSON arrays and objects in a graph or request (a graph needs 4)."""
+
+MAX_COORD = 1.0e4
+"""Largest absolute bounding-box coordinate, in metres."""
+
+MAX_SIZE = 1.0e3
+"""Largest bounding-box extent along one axis, in metres."""
+
+# ------------------------------------------------------------------ API
+MAX_REQUEST_BYTES = MAX_PROGRAM_BYTES
+"""Largest request body the API accepts (its JSON holds at most one program)."""
+
+# ------------------------------------------------------------------ rendering
+MIN_RENDER_SIDE = 16
+"""Smallest frame width or height, in pixels."""
+
+MAX_RENDER_WIDTH = 1280
+"""Widest frame, in pixels."""
+
+MAX_RENDER_HEIGHT = 960
+"""Tallest frame, in pixels."""
+
+MAX_RENDER_PIXEL_FRAMES = 64 * 320 * 240
+"""Most frames x pixels one render request may ask for (64 frames at 320x240; an
+RGB frame costs 3 bytes a pixel, so at most ~15 MB of images per request)."""
+
+RENDER_WORKERS = 1
+"""Render requests that run at the same time (each holds an OpenGL context)."""
+
+RENDER_QUEUE = 4
+"""Render requests that may wait for a worker; more are refused with 503."""
+
+# ------------------------------------------------------------------ server
+RENDER_TIMEOUT_S = 120.0
+"""Longest a render job may run before its worker process is killed."""
+
+RENDER_KEEP_JOBS = 16
+"""Finished render jobs whose frames the server keeps (the oldest go first)."""
+
+RENDER_KEEP_S = 600.0
+"""Seconds a finished render job's frames stay available."""
+
+INLINE_PROGRAM_CHARS = 16 * 1024
+"""Programs up to this many characters are checked and run in the server process; larger
+ones go to a program worker process, so their parsing never holds up other requests."""
+
+PROGRAM_WORKERS = 1
+"""Worker processes for large programs."""
+
+PROGRAM_QUEUE = 8
+"""Large-program requests that may wait for a program worker; more are refused with 503."""
+
+HEADER_TIMEOUT_S = 10.0
+"""Seconds a client has to send a request's headers; slower connections are closed."""
+
+BODY_TIMEOUT_S = 10.0
+"""Seconds a client has to send a request body; slower ones get 408."""
+
+KEEP_ALIVE_S = 5
+"""Seconds an idle keep-alive connection stays open."""
+
+SHUTDOWN_GRACE_S = 3
+"""Seconds a stopping server waits for requests in flight before cancelling them."""
+
+MAX_MESSAGE_CHARS = 500
+"""Longest error message (and quoted text) in an API answer (then an ellipsis)."""
+
+
+def deeper_than(value: object, depth: int) -> bool:
+    """Whether JSON data (dicts, lists, scalars) nests more than `depth` levels.
+
+    Iterative, so it is safe on data of any depth. Loaders call it on the parts of a
+    document they keep without reading (a node's unknown keys).
+
+    >>> deeper_than([[1]], 1), deeper_than([[1]], 2)
+    (True, False)
+    """
+    stack = [(value, 0)]
+    while stack:
+        item, level = stack.pop()
+        if isinstance(item, dict):
+            item = list(item.values())
+        elif not isinstance(item, list):
+            continue
+        if level + 1 > depth:
+            return True
+        stack.extend((child, level + 1) for child in item)
+    return False
