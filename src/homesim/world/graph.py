@@ -326,7 +326,7 @@ def room_of(node_id: int, rooms: frozenset[int], inside: Any) -> int | None:
 # fails are they walked one by one to name the faulty edge.
 
 _NUMBER = (int, float)
-_EDGE_KEYS = itemgetter("from_id", "relation_type", "to_id")
+_FROM, _RELATION, _TO = itemgetter("from_id"), itemgetter("relation_type"), itemgetter("to_id")
 
 
 def _is_int(x: Any) -> bool:
@@ -410,11 +410,11 @@ def _edge_columns(raw_edges: list[Any], nodes: Mapping[int, Node]
                   ) -> tuple[Sequence[int], Sequence[str], Sequence[int]] | None:
     """The edges as (from ids, relations, to ids) if every one is valid and its relation
     is spelled in upper case; None otherwise (then `_edge_from_dict` says which is not)."""
-    if not raw_edges:
-        return ((), (), ())
     try:
-        froms, rels, tos = zip(*map(_EDGE_KEYS, raw_edges), strict=True)
-    except (TypeError, KeyError, ValueError):
+        froms = list(map(_FROM, raw_edges))
+        rels = list(map(_RELATION, raw_edges))
+        tos = list(map(_TO, raw_edges))
+    except (TypeError, KeyError):  # not an object, or a key is missing
         return None
     ids = nodes.keys()
     try:
