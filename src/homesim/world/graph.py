@@ -18,7 +18,7 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from homesim.errors import GraphError
 from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_SIZE
@@ -381,9 +381,10 @@ def _node_from_dict(raw: Any, where: str, i: int) -> Node:
     if not isinstance(raw, Mapping):
         raise GraphError(f"{_node_where(where, i)}: a node must be a JSON object, "
                          f"got {raw!r:.60}")
-    node_id = raw.get("id")
-    if type(node_id) is not int and not _is_int(node_id):
-        raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {node_id!r:.60}")
+    raw_id = raw.get("id")
+    if type(raw_id) is not int and not _is_int(raw_id):
+        raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {raw_id!r:.60}")
+    node_id = cast(int, raw_id)
     class_name = raw.get("class_name")
     if not isinstance(class_name, str) or not class_name.strip():
         raise GraphError(f"{_node_where(where, i, node_id)}: 'class_name' must be a non-empty "
@@ -438,7 +439,7 @@ def _edge_from_dict(raw: Any, nodes: Mapping[int, Node], where: str) -> Edge:
     for end, value in (("from_id", a), ("to_id", b)):
         if value not in nodes:
             raise GraphError(f"{where} ({a} {r} {b}): {end} {value} is not a node of the graph")
-    return (a, r.upper(), b)
+    return (cast(int, a), r.upper(), cast(int, b))
 
 
 def _check_characters(index: HomeIndex, where: str) -> None:
