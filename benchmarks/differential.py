@@ -58,7 +58,7 @@ def compare(directory: Path) -> list[dict]:
     records = []
     for rp in real_programs(directory):
         init, final = rp.graphs()
-        result = execute(rp.program, init)
+        result = execute(rp.program, init, reference=True)
         ref = patched[rp.id]
         seen: dict[str, dict[str, set] | None] = {
             "homesim": ({a: aspect(result.final_graph, a) for a in ASPECTS}

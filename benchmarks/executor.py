@@ -3,7 +3,7 @@
 Both run in this one invocation, on the same programs and stored initial graphs, with
 graphs and programs loaded beforehand (only execution is timed; best of --repeat runs):
 
-- plain: homesim ``execute(p, g)`` vs reference ``ScriptExecutor.execute(script,
+- plain: homesim ``execute(p, g, reference=True)`` vs reference ``ScriptExecutor.execute(script,
   w_graph_list=False)`` (2.3.0 with its three crashing bugs patched in memory);
 - with per-step changes: homesim ``execute(p, g, trace=True)`` (per-step deltas) vs
   reference ``w_graph_list=True`` (a full graph dict per step).
@@ -32,7 +32,7 @@ def time_homesim(items, trace: bool, repeat: int) -> tuple[float, int]:
     best = float("inf")
     for _ in range(repeat):
         t0 = time.perf_counter()
-        ok = sum(execute(p, g, trace=trace).executable for p, g in items)
+        ok = sum(execute(p, g, trace=trace, reference=True).executable for p, g in items)
         best = min(best, time.perf_counter() - t0)
     return best, ok
 

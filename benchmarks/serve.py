@@ -2,7 +2,7 @@
 
 All three run in this one invocation on the demo program (watch TV, 5 steps, scene1):
 
-- library: ``parse_program`` + ``execute(trace=True)`` + the JSON view of the trace;
+- library: ``parse_program`` + ``run_program(trace=True)`` + its JSON view (``to_dict``);
 - in-process: ``POST /api/execute`` through FastAPI's TestClient (no sockets);
 - HTTP: ``POST /api/execute`` to uvicorn on loopback with a keep-alive httpx client.
 
@@ -25,10 +25,10 @@ import uvicorn
 from fastapi.testclient import TestClient
 
 from homesim.examples import DEMO_HOME, load_example
+from homesim.ground import run_program
 from homesim.program import parse_program
 from homesim.serve import create_app
-from homesim.serve.results import execution_json, step_lines
-from homesim.sim import execute
+from homesim.serve.results import step_lines
 from homesim.world import load_home
 
 GOAL_MS = 50.0
@@ -64,10 +64,10 @@ def main() -> None:
 
     def library() -> None:
         program = parse_program(text)
-        execution_json(execute(program, graph, trace=True), step_lines(text))
+        run_program(program, graph, trace=True).to_dict(step_lines(text))
 
     app = create_app()
-    client = TestClient(app)
+    client = TestClient(app, base_url="http://127.0.0.1")  # a loopback Host
     t0 = time.perf_counter()
     first = client.get(f"/api/homes/{DEMO_HOME}/objects")
     first_ms = (time.perf_counter() - t0) * 1000

@@ -8,6 +8,7 @@
 
 from homesim.errors import (
     ArityError,
+    BindingError,
     DataError,
     ExecutionError,
     GraphError,
@@ -16,8 +17,8 @@ from homesim.errors import (
     ProgramError,
     UnknownActionError,
 )
-from homesim.ground import prepare, prepare_and_ground, unground
-from homesim.program import ObjectRef, Program, Step, parse_program
+from homesim.ground import Run, prepare, prepare_and_ground, run_program, unground
+from homesim.program import Bindings, ObjectRef, Program, Step, parse_program
 from homesim.sim import ExecutionResult, execute
 from homesim.world import EnvironmentGraph, load_home
 
@@ -25,6 +26,8 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ArityError",
+    "BindingError",
+    "Bindings",
     "DataError",
     "EnvironmentGraph",
     "ExecutionError",
@@ -35,6 +38,7 @@ __all__ = [
     "ObjectRef",
     "Program",
     "ProgramError",
+    "Run",
     "Step",
     "UnknownActionError",
     "execute",
@@ -42,5 +46,6 @@ __all__ = [
     "parse_program",
     "prepare",
     "prepare_and_ground",
+    "run_program",
     "unground",
 ]

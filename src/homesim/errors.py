@@ -7,6 +7,17 @@ catch `HomesimError` and print that line; any other exception is a bug of ours.
 
 from __future__ import annotations
 
+from homesim.limits import EXCERPT_CHARS
+
+
+def excerpt(text: str, limit: int = EXCERPT_CHARS) -> str:
+    """`text` cut to `limit` characters with an ellipsis, for quoting user text in errors.
+
+    >>> excerpt("x" * 100, 5)
+    'xxxxx…'
+    """
+    return text if len(text) <= limit else text[:limit] + "…"
+
 
 class HomesimError(Exception):
     """Base class of every error homesim raises on bad input."""
@@ -17,18 +28,18 @@ class ProgramError(HomesimError):
 
     Attributes:
         line: 1-based line number in the text (0 when unknown).
-        text: the offending line.
+        text: the offending line (at most `EXCERPT_CHARS` of it, see `excerpt`).
         expected: what a valid line would have had there.
         source: file name or other origin of the text, if known.
     """
 
     def __init__(self, line: int, text: str, expected: str, source: str | None = None):
         self.line = line
-        self.text = text
+        self.text = excerpt(text.strip())
         self.expected = expected
         self.source = source
         where = f"{source}:" if source else ""
-        super().__init__(f"{where}line {line}: {text.strip()!r}: {expected}")
+        super().__init__(f"{where}line {line}: {self.text!r}: {expected}")
 
 
 class UnknownActionError(ProgramError):
@@ -39,12 +50,40 @@ class ArityError(ProgramError):
     """A step has the wrong number of arguments for its action."""
 
 
+class LimitError(HomesimError):
+    """An input over one of the limits in `homesim.limits` (size, steps, ...).
+
+    Attributes:
+        limit: the name of the limit in `homesim.limits` (``MAX_STEPS``).
+    """
+
+    def __init__(self, message: str, limit: str):
+        self.limit = limit
+        super().__init__(message)
+
+
 class GraphError(HomesimError):
     """An environment graph that is malformed (dangling edge, duplicate id, bad types)."""
 
 
 class ExecutionError(HomesimError):
     """A program cannot be executed on a graph at all (e.g. no character in the graph)."""
+
+
+class BindingError(ExecutionError):
+    """A program whose object refs name no node, or a node of another class.
+
+    Attributes:
+        step: 1-based number of the first step that uses the object.
+        obj: the program object (``<tv> (1)``).
+        node: the node id it names, if any.
+    """
+
+    def __init__(self, message: str, step: int, obj: str, node: int | None = None):
+        self.step = step
+        self.obj = obj
+        self.node = node
+        super().__init__(message)
 
 
 class DataError(HomesimError):

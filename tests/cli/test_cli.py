@@ -16,7 +16,9 @@ def test_json_output(capsys):
     assert main(["run", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["executable"] is True and len(data["steps"]) == 5
-    assert data["steps"][1]["changes"]["states"] == [[410, ["OFF"], ["ON"]]]
+    assert data["steps"][1]["changes"]["states"] == [
+        {"node": 410, "before": ["OFF"], "after": ["ON"]}]
+    assert data["stage"] is None and data["preparation"] is None  # came grounded
 
 
 def test_failing_program_exits_1_with_reason(tmp_path, capsys):
@@ -36,6 +38,11 @@ def test_failing_program_exits_1_with_reason(tmp_path, capsys):
         ("[Walk] <tv> (1.410)\n", ["--graph", "missing.json"], "cannot read graph file"),
         ("Title\nDesc\n\n", [], "the program has no steps"),
         (b"\xff\xfe\xfa", [], "not UTF-8"),
+        ("[Walk] <tv> (" + "9" * 4301 + ")", [], "over the limit of 9 (MAX_ID_DIGITS)"),
+        ("[Walk] <tv> (1)\n" * 1001, [], "over the limit of 1000 steps (MAX_STEPS)"),
+        ("[Walk] " + "<tv> (1) " * 120_000, [], "over the limit of 256 KiB for a program "
+                                                "(MAX_PROGRAM_BYTES)"),
+        ("[Walk] " + "<tv> (1) " * 25_000, [], "[Walk] takes 1 object, got 25000"),
     ],
 )
 def test_bad_input_gives_one_line_and_no_traceback(tmp_path, capsys, content, args, pattern):
@@ -48,6 +55,7 @@ def test_bad_input_gives_one_line_and_no_traceback(tmp_path, capsys, content, ar
     err = capsys.readouterr().err
     assert pattern in " ".join(err.split())
     assert "Traceback" not in err
+    assert len(err) < 500  # user text is quoted as a short excerpt
 
 
 def test_broken_graph_file(tmp_path, capsys):
@@ -88,10 +96,26 @@ def test_ungrounded_program_json_has_the_grounding(tmp_path, capsys):
     p.write_text(DRINK)
     assert main(["run", str(p), "--home", "scene3_trimmed", "--json", "--seed", "2"]) == 0
     data = json.loads(capsys.readouterr().out)
+    assert [a["class_name"] for a in data["preparation"]["added"]] == ["wine_glass"]
     grounding = data["grounding"]
-    assert [a["class_name"] for a in grounding["added"]] == ["wine_glass"]
-    assert {"object": "<television> (1)", "node_id": 216} in grounding["bindings"]
+    assert {"name": "television", "instance": 1, "node_id": 216} in grounding["bindings"]
     assert grounding["standing"] is None and data["executable"] is True
+    assert "[SwitchOn] <television> (1.216)" in grounding["program"]
+
+
+def test_grounded_program_of_the_wrong_class_is_refused(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1.352)\n")
+    assert main(["run", str(p), "--home", "scene1", "--json"]) == 1
+    data = json.loads(capsys.readouterr().out)
+    assert data["stage"] == "grounding" and data["failed_step"] == 2
+    assert data["message"] == ("step 2 [SwitchOn] <tv> (1.352): <tv> (1) is node 352 here "
+                               "but node 410 at an earlier step; one object is one node")
+    p.write_text("[Walk] <tv> (1.410)\n[Walk] <tv> (2.352)\n")
+    assert main(["run", str(p), "--home", "scene1"]) == 1
+    out = " ".join(capsys.readouterr().out.split())
+    assert "cannot ground in scene1: step 2 [Walk] <tv> (2.352): <tv> (2) is node 352, a sofa, " \
+           "not a tv" in out
 
 
 def test_program_that_cannot_be_grounded_exits_1_with_reason(tmp_path, capsys):
@@ -118,3 +142,37 @@ def test_errors_keep_bracketed_text_and_stay_on_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert f"{p}: cannot read program" in err
     assert err.count("\n") == 1
+
+
+def test_version(capsys):
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == "homesim 0.1.0"
+
+
+def test_a_parse_error_with_json_is_json(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Wlak] <tv> (1)\n")
+    assert main(["run", str(p), "--json"]) == 2
+    data = json.loads(capsys.readouterr().out)
+    assert "unknown action 'Wlak' (did you mean Walk?)" in data["error"]
+
+
+@pytest.mark.parametrize("command", [[], ["run"], ["synth"], ["data"], ["data", "stats"],
+                                     ["learn", "train"], ["learn", "eval"], ["render"]])
+def test_help_has_no_hard_line_breaks_or_rst(command, capsys, monkeypatch):
+    from homesim.cli.main import app, tidy_help
+
+    monkeypatch.setenv("COLUMNS", "400")  # one line per paragraph
+    assert main([*command, "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "``" not in out
+    group = app
+    for name in command:  # the command's docstring: each paragraph is one printed line
+        sub = {g.name: g.typer_instance for g in group.registered_groups}
+        if name in sub:
+            group = sub[name]
+            continue
+        cmd = next(c for c in group.registered_commands
+                   if (c.name or c.callback.__name__) == name)
+        for paragraph in tidy_help(cmd.help).split("\n\n"):
+            assert paragraph.replace("\\[", "[") in out  # rich prints \[ as [

@@ -37,3 +37,17 @@ def test_stats_on_a_bad_file_gives_one_line(tmp_path, capsys):
 def test_stats_on_a_missing_dataset(tmp_path, capsys):
     assert main(["data", "stats", str(tmp_path / "nope")]) == 2
     assert "no such file or folder" in capsys.readouterr().err.replace("\n", "")
+
+
+def test_stats_refuses_to_replace_outputs_without_force(tmp_path, capsys):
+    data = tmp_path / "programs"
+    data.mkdir()
+    (data / "a.txt").write_text(WATCH)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "stats.md").write_text("my notes")
+    assert main(["data", "stats", str(data), "--out", str(out)]) == 2
+    assert "stats.md: already exists; pass --force" in capsys.readouterr().err.replace("\n", "")
+    assert [p.name for p in out.iterdir()] == ["stats.md"]
+    assert main(["data", "stats", str(data), "--out", str(out), "--force"]) == 0
+    assert (out / "stats.md").read_text() != "my notes" and len(list(out.iterdir())) == 5

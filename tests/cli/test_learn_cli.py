@@ -14,10 +14,10 @@ def test_train_then_eval_prints_table_3(tmp_path, capsys):
     assert main(args) == 2
     assert "pass --force" in capsys.readouterr().err
     md = tmp_path / "results.md"
-    assert main(["learn", "eval", "--runs", str(runs), "--data", "synthetic",
-                 "--markdown", str(md)]) == 0
-    out = capsys.readouterr().out
+    assert main(["learn", "eval", "--runs", str(runs), "--markdown", str(md)]) == 0  # both
+    out = " ".join(capsys.readouterr().out.split())
     assert "Simulator %" in out and "NN retrieval (MiniLM)" in out
+    assert f"skipped real: nothing trained in {runs / 'real'}" in out
     assert "| PG (LCS+Sim) + constrained decoding |" in md.read_text()
     assert (runs / "synthetic" / "results.json").is_file()
 
@@ -28,3 +28,20 @@ def test_unknown_task_and_missing_checkpoints_are_one_line(tmp_path, capsys):
     assert main(["learn", "eval", "--runs", str(tmp_path), "--data", "real"]) == 2
     err = capsys.readouterr().err
     assert "checkpoint not found" in err and "Traceback" not in err
+
+
+def test_train_refuses_any_existing_checkpoint_before_training(tmp_path, capsys):
+    (tmp_path / "synthetic").mkdir()
+    (tmp_path / "synthetic" / "pg_lcs.pt").write_bytes(b"mine")
+    args = ["learn", "train", "--data", "synthetic", "--out", str(tmp_path)]
+    assert main(args) == 2
+    assert "pg_lcs.pt: already exists; pass --force" in " ".join(capsys.readouterr().err.split())
+    assert (tmp_path / "synthetic" / "pg_lcs.pt").read_bytes() == b"mine"
+
+
+def test_out_naming_a_file_is_one_line(tmp_path, capsys):
+    out = tmp_path / "runs"
+    out.write_text("a file")
+    assert main(["learn", "train", "--data", "synthetic", "--out", str(out)]) == 2
+    err = " ".join(capsys.readouterr().err.split())
+    assert "runs: not a folder; --out names the run folder" in err and "internal" not in err

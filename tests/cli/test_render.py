@@ -31,7 +31,8 @@ def test_render_writes_a_recording_and_preview(tmp_path, graph_file, capsys):
     text = capsys.readouterr().out
     assert "frames" in text and "preview" in text
     assert (out / "preview.png").stat().st_size > 0
-    assert load_recording(out).meta["seed"] == 2
+    meta = load_recording(out).meta
+    assert meta["seed"] == 2 and meta["home"] == str(graph_file)
 
 
 @pytest.mark.parametrize(("args", "pattern"), [
@@ -39,7 +40,9 @@ def test_render_writes_a_recording_and_preview(tmp_path, graph_file, capsys):
     (["--width", "31"], "must be even"),
 ])
 def test_render_errors_are_one_line(tmp_path, args, pattern, capsys):
-    code = main(["render", "--out", str(tmp_path / "o"), *args])
+    prog = tmp_path / "p.txt"
+    prog.write_text("[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n")
+    code = main(["render", str(prog), "--out", str(tmp_path / "o"), *args])
     assert code == 2
     err = capsys.readouterr().err
     assert pattern in err and "Traceback" not in err
@@ -68,3 +71,11 @@ def test_a_program_that_cannot_be_grounded_is_one_line(tmp_path, graph_file, cap
     err = capsys.readouterr().err
     assert "cannot ground the program in" in err and "unicorn" in err
     assert err.count("\n") == 1
+
+
+def test_a_grounded_program_naming_nodes_of_another_class_is_refused(tmp_path, capsys):
+    # the demo is grounded for scene1; node 410 of scene1_trimmed is a light
+    code = main(["render", "--out", str(tmp_path / "o"), "--home", "scene1_trimmed"])
+    assert code == 2
+    err = " ".join(capsys.readouterr().err.split())
+    assert "step 1 [Walk] <tv> (1.410): <tv> (1) is node 410, a light, not a tv" in err

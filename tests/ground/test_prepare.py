@@ -124,7 +124,7 @@ def test_a_missing_room_cannot_be_added():
 
 def test_an_unknown_object_cannot_be_placed():
     with pytest.raises(GroundingError, match=r"step 2 \[Grab\] <flux_capacitor> \(1\): the "
-                       "home has too few flux_capacitor.*does not know 'flux_capacitor'"):
+                       "home has no flux_capacitor.*does not know 'flux_capacitor'"):
         prepare(parse_program("[Walk] <dining_room> (1)\n[Grab] <flux_capacitor> (1)"),
                 load_home("scene1_trimmed"))
 
@@ -140,3 +140,15 @@ def test_clothes_taken_off_first_are_worn():
     assert {a.class_name for a in worn} == {"clothes_pants", "clothes_shirt"}
     assert all(a.relation == "ON" and g.node(a.room).class_name == "bedroom" for a in worn)
     assert execute(ground(p, g).program, g).executable
+
+
+def test_a_second_character_outside_every_room_is_refused_at_load_not_a_key_error():
+    from homesim.errors import GraphError
+    from homesim.world.graph import EnvironmentGraph
+    from tests.conftest import tiny_home_dict
+
+    d = tiny_home_dict()
+    d["nodes"].append({"id": 20, "class_name": "character", "category": "Characters"})
+    # was KeyError: None in prepare (room_rank of no room); now the loader says why
+    with pytest.raises(GraphError, match="character 20 is INSIDE no room"):
+        EnvironmentGraph.from_dict(d)

@@ -73,6 +73,19 @@ def test_backtracks_over_earlier_choices_without_touching_the_graph():
     assert home.to_dict() == before
 
 
+def test_a_thousand_steps_ground_and_backtrack_without_recursion():
+    # The API accepts 1000 steps; a recursive search hit RecursionError near 990 (issue 12).
+    home = two_tv_home(["ON"])
+    p = parse_program("[Walk] <tv> (1)\n" + "[TurnTo] <tv> (1)\n" * 998 + "[SwitchOn] <tv> (1)")
+    chose_on_first = 0
+    for seed in range(4):
+        g = ground(p, home, seed=seed)
+        assert g.bindings[("tv", 1)] == 14 and len(g.program.steps) == 1000
+        chose_on_first += g.step_runs > 1000  # the tv that is on was tried first, undone
+    assert chose_on_first  # some seed backtracked over all 999 steps
+    assert execute(g.program, home).executable
+
+
 def test_prefers_objects_near_the_ones_already_chosen():
     home = load_home("scene1_trimmed")
     p = parse_program("[Walk] <computer> (1)\n[SwitchOn] <computer> (1)\n"
@@ -111,11 +124,16 @@ def test_standing_spots_with_geometry():
     assert g.standing[3] == g.standing[2]
 
 
-def test_missing_object_names_step_and_classes():
-    with pytest.raises(GroundingError, match=r"step 2 \[Grab\] <wine_glass> \(1\): the home "
-                       r"has no wine_glass.*prepare\(\) adds missing objects"):
+def test_missing_object_names_step_and_classes_in_plain_words():
+    with pytest.raises(GroundingError) as e:
         ground(parse_program("[Walk] <dining_room> (1)\n[Grab] <wine_glass> (1)"),
                load_home("scene1_trimmed"))
+    # No function names: web users read this message too.
+    assert str(e.value) == ("step 2 [Grab] <wine_glass> (1): the home has no wine_glass or "
+                            "wineglass for <wine_glass> (1)")
+    with pytest.raises(GroundingError, match=r"no television_set for <television_set> \(1\); "
+                       r"did you mean television\?$"):
+        ground(parse_program("[Walk] <television_set> (1)"), load_home("scene1_trimmed"))
 
 
 def test_contradictory_steps_fail_with_the_reason_and_what_was_tried():
@@ -199,3 +217,20 @@ def test_prepare_never_mutates_and_ground_in_prepared_home():
     assert home.to_dict() == before
     assert g.bindings[("wine_glass", 1)] == prep.added[0].node_id
     assert execute(g.program, prep.graph).executable
+
+
+def test_eaten_food_is_eatable_in_full_homes(shared_data):
+    """Issue 12: scene2 and scene3 have food but none of it EATABLE, scene1 one piece; a
+    program eating six pieces gets eatable ones (added by preparation), as in the trimmed
+    homes."""
+    from homesim.ground.search import prepare_and_ground
+    from homesim.sim import execute
+
+    text = "[Walk] <kitchen> (1)\n" + "".join(
+        f"[Walk] <food_food> ({i})\n[Eat] <food_food> ({i})\n" for i in range(1, 7))
+    program = parse_program(text)
+    for home in ("scene1", "scene2", "scene3", "scene2_trimmed"):
+        prepared, grounding = prepare_and_ground(program, load_home(home), seed=0)
+        assert execute(grounding.program, prepared.graph).executable, home
+        eaten = {grounding.bindings[("food_food", i)] for i in range(1, 7)}
+        assert all("EATABLE" in prepared.graph.node(n).properties for n in eaten), home

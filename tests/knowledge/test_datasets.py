@@ -46,7 +46,8 @@ def test_jsonl_round_trip(folder, tmp_path):
     assert [(p.id, p.program) for p in back] == [(p.id, p.program) for p in ds]
     first = json.loads(out.read_text().splitlines()[0])
     assert first == {"id": "a", "title": "Watch TV", "description": "I sit on the sofa and watch TV.",
-                     "program": ["[Walk] <tv> (1)", "[SwitchOn] <tv> (1)"], "graph": None}
+                     "program": ["[Walk] <tv> (1)", "[SwitchOn] <tv> (1)"], "graph": None,
+                     "home": None}
 
 
 def test_to_jsonl_never_overwrites_silently(folder, tmp_path):

@@ -1,6 +1,8 @@
 from dataclasses import replace
 
+from homesim.ground import run_program
 from homesim.learn.execution import StepRunner, executable
+from homesim.program import ACTIONS, ObjectRef, Program, Step
 
 
 def test_truth_programs_execute_in_their_home(tiny_splits):
@@ -18,15 +20,29 @@ def test_can_run_leaves_the_state_and_try_step_binds(tiny_splits):
     first = e.program.steps[0]
     key = (first.action.key, tuple(r.name for r in first.args))
     runner = StepRunner(e)
-    mark = runner.state.mark()
     assert runner.can_run(key)
-    assert runner.state.mark() == mark and not runner.bound
-    assert runner.try_step(key) and runner.bound
+    assert runner.steps == () and not runner.bound
+    assert runner.try_step(key) and runner.bound and len(runner.steps) == 1
 
 
 def test_missing_class_cannot_run(tiny_splits):
     e = replace(tiny_splits.train[0], bindings={})
     assert not StepRunner(e).try_step(("WALK", ("no_such_thing",)))
+
+
+def test_the_runner_accepts_exactly_what_run_program_runs(tiny_splits):
+    # television is tv in the homes, wine_glass is added by preparation: as in run_program
+    e = tiny_splits.train[0]
+    runner = StepRunner(e)
+    verdicts = []
+    for key in [("WALK", ("television",)), ("SWITCHON", ("television",)),
+                ("GRAB", ("television",)), ("WALK", ("wine_glass",)), ("GRAB", ("wine_glass",))]:
+        step = Step(ACTIONS[key[0]], tuple(ObjectRef(name, 1) for name in key[1]))
+        expected = run_program(Program((*runner.steps, step)), e.graph()).executable
+        verdicts.append(runner.try_step(key))
+        assert verdicts[-1] == expected
+    assert verdicts == [True, True, False, True, True]
+    assert executable(Program(runner.steps), e)
 
 
 def test_greedy_runner_and_grounding_agree_on_truth(tiny_splits):

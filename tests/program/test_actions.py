@@ -44,3 +44,9 @@ def test_lookup_any_case_and_suggestions():
     assert lookup_action("teleport") is None
     assert suggest_action("SWICHON") == "SwitchOn"
     assert suggest_action("zzzz") is None
+
+
+def test_two_object_actions_have_a_connector_and_aliases_name_their_action():
+    assert {k for k, a in ACTIONS.items() if a.connector} == {"PUTBACK", "PUTIN", "POUR"}
+    assert lookup_action("put").key == "PUTBACK" and lookup_action("LookAt_Short").key == "LOOKAT"
+    assert all(len(a.needs) <= a.arity for a in ACTIONS.values())

@@ -89,3 +89,55 @@ def test_object_refs_in_order_of_first_use():
     assert [str(r) for r in p.object_refs()] == ["<cup> (1)", "<table> (2)"]
     assert not p.is_grounded
     assert parse_program("[Walk] <cup> (1.5)").is_grounded
+
+
+def test_id_over_the_digit_limit_is_a_program_error():
+    # int() refuses strings over 4300 digits: this was a ValueError (issue 12)
+    with pytest.raises(ProgramError, match=r"id of 4301 digits, over the limit of 9 "
+                                           r"\(MAX_ID_DIGITS\)"):
+        parse_program("[Walk] <tv> (" + "9" * 4301 + ")")
+    with pytest.raises(ProgramError, match="MAX_ID_DIGITS"):
+        parse_step("[Walk] <tv> (1." + "4" * 10 + ")")
+    assert parse_step("[Walk] <tv> (1." + "4" * 9 + ")").obj.node_id == 444444444
+
+
+def test_names_over_the_length_limit_are_program_errors():
+    with pytest.raises(ProgramError, match=r"object name of 101 characters.*MAX_NAME_CHARS"):
+        parse_step("[Walk] <" + "a" * 101 + "> (1)")
+    with pytest.raises(UnknownActionError, match=r"action name of 5000 characters"):
+        parse_step("[" + "w" * 5000 + "] <tv> (1)")
+
+
+@pytest.mark.parametrize("line", [
+    "[Walk] " + "<tv> (1) " * 25_000,  # the line of issue 12: every object echoed
+    "[Walk] <tv> (1) " + "?" * 100_000,
+    "[" + "x" * 100_000,
+    "[" + "x" * 99 + "] <tv> (1)",
+])
+def test_errors_quote_a_bounded_excerpt_of_the_line(line):
+    with pytest.raises(ProgramError) as info:
+        parse_program(line, source="big.txt")
+    message = str(info.value)
+    assert len(message) < 400 and "\n" not in message and "…" in message
+    assert message.startswith("big.txt:line 1: ")
+    assert len(info.value.text) <= 81
+
+
+def test_too_many_steps_or_bytes_is_a_limit_error():
+    from homesim.errors import LimitError
+    from homesim.limits import MAX_PROGRAM_BYTES, MAX_STEPS
+
+    assert len(parse_program("[Walk] <tv> (1)\n" * MAX_STEPS).steps) == MAX_STEPS
+    with pytest.raises(LimitError, match=r"more than 1000 steps.*\(MAX_STEPS\)") as info:
+        parse_program("[Walk] <tv> (1)\n" * (MAX_STEPS + 1))
+    assert info.value.limit == "MAX_STEPS"
+    text = "Title\n" + "é" * (MAX_PROGRAM_BYTES // 2)  # under the limit in characters only
+    with pytest.raises(LimitError, match=r"bytes, over the limit of 256 KiB") as info:
+        parse_program(text)
+    assert info.value.limit == "MAX_PROGRAM_BYTES"
+
+
+def test_a_lone_surrogate_is_a_program_error():
+    # JSON strings can carry one ("\ud800"); it cannot be encoded back to UTF-8
+    with pytest.raises(ProgramError, match=r"line 2: .*not valid Unicode"):
+        parse_program("[Walk] <tv> (1)\n[Walk] <tv\ud800> (1)")

@@ -29,7 +29,7 @@ def animated():
 
     g = EnvironmentGraph.from_dict(box_home_dict())
     scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
-    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True)
+    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True, reference=True)
     timeline = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
     return g, scene, timeline
 
@@ -89,7 +89,7 @@ def test_agent_never_walks_through_the_table(animated):
 
 def test_same_seed_same_timeline(animated):
     g, scene, tl = animated
-    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True)
+    result = homesim.execute(homesim.parse_program(PROGRAM), g, trace=True, reference=True)
     again = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
     assert len(again) == len(tl)
     np.testing.assert_array_equal(np.array(again.qpos), np.array(tl.qpos))
@@ -118,7 +118,8 @@ def _run(program: str, fps: int = 10):
 
     g = EnvironmentGraph.from_dict(box_home_dict())
     scene = build_scene(g, AGENTS["female1"], max_size=(64, 48))
-    result = homesim.execute(homesim.parse_program(program), g, trace=True)
+    result = homesim.execute(homesim.parse_program(program), g, trace=True,
+                             reference=True)
     return scene, Animator(scene, g, AGENTS["female1"], fps=fps).run(result)
 
 
@@ -143,3 +144,26 @@ def test_lamp_lights_up_when_switched_on():
     _, tl = _run("[Walk] <tablelamp> (25)\n[SwitchOn] <tablelamp> (25)\n")
     a, b = tl.step_frames[1]
     assert 25 not in tl.lamps[a] and 25 in tl.lamps[b]
+
+
+def test_agent_stands_where_grounding_chose(box_home):
+    """One floor model: each interaction step ends with the agent on grounding's spot."""
+    from homesim.ground import prepare_and_ground
+
+    program = homesim.parse_program("[Walk] <cup> (1)\n[Grab] <cup> (1)\n[Walk] <tv> (1)\n"
+                                    "[SwitchOn] <tv> (1)\n[Walk] <fridge> (1)\n"
+                                    "[Open] <fridge> (1)\n")
+    prepared, grounding = prepare_and_ground(program, box_home, seed=0)
+    assert grounding.standing is not None
+    g = prepared.graph
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(grounding.program, g, trace=True)
+    plain = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10, standing=grounding.standing).run(result)
+    moved = 0
+    for i in (1, 3, 5):  # Grab, SwitchOn, Open
+        spot = np.array(grounding.standing[i])
+        end = tl.qpos[tl.step_frames[i][1]][:2]
+        assert np.linalg.norm(end - spot) < 0.06, (i, end, spot)
+        moved += np.linalg.norm(plain.qpos[plain.step_frames[i][1]][:2] - spot) > 0.06
+    assert moved  # without the spots render stands elsewhere: the test can fail

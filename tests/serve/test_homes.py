@@ -16,6 +16,25 @@ def test_actions_are_grouped_in_the_nine_categories(client):
     assert flat["SwitchOn"]["key"] == "SWITCHON" and flat["Walk"]["animated"] is True
 
 
+def test_actions_serve_the_catalog_rows(client):
+    from homesim.program import ACTIONS
+
+    data = client.get("/api/actions").json()
+    assert data["actions"] == [a.to_dict() for a in ACTIONS.values()]
+    rows = {a["key"]: a for a in data["actions"]}
+    assert rows["PUTBACK"]["connector"] == "on" and rows["PUTIN"]["connector"] == "into"
+    assert rows["POUR"]["connector"] == "into" and rows["WALK"]["connector"] is None
+    assert rows["PUTBACK"]["aliases"] == ["PUT"] and "LOOKAT_SHORT" in rows["LOOKAT"]["aliases"]
+
+
+def test_action_rows_carry_what_the_editor_draws_and_reads(client):
+    flat = {a["key"]: a for c in client.get("/api/actions").json()["categories"]
+            for a in c["actions"]}
+    assert flat["PUTIN"]["connector"] == "into" and flat["WALK"]["connector"] is None
+    assert flat["PUTBACK"]["aliases"] == ["PUT"] and flat["PUTBACK"]["category"] == "placing"
+    assert flat["POUR"]["needs"] == [[["DRINKABLE", "POURABLE"]], [["RECIPIENT"]]]
+
+
 def test_objects_of_a_home_come_with_their_rooms(client):
     data = client.get("/api/homes/scene1/objects").json()
     by_id = {o["id"]: o for o in data["objects"]}

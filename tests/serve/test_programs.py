@@ -1,6 +1,6 @@
 import pytest
 
-from homesim.serve import optional
+from homesim.serve import programs
 
 
 def test_validate_returns_steps_with_their_lines(client, watch_tv):
@@ -15,24 +15,14 @@ def test_validate_returns_steps_with_their_lines(client, watch_tv):
 
 
 def test_validate_reports_node_ids_missing_or_of_another_class(client):
-    text = "[Walk] <tv> (1.410)\n[Walk] <sofa> (1.9999)\n[Sit] <television> (1.410)\n"
+    text = ("[Walk] <tv> (1.410)\n[Walk] <sofa> (1.9999)\n[Sit] <television> (1.410)\n"
+            "[Walk] <tv> (2.352)\n[Walk] <cup> (1)\n")
     data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
     assert data["ok"] is False
+    # television and tv are equivalent names (as in grounding); <cup> (1) gets grounded
     assert [(p["line"], p["message"]) for p in data["problems"]] == [
         (2, "line 2: the home has no node 9999 for <sofa> (1)"),
-        (3, "line 3: node 410 is a tv, not a television")]
-
-
-def test_validate_flags_ungrounded_refs_only_without_grounding(client, monkeypatch):
-    text = "[Walk] <tv> (1)\n"
-    monkeypatch.setattr(optional, "grounding", lambda: (None, "missing"))
-    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
-    assert data["grounding_available"] is False and data["ok"] is False
-    assert data["problems"][0]["message"] == (
-        "line 1: <tv> (1) has no node id, and grounding is not available to choose one")
-    monkeypatch.setattr(optional, "grounding", lambda: (lambda *a, **k: None, ""))
-    data = client.post("/api/validate", json={"program": text, "home": "scene1"}).json()
-    assert data["grounding_available"] is True and data["ok"] is True
+        (4, "line 4: <tv> (2) is node 352, a sofa, not a tv or television")]
 
 
 @pytest.mark.parametrize(
@@ -61,7 +51,9 @@ def test_too_many_steps_is_422(client):
     text = "[Walk] <tv> (1.410)\n" * 1001
     r = client.post("/api/execute", json={"program": text, "home": "scene1"})
     assert r.status_code == 422
-    assert "1001 steps, over the limit of 1000" in r.json()["error"]["message"]
+    error = r.json()["error"]
+    assert "more than 1000 steps, over the limit of 1000 steps" in error["message"]
+    assert error["kind"] == "limit" and error["limit"] == "MAX_STEPS"
 
 
 def test_execute_watch_tv_every_step_passes(client, watch_tv):
@@ -93,98 +85,52 @@ def test_execute_on_unknown_home_is_404(client, watch_tv):
     assert r.status_code == 404 and "unknown home 'nowhere'" in r.json()["error"]["message"]
 
 
-def test_ungrounded_refs_without_grounding_say_what_to_do(client, monkeypatch):
-    monkeypatch.setattr(optional, "grounding", lambda: (None, "homesim.ground.search is missing"))
-    text = "[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1)\n"
-    r = client.post("/api/execute", json={"program": text, "home": "scene1"})
-    assert r.status_code == 422
-    error = r.json()["error"]
-    assert error["kind"] == "grounding" and error["line"] == 2
-    assert "<tv> (1) names no node of the home" in error["message"]
-    assert "homesim.ground.search is missing" in error["message"]
-    r = client.post("/api/execute", json={"program": text, "home": "scene1", "ground": True})
-    assert r.status_code == 501 and "grounding is not available" in r.json()["error"]["message"]
-
-
 def test_ground_false_reads_instance_as_node_id_like_the_reference(client):
     text = "[Walk] <tv> (410)\n[SwitchOn] <tv> (410)\n"
     data = client.post("/api/execute",
                        json={"program": text, "home": "scene1", "ground": False}).json()
-    assert data["executable"] is True and data["bindings"] is None
+    assert data["executable"] is True and data["grounding"] is None
 
 
-def test_ungrounded_program_is_grounded_when_grounding_is_available(client, monkeypatch):
-    class Grounding:
-        def __init__(self, program, bindings):
-            self.program, self.bindings = program, bindings
-
-    calls = []
-
-    def fake_ground(program, graph, seed=0):
-        calls.append(seed)
-        bindings = {("tv", 1): 410}
-        return Grounding(program.with_steps([s.__class__(s.action, tuple(
-            r.ground(bindings[r.key]) for r in s.args)) for s in program.steps]), bindings)
-
-    monkeypatch.setattr(optional, "grounding", lambda: (fake_ground, ""))
-    text = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n"
+def test_ungrounded_program_is_prepared_and_grounded_like_the_cli(client):
+    text = "[Walk] <dining_room> (1)\n[Find] <wine_glass> (1)\n[Grab] <wine_glass> (1)\n"
     data = client.post("/api/execute",
-                       json={"program": text, "home": "scene1", "seed": 7}).json()
-    assert calls == [7] and data["executable"] is True
-    assert data["program"] == "[Walk] <tv> (1.410)\n[SwitchOn] <tv> (1.410)"
-    assert data["bindings"] == [{"name": "tv", "instance": 1, "node_id": 410}]
+                       json={"program": text, "home": "scene1_trimmed", "seed": 0}).json()
+    assert data["executable"] is True and data["stage"] is None
+    assert [a["class_name"] for a in data["preparation"]["added"]] == ["wine_glass"]
+    node = data["preparation"]["added"][0]["node_id"]
+    assert {"name": "wine_glass", "instance": 1, "node_id": node} in data["grounding"]["bindings"]
+    assert data["program"].endswith(f"[Grab] <wine_glass> (1.{node})")
+
+
+def test_ground_true_grounds_a_grounded_program_anew(client):
+    text = "[Walk] <tv> (1.352)\n"  # 352 is the sofa: refused as it is, fine when grounded
+    data = client.post("/api/execute", json={"program": text, "home": "scene1"}).json()
+    assert data["executable"] is False and data["stage"] == "grounding"
+    assert data["failed_line"] == 1 and data["steps"] == [] and len(data["not_run"]) == 1
+    data = client.post("/api/execute",
+                       json={"program": text, "home": "scene1", "ground": True}).json()
+    assert data["executable"] is True and data["grounding"]["bindings"][0]["node_id"] != 352
+
+
+def test_program_that_cannot_be_grounded_is_an_answer_with_its_line(client):
+    text = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n[SwitchOn] <tv> (1)\n"
+    r = client.post("/api/execute", json={"program": text, "home": "scene1_trimmed"})
+    assert r.status_code == 200
+    data = r.json()
+    assert data["executable"] is False and data["stage"] == "grounding"
+    assert data["failed_step"] == 3 and data["failed_line"] == 3
+    assert data["message"].startswith("step 3 [SwitchOn] <tv> (1): cannot be grounded")
 
 
 def test_render_without_renderer_is_501(client, watch_tv, monkeypatch):
-    monkeypatch.setattr(optional, "keyframe_renderer", lambda: (None, "homesim.render is missing"))
+    def missing():
+        raise programs.ApiError(501, "render", "rendering is not available on this server: x")
+
+    monkeypatch.setattr(programs, "keyframe_renderer", missing)
     r = client.post("/api/render", json={"program": watch_tv, "home": "scene1"})
     assert r.status_code == 501
-    assert r.json()["error"]["message"].startswith(
-        "rendering is not available on this server: homesim.render is missing")
-
-
-def test_render_returns_one_png_per_key_frame(client, watch_tv, monkeypatch):
-    def fake_render(program, graph, *, width, height, seed):
-        return [(i, [[[i * 40, 0, 255]] * width] * height) for i in range(len(program.steps))]
-
-    monkeypatch.setattr(optional, "keyframe_renderer", lambda: (fake_render, ""))
-    r = client.post("/api/render",
-                    json={"program": watch_tv, "home": "scene1", "width": 16, "height": 16})
-    assert r.status_code == 200
-    frames = r.json()["frames"]
-    assert [f["index"] for f in frames] == [0, 1, 2, 3, 4]
-    assert [f["line"] for f in frames] == [4, 5, 6, 7, 8]
-    assert all(f["image"].startswith("data:image/png;base64,iVBORw0KGgo") for f in frames)
-
-
-@pytest.mark.render
-def test_render_with_the_real_renderer_shows_each_step(client, watch_tv):
-    gl = pytest.importorskip("homesim.render.gl")  # picks MUJOCO_GL before mujoco loads
-    if not gl.gl_available():
-        pytest.skip(f"no OpenGL context with MUJOCO_GL={gl.BACKEND}")
-    import base64
-    import io
-
-    import numpy as np
-    from PIL import Image
-
-    r = client.post("/api/render",
-                    json={"program": watch_tv, "home": "scene1", "width": 64, "height": 48})
-    assert r.status_code == 200, r.text
-    frames = r.json()["frames"]
-    assert [f["line"] for f in frames] == [4, 5, 6, 7, 8]
-    images = [np.asarray(Image.open(io.BytesIO(base64.b64decode(f["image"].split(",", 1)[1]))))
-              for f in frames]
-    assert all(im.shape == (48, 64, 3) for im in images)
-    assert all(im.std() > 5 for im in images)  # a scene, not a blank frame
-    assert not np.array_equal(images[0], images[-1])  # the agent moved between steps
-
-
-def test_render_of_a_home_without_geometry_is_422(client, watch_tv):
-    pytest.importorskip("homesim.render.gl")
-    r = client.post("/api/render", json={"program": "[Walk] <tv> (1)", "home": "scene1_trimmed"})
-    assert r.status_code == 422
-    assert "needs a home with 3D geometry" in r.json()["error"]["message"]
+    assert r.json()["error"]["message"].startswith("rendering is not available on this server")
 
 
 @pytest.mark.dataset
@@ -200,3 +146,13 @@ def test_every_real_program_file_validates_with_its_lines(client, real_data):
         data = r.json()
         lines = text.splitlines()
         assert all(lines[s["line"] - 1].strip().startswith("[") for s in data["steps"]), path.name
+
+
+@pytest.mark.parametrize("route", ["/api/validate", "/api/execute"])
+def test_huge_id_is_422_naming_the_limit(client, route):
+    text = "[Walk] <tv> (" + "9" * 4301 + ")"  # was a 500 (ValueError from int())
+    r = client.post(route, json={"program": text, "home": "scene1"})
+    assert r.status_code == 422
+    error = r.json()["error"]
+    assert "MAX_ID_DIGITS" in error["message"] and error["line"] == 1
+    assert len(error["text"]) <= 81

@@ -1,5 +1,5 @@
 from homesim.program import parse_program
-from homesim.serve.results import execution_json, program_json, step_lines
+from homesim.serve.results import program_json, step_lines
 from homesim.sim import execute
 
 
@@ -15,11 +15,11 @@ def test_program_json_keeps_grounding(tiny_home):
     assert data["steps"][0]["args"] == [{"name": "tv", "instance": 1, "node_id": 14}]
 
 
-def test_execution_json_on_tiny_home(tiny_home):
+def test_execution_to_dict_on_tiny_home(tiny_home):
     p = parse_program("[Walk] <tv> (1.14)\n[SwitchOn] <tv> (1.14)\n[Grab] <sofa> (1.15)\n"
                       "[Sit] <sofa> (1.15)")
     result = execute(p, tiny_home, trace=True)
-    data = execution_json(result, [1, 2, 3, 4])
+    data = result.to_dict([1, 2, 3, 4])
     assert [s["ok"] for s in data["steps"]] == [True, True, False]
     assert data["steps"][1]["summary"] == "tv 14: OFF → ON"
     assert data["steps"][2]["summary"] == data["reason"] and "sofa 15" in data["reason"]

@@ -11,7 +11,7 @@ from homesim.sim import execute
 
 
 def run(home, text):
-    return execute(parse_program(text), home)
+    return execute(parse_program(text), home, reference=True)
 
 
 @pytest.mark.parametrize(

@@ -1,8 +1,9 @@
 import random
 
+from homesim.knowledge.datasets import ActivityProgram
 from homesim.program.actions import ANIMATED
 from homesim.sim import execute
-from homesim.synth import Grammar, SynthProgram, generate
+from homesim.synth import Grammar, generate
 from homesim.world import load_home
 
 
@@ -37,7 +38,7 @@ def test_same_seed_same_programs_and_json_round_trip():
     b = [sp.to_json() for sp in generate(20, seed=7)]
     assert a == b
     assert a != [sp.to_json() for sp in generate(20, seed=8)]
-    again = SynthProgram.from_json(a[0])
+    again = ActivityProgram.from_json(a[0])
     assert again.to_json() == a[0]
 
 

@@ -163,3 +163,16 @@ def test_truncated_gzip_and_a_home_without_character_name_the_file(tmp_path):
     with pytest.raises(GraphError, match=r"nochar.json: the graph has no character node"):
         EnvironmentGraph.load(path)
     assert EnvironmentGraph.from_dict(d).character_id is None  # dicts may lack one
+
+
+def test_deeply_nested_json_is_a_graph_error(tmp_path):
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000 + "]" * 100_000)  # was a RecursionError
+    with pytest.raises(GraphError, match=r"deep.json: JSON nested deeper .*MAX_JSON_DEPTH"):
+        EnvironmentGraph.load(path)
+    d = tiny_home_dict()
+    d["nodes"][0]["note"] = [[[1]]]
+    assert EnvironmentGraph.from_dict(d).nodes[1].extra == {"note": [[[1]]]}
+    d["nodes"][0]["note"] = json.loads("[" * 40 + "]" * 40)
+    with pytest.raises(GraphError, match=r"nodes\[0\] \(id 1\): JSON nested deeper"):
+        EnvironmentGraph.from_dict(d)

@@ -6,8 +6,10 @@
 // It builds "watch TV" from blocks with the mouse (drag from the toolbox, pick objects in
 // the dropdowns), runs it and expects every step to pass; adds a failing step and expects
 // its reason on the block; saves and loads files; pastes a program and expects blocks;
-// switches homes; asks for key frames. Exits non-zero with a one-line reason on the first
-// failure.
+// switches homes; asks for key frames; numbers error lines as the user's text does, keeps
+// bubbles inside the pane and drops results of an earlier program when a check fails;
+// turns a README-style program (`<tv> (1)`, objects not bound to nodes) into action blocks.
+// Exits non-zero with a one-line reason on the first failure.
 import { chromium } from "playwright-core";
 import { parseArgs } from "node:util";
 import { readFile } from "node:fs/promises";
@@ -18,6 +20,7 @@ const { values: opts } = parseArgs({
     url: { type: "string", default: "http://127.0.0.1:8000/" },
     screenshot: { type: "string" },
     chromium: { type: "string", default: "/usr/bin/chromium" },
+    shots: { type: "string" }, // a folder for extra screenshots
   },
 });
 
@@ -42,6 +45,12 @@ Walk to the TV and switch it on, then sit on the sofa and watch TV.
 const EXAMPLE = fileURLToPath(
   new URL("../../src/homesim/examples/watch_tv.txt", import.meta.url));
 const GRAB_REASON = "tv 410 cannot be grabbed (not GRABBABLE)";
+// Title, no description: the typo is on line 4 of this text (line 5 of the 3-line-header
+// text the editor sends).
+const TYPO = "Watch TV\n\n[Walk] <tv> (1.410)\n[Wlak] <tv> (1.410)\n";
+const TYPO_MESSAGE = "line 4: '[Wlak] <tv> (1.410)': unknown action 'Wlak' (did you mean Walk?)";
+const README = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n[Walk] <sofa> (1)\n[Sit] <sofa> (1)\n"
+  + "[Watch] <tv> (1)\n";
 
 function check(condition, message) {
   if (!condition) throw new Error(message);
@@ -143,6 +152,37 @@ async function pickOption(page, id, field, label) {
   check(label.includes(` ${value} `), `dropdown ${field} is ${value}, not ${label}`);
 }
 
+/** The open bubble showing `text` (wrapped lines joined), and whether it lies inside the
+ * block pane; asked again for up to 2 s, as the editor places a bubble after it opens. */
+async function bubbleInPane(page, text) {
+  let seen = null;
+  for (let i = 0; i < 20 && !seen?.inside; i++) {
+    if (i) await page.waitForTimeout(100);
+    seen = await bubbleNow(page, text);
+  }
+  return seen;
+}
+
+async function bubbleNow(page, text) {
+  return page.evaluate((text) => {
+    const squash = (t) => t.replace(/\s+/g, "");
+    const pane = document.querySelector("#blockly").getBoundingClientRect();
+    const bubble = [...document.querySelectorAll(".blocklyBubble")]
+      .find((b) => squash(b.textContent).includes(squash(text)));
+    if (!bubble) return null;
+    const r = bubble.getBoundingClientRect();
+    return { inside: r.left >= pane.left && r.right <= pane.right && r.top >= pane.top
+      && r.bottom <= pane.bottom, bubble: [r.left, r.top, r.right, r.bottom].map(Math.round),
+      pane: [pane.left, pane.top, pane.right, pane.bottom].map(Math.round) };
+  }, text);
+}
+
+async function save(page) {
+  const [download] = await Promise.all([page.waitForEvent("download"),
+    page.locator("#save").click()]);
+  return { name: download.suggestedFilename(), text: await readFile(await download.path(), "utf8") };
+}
+
 async function runAndWait(page) {
   await page.locator("#run").click();
   await page.waitForFunction(() => /executable|✗/.test(document.querySelector("#status").textContent)
@@ -207,6 +247,10 @@ async function main() {
     const failRow = page.locator("#results li.fail");
     check(await failRow.count() === 1, "the failing step is not marked ✗");
     check((await failRow.textContent()).includes(GRAB_REASON), "the ✗ row lacks the reason");
+    // The bubble opens once Blockly has rendered the block (asynchronously).
+    await page.waitForFunction((id) => window.homesimEditor.workspace().getBlockById(id)
+      .getIcon(window.homesimEditor.Blockly.icons.IconType.WARNING)?.bubbleIsVisible(), grab,
+    { timeout: 3000 }).catch(() => {});
     const warning = await page.evaluate((id) => {
       const block = window.homesimEditor.workspace().getBlockById(id);
       const icon = block.getIcon(window.homesimEditor.Blockly.icons.IconType.WARNING);
@@ -221,11 +265,10 @@ async function main() {
     if (opts.screenshot) await page.screenshot({ path: opts.screenshot });
 
     // 4. Save writes the ActivityPrograms file.
-    const [download] = await Promise.all([page.waitForEvent("download"),
-      page.locator("#save").click()]);
-    const saved = await readFile(await download.path(), "utf8");
-    check(download.suggestedFilename() === "Watch_TV.txt", `saved as ${download.suggestedFilename()}`);
-    check(saved === `${EXPECTED_TEXT}[Grab] <tv> (1.410)\n`, `saved file is ${JSON.stringify(saved)}`);
+    const saved = await save(page);
+    check(saved.name === "Watch_TV.txt", `saved as ${saved.name}`);
+    check(saved.text === `${EXPECTED_TEXT}[Grab] <tv> (1.410)\n`,
+      `saved file is ${JSON.stringify(saved.text)}`);
 
     // 5. Load reads an ActivityPrograms file back into blocks (the demo program's file).
     await page.locator("#clear").click();
@@ -268,6 +311,56 @@ async function main() {
     const status = await page.locator("#status").textContent();
     check(frames === 5 || status.includes("rendering is not available"),
       `key frames: ${frames} images, status ${status}`);
+
+    // 9. A check that fails drops the results of the earlier program; the error names the
+    // line of the text as the user wrote it, and its bubble fits in the pane.
+    await runAndWait(page);
+    check(await page.locator("#results li.ok").count() === 5, "watch TV did not run again");
+    await page.locator("#text").fill(TYPO);
+    await page.waitForFunction(() => document.querySelector("#status").textContent.startsWith("✗"));
+    const typoStatus = await page.locator("#status").textContent();
+    check(typoStatus === `✗ ${TYPO_MESSAGE}`, `status for a typo on line 4: ${typoStatus}`);
+    const stale = await page.locator("#results li").count() + await page.locator("#frames img").count();
+    check(stale === 0, `${stale} results of the earlier program stay under the error`);
+    await page.locator(".blocklyBubble").first().waitFor({ state: "visible" });
+    const typoBubble = await bubbleInPane(page, TYPO_MESSAGE.slice(TYPO_MESSAGE.indexOf(":")));
+    check(typoBubble?.inside, `the typo's bubble is not inside the pane: ${JSON.stringify(typoBubble)}`);
+    const grabBubble = await (async () => {
+      await page.locator("#text").fill(`${EXPECTED_TEXT}[Grab] <tv> (1.410)\n`);
+      await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 6);
+      await runAndWait(page);
+      await page.locator(".blocklyBubble", { hasText: GRAB_REASON }).first().waitFor({ state: "visible" });
+      return bubbleInPane(page, GRAB_REASON);
+    })();
+    check(grabBubble?.inside, `the Grab bubble is not inside the pane: ${JSON.stringify(grabBubble)}`);
+    // A narrow window: no room beside the block, so the bubble goes under it.
+    await page.setViewportSize({ width: 900, height: 820 });
+    await runAndWait(page);
+    await page.locator(".blocklyBubble", { hasText: GRAB_REASON }).first().waitFor({ state: "visible" });
+    const narrowBubble = await bubbleInPane(page, GRAB_REASON);
+    check(narrowBubble?.inside,
+      `in a 900 px window the Grab bubble is not inside the pane: ${JSON.stringify(narrowBubble)}`);
+    await page.setViewportSize({ width: 1400, height: 820 });
+
+    // 10. A README-style program (objects by class, no node ids) becomes action blocks with
+    // unbound objects ("any tv (1)"), keeps its refs as written, and runs (the server binds them).
+    await page.locator("#text").fill(README);
+    await page.waitForFunction(() => window.homesimEditor.workspace().getAllBlocks(false).length === 5);
+    const readme = await page.evaluate(() => window.homesimEditor.workspace().getAllBlocks(true)
+      .map((b) => `${b.type} ${b.getField("OBJ0")?.getText() ?? b.getFieldValue("TEXT")}`));
+    check(JSON.stringify(readme) === JSON.stringify(["hs_WALK any tv (1)", "hs_SWITCHON any tv (1)",
+      "hs_WALK any sofa (1)", "hs_SIT any sofa (1)", "hs_WATCH any tv (1)"]),
+    `README blocks are ${readme}`);
+    const readmeSaved = await save(page);
+    check(readmeSaved.text === `Untitled\n\n\n${README}`,
+      `the README program saves as ${JSON.stringify(readmeSaved.text)}`);
+    await runAndWait(page);
+    check(await page.locator("#results li.ok").count() === 5, "the README program does not run");
+    if (opts.shots) await page.screenshot({ path: `${opts.shots}/readme.png` });
+    // Picked nodes beside unbound objects are bound again by the server: the status says so.
+    await page.locator("#text").fill("[Walk] <tv> (1)\n[Walk] <sofa> (1.352)\n");
+    await page.waitForFunction(() => document.querySelector("#status").textContent
+      .includes("picks every object anew"));
 
     check(errors.length === 0, `browser errors: ${errors.join(" | ")}`);
     console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000,

@@ -14,30 +14,33 @@ export const COLOURS: Record<string, string> = {
   eating: "#FF6680", free_text: "#8A8A8A",
 };
 
-// Word between the two objects of two-argument actions.
-const CONNECTOR: Record<string, string> = { PUTBACK: "on", PUTIN: "into", POUR: "into" };
-
 export const blockType = (key: string): string => `hs_${key}`;
 export const objectField = (slot: number): string => `OBJ${slot}`;
 
-const actions = new Map<string, Action>();
+const actions = new Map<string, Action>(); // by key and by every alias
 
 export function actionOf(type: string): Action | undefined {
   return type.startsWith("hs_") ? actions.get(type.slice(3)) : undefined;
+}
+
+/** The catalog action spelled `word` (any case, an alias too), as the server reads it. */
+export function lookupAction(word: string): Action | undefined {
+  return actions.get(word.toUpperCase().replace(/[\s-]/g, ""));
 }
 
 export function defineBlocks(categories: Category[]): void {
   for (const category of categories) {
     for (const action of category.actions) {
       actions.set(action.key, action);
+      for (const alias of action.aliases) actions.set(alias, action);
       const colour = COLOURS[category.id] ?? "#888888";
       Blockly.Blocks[blockType(action.key)] = {
         init(this: Blockly.Block) {
           const input = this.appendDummyInput().appendField(action.name);
           for (let slot = 0; slot < action.arity; slot++) {
-            if (slot > 0) input.appendField(CONNECTOR[action.key] ?? "and");
+            if (slot > 0) input.appendField(action.connector ?? "and");
             input.appendField(
-              new Blockly.FieldDropdown(() => optionsFor(action.key, slot)), objectField(slot));
+              new Blockly.FieldDropdown(() => optionsFor(action, slot)), objectField(slot));
           }
           this.setPreviousStatement(true);
           this.setNextStatement(true);

@@ -2,9 +2,9 @@
 // checked and run by the homesim server.
 import * as Blockly from "blockly/core";
 import * as En from "blockly/msg/en";
-import { ApiError, api, type Execution } from "./api";
+import { ApiError, api, frameUrl, renderKeyFrames, type Execution } from "./api";
 import { defineBlocks, toolbox } from "./blocks";
-import { setObjects } from "./objects";
+import { parseUnbound, setObjects, setUnbound } from "./objects";
 import { itemsToState, parseText, workspaceToText, type Generated } from "./program";
 import "./style.css";
 
@@ -18,9 +18,13 @@ const textArea = $<HTMLTextAreaElement>("text");
 const statusLine = $<HTMLParagraphElement>("status");
 const resultList = $<HTMLOListElement>("results");
 const frameBox = $<HTMLDivElement>("frames");
+const BUBBLE_CHARS = 44; // warning bubbles wrap at this width, so they fit beside a block
 
 let ws: Blockly.WorkspaceSvg;
 let generated: Generated = { text: "", blockAtLine: new Map() };
+// Block id -> its line in the text the user sees, which may differ from the generated text
+// the server checks (a pasted text without a description line, blank lines, comments).
+let shownLine = new Map<string, number>();
 let applyingText = false;
 let validateTimer: number | undefined;
 let textTimer: number | undefined;
@@ -36,6 +40,30 @@ function blockAtLine(line: number | null): Blockly.BlockSvg | null {
   return id ? ws.getBlockById(id) : null;
 }
 
+/** The line of the text area that holds the step the server numbers `line`. */
+function lineShown(line: number): number {
+  const id = generated.blockAtLine.get(line);
+  return (id && shownLine.get(id)) || line;
+}
+
+/** `message` with the server's "line N" (of the text it was sent) renumbered as shown. */
+function asShown(message: string, line: number | null): string {
+  return line === null ? message : message.replace(/^line \d+:/, `line ${lineShown(line)}:`);
+}
+
+/** Whether `text` has both objects picked from the home and unbound ones: the server
+ * then binds them all again (a partly grounded program counts as ungrounded). */
+function mixesBoundAndUnbound(text: string): boolean {
+  const refs = [...text.matchAll(/<[^<>]*>\s*\(\s*\d+\s*(\.\s*\d+)?\s*\)/g)];
+  const bound = refs.filter((m) => m[1] !== undefined).length;
+  return bound > 0 && bound < refs.length;
+}
+
+function clearResults(): void {
+  resultList.replaceChildren();
+  frameBox.replaceChildren();
+}
+
 function clearMarks(): void {
   ws.highlightBlock(null);
   for (const block of ws.getAllBlocks(false)) {
@@ -48,21 +76,39 @@ function clearMarks(): void {
 function markBlock(line: number | null, reason: string): void {
   const block = blockAtLine(line);
   if (!block) return;
-  block.setWarningText(reason);
+  block.setWarningText(Blockly.utils.string.wrap(reason, BUBBLE_CHARS));
   block.addClass("hsFailed");
   ws.highlightBlock(block.id, true);
   const icon = block.getIcon(Blockly.icons.IconType.WARNING);
   void icon?.setBubbleVisible(true).then(() => {
-    // To the right of the block, so the bubble does not hide the steps above it.
     const bubble = icon.getBubble() as Blockly.bubbles.Bubble | null;
-    const anchor = bubble?.getRelativeToSurfaceXY();
-    if (bubble && anchor) bubble.setPositionRelativeToAnchor(block.width, -8);
+    if (bubble) placeBubble(block, bubble);
   });
+}
+
+/** Beside the block when the pane has room (so it hides no other step), else under it;
+ * then scroll the workspace so the whole bubble is in view. */
+function placeBubble(block: Blockly.BlockSvg, bubble: Blockly.bubbles.Bubble): void {
+  const box = (bubble.getSvgRoot() as SVGGraphicsElement).getBBox(); // workspace units
+  const view = ws.getMetricsManager().getViewMetrics(true);
+  const at = block.getRelativeToSurfaceXY();
+  const fitsBeside = at.x + block.width + 8 + box.width <= view.left + view.width - 16;
+  bubble.setPositionRelativeToAnchor(0, 0); // offsets count from the anchor: find it
+  const anchor = bubble.getRelativeToSurfaceXY();
+  const left = fitsBeside ? at.x + block.width + 8 : at.x;
+  const top = fitsBeside ? at.y : at.y + block.height + 4;
+  bubble.setPositionRelativeToAnchor(left - anchor.x, top - anchor.y);
+  const placed = bubble.getRelativeToSurfaceXY();
+  ws.scrollBoundsIntoView(new Blockly.utils.Rect(placed.y, placed.y + box.height, placed.x,
+    placed.x + box.width), 16);
 }
 
 function regenerate(): void {
   generated = workspaceToText(ws, titleInput.value, descriptionInput.value);
-  if (!applyingText && document.activeElement !== textArea) textArea.value = generated.text;
+  if (!applyingText && document.activeElement !== textArea) {
+    textArea.value = generated.text;
+    shownLine = new Map([...generated.blockAtLine].map(([line, id]) => [id, line]));
+  }
   scheduleValidate();
 }
 
@@ -70,6 +116,8 @@ function applyText(text: string): void {
   const parsed = parseText(text);
   titleInput.value = parsed.title;
   descriptionInput.value = parsed.description;
+  setUnbound(parsed.items.flatMap((item) =>
+    item.kind === "action" ? item.values.filter((v) => parseUnbound(v)) : []));
   applyingText = true;
   Blockly.Events.disable();
   try {
@@ -78,6 +126,14 @@ function applyText(text: string): void {
   } finally {
     Blockly.Events.enable();
     applyingText = false;
+  }
+  // One stack, one block per item, in order: each block remembers its line in `text`.
+  shownLine = new Map();
+  let block: Blockly.Block | null = ws.getTopBlocks(true)[0] ?? null;
+  for (const item of parsed.items) {
+    if (!block) break;
+    shownLine.set(block.id, item.line);
+    block = block.getNextBlock();
   }
   generated = workspaceToText(ws, titleInput.value, descriptionInput.value);
   scheduleValidate();
@@ -100,20 +156,31 @@ async function validate(): Promise<void> {
     const result = await api.validate(sent, homeSelect.value);
     if (stale()) return;
     clearMarks();
-    for (const problem of result.problems) markBlock(problem.line, problem.message);
-    if (result.ok) setStatus(`✓ valid program, ${generated.blockAtLine.size} steps`, "ok");
-    else setStatus(`✗ ${result.problems[0].message}`, "error");
+    for (const problem of result.problems) {
+      markBlock(problem.line, asShown(problem.message, problem.line));
+    }
+    if (result.ok) {
+      const note = mixesBoundAndUnbound(sent)
+        ? " (it has \"any\" objects, so the server picks every object anew when it runs)" : "";
+      setStatus(`✓ valid program, ${generated.blockAtLine.size} steps${note}`, "ok");
+    } else {
+      clearResults(); // they were for an earlier program
+      const first = result.problems[0];
+      setStatus(`✗ ${asShown(first.message, first.line)}`, "error");
+    }
   } catch (e) {
     if (stale()) return;
     clearMarks();
+    clearResults();
     showError(e);
   }
 }
 
 function showError(e: unknown): void {
   if (e instanceof ApiError) {
-    setStatus(`✗ ${e.message}`, "error");
-    markBlock(e.line, e.message);
+    const message = asShown(e.message, e.line);
+    setStatus(`✗ ${message}`, "error");
+    markBlock(e.line, message);
   } else {
     setStatus(`✗ cannot reach the server (${String(e)})`, "error");
   }
@@ -151,7 +218,7 @@ async function run(): Promise<void> {
   window.clearTimeout(validateTimer);
   requestEpoch++;
   clearMarks();
-  resultList.replaceChildren();
+  clearResults();
   if (generated.blockAtLine.size === 0) {
     setStatus("Nothing to run: the program has no steps.", "error");
     return;
@@ -168,18 +235,18 @@ async function renderFrames(): Promise<void> {
   frameBox.replaceChildren();
   setStatus("rendering key frames…");
   try {
-    const { frames } = await api.render(generated.text, homeSelect.value);
-    for (const frame of frames) {
+    const job = await renderKeyFrames(generated.text, homeSelect.value, (frame, progress) => {
       const figure = document.createElement("figure");
       const image = document.createElement("img");
-      image.src = frame.image;
+      image.src = frameUrl(progress.id, frame.index);
       image.alt = `after step ${frame.index + 1}`;
       const caption = document.createElement("figcaption");
       caption.textContent = `after step ${frame.index + 1}`;
       figure.append(image, caption);
       frameBox.append(figure);
-    }
-    setStatus(`✓ ${frames.length} key frames`, "ok");
+      setStatus(`rendering key frames… ${frame.index + 1} of ${progress.total}`);
+    });
+    setStatus(`✓ ${job.total} key frames`, "ok");
   } catch (e) {
     showError(e);
   }

@@ -1,26 +1,24 @@
-// The objects of the chosen home as dropdown options; objects that suit the action
-// (a switch for SwitchOn, a seat for Sit) come first. The order is only a convenience:
-// the simulator decides what is allowed and says why not.
-import type { HomeObject } from "./api";
-
-// Action key -> the property an object should have for each argument slot.
-const SUITS: Record<string, (string | null)[]> = {
-  SWITCHON: ["HAS_SWITCH"], SWITCHOFF: ["HAS_SWITCH"], PLUGIN: ["HAS_PLUG"],
-  PLUGOUT: ["HAS_PLUG"], SIT: ["SITTABLE"], LIE: ["LIEABLE"], GRAB: ["GRABBABLE"],
-  DROP: ["GRABBABLE"], RELEASE: ["GRABBABLE"], OPEN: ["CAN_OPEN"], CLOSE: ["CAN_OPEN"],
-  PUTBACK: ["GRABBABLE", "SURFACES"], PUTIN: ["GRABBABLE", "CONTAINERS"],
-  PUTOBJBACK: ["GRABBABLE"], POUR: ["POURABLE", "RECIPIENT"], READ: ["READABLE"],
-  DRINK: ["DRINKABLE"], EAT: ["EATABLE"], CUT: ["CUTTABLE"], PUTON: ["CLOTHES"],
-  PUTOFF: ["CLOTHES"], WATCH: ["LOOKABLE"], LOOKAT: ["LOOKABLE"], TYPE: ["HAS_SWITCH"],
-  MOVE: ["MOVABLE"], PUSH: ["MOVABLE"], PULL: ["MOVABLE"],
-};
+// The objects of the chosen home as dropdown options. A slot holds either a node of the
+// home ("410": that tv) or an unbound program object ("tv:1": `<tv> (1)`, any tv, bound
+// to a node when the program runs). Objects that suit the action (the properties its
+// catalog row `needs`) come first; the order is only a convenience: the simulator decides
+// what is allowed and says why not.
+import type { Action, HomeObject } from "./api";
 
 let current: HomeObject[] = [];
 let byId = new Map<number, HomeObject>();
+let classes: string[] = [];
+let unbound: string[] = []; // unbound values of the loaded text that the home may lack
 
 export function setObjects(objects: HomeObject[]): void {
   current = objects;
   byId = new Map(objects.map((o) => [o.id, o]));
+  classes = [...new Set(objects.map((o) => o.class_name))].sort();
+}
+
+/** Let the dropdowns offer these unbound values too (`<coffee_maker> (2)` of a text). */
+export function setUnbound(values: string[]): void {
+  unbound = [...new Set(values)];
 }
 
 export function objectById(id: number): HomeObject | undefined {
@@ -31,19 +29,48 @@ export function objectLabel(o: HomeObject): string {
   return `${o.class_name} ${o.id} · ${o.room ?? "no room"}`;
 }
 
+export interface Unbound { name: string; instance: number }
+
+export const unboundValue = (name: string, instance: number): string => `${name}:${instance}`;
+
+/** The class and instance of an unbound slot value, or null for a node id. */
+export function parseUnbound(value: string): Unbound | null {
+  const m = /^([^:]+):(\d+)$/.exec(value);
+  return m ? { name: m[1], instance: Number(m[2]) } : null;
+}
+
+function unboundLabel(value: string): string {
+  const ref = parseUnbound(value)!;
+  return `any ${ref.name} (${ref.instance})`;
+}
+
 export type Option = [string, string] | "separator";
 
-export function optionsFor(actionKey: string, slot: number): Option[] {
-  if (current.length === 0) return [["(no home loaded)", "none"]];
-  const wanted = SUITS[actionKey]?.[slot] ?? null;
-  const all = current.map((o): [string, string] => [objectLabel(o), String(o.id)]);
-  if (!wanted) return all;
-  const suits = current.filter((o) => o.properties.includes(wanted));
-  if (suits.length === 0) return all;
-  const rest = current.filter((o) => !o.properties.includes(wanted));
-  return [
-    ...suits.map((o): [string, string] => [`${objectLabel(o)}`, String(o.id)]),
-    "separator",
-    ...rest.map((o): [string, string] => [objectLabel(o), String(o.id)]),
-  ];
+/** Whether `o` has, for every requirement of the slot, one of its properties. */
+function suits(o: HomeObject, needs: string[][]): boolean {
+  return needs.every((oneOf) => oneOf.some((p) => o.properties.includes(p)));
+}
+
+export function optionsFor(action: Action, slot: number): Option[] {
+  const needs = action.needs[slot] ?? [];
+  const nodes = (list: HomeObject[]): Option[] =>
+    list.map((o): [string, string] => [objectLabel(o), String(o.id)]);
+  const anyOf = (values: string[]): Option[] =>
+    values.map((v): [string, string] => [unboundLabel(v), v]);
+  const good = needs.length ? current.filter((o) => suits(o, needs)) : [];
+  const rest = good.length ? current.filter((o) => !suits(o, needs)) : current;
+  const goodClasses = new Set(good.map((o) => o.class_name));
+  const firstOf = (c: string[]): string[] => c.map((name) => unboundValue(name, 1));
+  const unboundValues = [...new Set([
+    ...unbound,
+    ...firstOf(classes.filter((c) => goodClasses.has(c))),
+    ...firstOf(classes.filter((c) => !goodClasses.has(c))),
+  ])];
+  const options: Option[] = [];
+  for (const group of [nodes(good), nodes(rest), anyOf(unboundValues)]) {
+    if (group.length === 0) continue;
+    if (options.length) options.push("separator");
+    options.push(...group);
+  }
+  return options.length ? options : [["(no home loaded)", "none"]];
 }

@@ -1,10 +1,11 @@
 // Blocks <-> program text (ActivityPrograms format: title, description, blank line, steps).
 // The server's parser is the authority; this side only decides which lines become action
-// blocks (a catalog action whose objects are nodes of the chosen home) and keeps every
-// other line as a free-text block, so nothing pasted is lost.
+// blocks (a catalog action whose objects are nodes of the chosen home, of the class the
+// text names, or unbound objects like `<tv> (1)`) and keeps every other line as a
+// free-text block, so nothing pasted is lost.
 import * as Blockly from "blockly/core";
-import { FREE_TEXT, TEXT_FIELD, actionOf, blockType, objectField } from "./blocks";
-import { objectById } from "./objects";
+import { FREE_TEXT, TEXT_FIELD, actionOf, blockType, lookupAction, objectField } from "./blocks";
+import { objectById, parseUnbound, unboundValue } from "./objects";
 
 export interface Generated {
   text: string;
@@ -13,50 +14,75 @@ export interface Generated {
 
 export const HEADER_LINES = 3; // title, description, blank line
 
+/** The unbound objects the blocks use, by class: their instance numbers. */
+function unboundInstances(blocks: Blockly.Block[]): Map<string, Set<number>> {
+  const used = new Map<string, Set<number>>();
+  for (const block of blocks) {
+    const action = actionOf(block.type);
+    for (let slot = 0; slot < (action?.arity ?? 0); slot++) {
+      const ref = parseUnbound(String(block.getFieldValue(objectField(slot))));
+      if (ref) used.set(ref.name, (used.get(ref.name) ?? new Set()).add(ref.instance));
+    }
+  }
+  return used;
+}
+
 /** The program text of the workspace: stacks top to bottom, each block one line. */
 export function workspaceToText(ws: Blockly.Workspace, title: string,
   description: string): Generated {
   const lines = [title.trim() || "Untitled", description.trim(), ""];
   const blockAtLine = new Map<number, string>();
+  const blocks = ws.getTopBlocks(true).flatMap((top) => {
+    const chain: Blockly.Block[] = [];
+    for (let b: Blockly.Block | null = top; b; b = b.getNextBlock()) chain.push(b);
+    return chain;
+  });
+  // Nodes get instances counted per class in order of first use, skipping the numbers
+  // of unbound objects of the class (`<tv> (1)` and `<tv> (2.410)` are two tvs).
+  const taken = unboundInstances(blocks);
   const instances = new Map<string, Map<number, number>>(); // class -> node -> instance
-  const ref = (nodeId: number): string => {
+  const ref = (value: string): string => {
+    const unbound = parseUnbound(value);
+    if (unbound) return `<${unbound.name}> (${unbound.instance})`;
+    const nodeId = Number(value);
     const name = objectById(nodeId)?.class_name ?? "unknown";
     const seen = instances.get(name) ?? new Map<number, number>();
     instances.set(name, seen);
-    if (!seen.has(nodeId)) seen.set(nodeId, seen.size + 1);
+    if (!seen.has(nodeId)) {
+      let next = seen.size + 1;
+      const used = new Set([...(taken.get(name) ?? []), ...seen.values()]);
+      while (used.has(next)) next++;
+      seen.set(nodeId, next);
+    }
     return `<${name}> (${seen.get(nodeId)}.${nodeId})`;
   };
-  for (const top of ws.getTopBlocks(true)) {
-    for (let block: Blockly.Block | null = top; block; block = block.getNextBlock()) {
-      let line: string;
-      if (block.type === FREE_TEXT) {
-        line = String(block.getFieldValue(TEXT_FIELD) ?? "").trim();
-        if (!line) continue;
-      } else {
-        const action = actionOf(block.type);
-        if (!action) continue;
-        const args = [];
-        for (let slot = 0; slot < action.arity; slot++) {
-          args.push(ref(Number(block.getFieldValue(objectField(slot)))));
-        }
-        line = [`[${action.name}]`, ...args].join(" ");
+  for (const block of blocks) {
+    let line: string;
+    if (block.type === FREE_TEXT) {
+      line = String(block.getFieldValue(TEXT_FIELD) ?? "").trim();
+      if (!line) continue;
+    } else {
+      const action = actionOf(block.type);
+      if (!action) continue;
+      const args = [];
+      for (let slot = 0; slot < action.arity; slot++) {
+        args.push(ref(String(block.getFieldValue(objectField(slot)))));
       }
-      lines.push(line);
-      blockAtLine.set(lines.length, block.id);
+      line = [`[${action.name}]`, ...args].join(" ");
     }
+    lines.push(line);
+    blockAtLine.set(lines.length, block.id);
   }
   return { text: lines.join("\n") + "\n", blockAtLine };
 }
 
-type Item =
-  | { kind: "action"; key: string; nodes: number[] }
-  | { kind: "free"; text: string };
+/** A step or comment line of a text, with its 1-based line number there. */
+export type Item =
+  | { kind: "action"; key: string; values: string[]; line: number }
+  | { kind: "free"; text: string; line: number };
 
 export interface Parsed { title: string; description: string; items: Item[] }
 
-const ALIASES: Record<string, string> = {
-  PUT: "PUTBACK", LOOKAT_SHORT: "LOOKAT", LOOKAT_MEDIUM: "LOOKAT", LOOKAT_LONG: "LOOKAT",
-};
 const ACTION_RE = /^\s*\[([^[\]]*)\]/;
 const ARG_RE = /^\s*<([^<>]*)>\s*\(\s*(\d+)(?:\s*\.\s*(\d+))?\s*\)/;
 
@@ -65,25 +91,28 @@ const isSkippable = (line: string): boolean => !line.trim() || line.trim().start
 const normalizeName = (name: string): string =>
   name.trim().toLowerCase().split(/\s+/).filter(Boolean).join("_");
 
-function parseLine(line: string): Item {
-  const free: Item = { kind: "free", text: line.trim() };
+function parseLine(line: string, lineNo: number): Item {
+  const free: Item = { kind: "free", text: line.trim(), line: lineNo };
   const m = ACTION_RE.exec(line);
-  if (!m) return free;
-  let key = m[1].toUpperCase().replace(/[\s-]/g, "");
-  key = ALIASES[key] ?? key;
-  const action = actionOf(blockType(key));
-  if (!action) return free;
+  const action = m ? lookupAction(m[1]) : undefined;
+  if (!m || !action) return free;
   let rest = line.slice(m[0].length);
-  const nodes: number[] = [];
+  const values: string[] = [];
   for (let a = ARG_RE.exec(rest); a; a = ARG_RE.exec(rest)) {
-    const node = a[3] === undefined ? NaN : Number(a[3]);
-    // Only refs grounded to a node of this home, of the class the text names, fit a block.
-    if (objectById(node)?.class_name !== normalizeName(a[1])) return free;
-    nodes.push(node);
+    const name = normalizeName(a[1]);
+    if (!name) return free;
+    if (a[3] === undefined) {
+      values.push(unboundValue(name, Number(a[2]))); // any object of the class
+    } else {
+      // A node must be one of this home, of the class the text names.
+      const node = Number(a[3]);
+      if (objectById(node)?.class_name !== name) return free;
+      values.push(String(node));
+    }
     rest = rest.slice(a[0].length);
   }
-  if (rest.trim() || nodes.length !== action.arity) return free;
-  return { kind: "action", key, nodes };
+  if (rest.trim() || values.length !== action.arity) return free;
+  return { kind: "action", key: action.key, values, line: lineNo };
 }
 
 /** Split a program text into title, description and one item per step or comment line. */
@@ -92,7 +121,7 @@ export function parseText(text: string): Parsed {
   const items: Item[] = [];
   let i = 0;
   for (; i < lines.length && isSkippable(lines[i]); i++) {
-    if (lines[i].trim()) items.push({ kind: "free", text: lines[i].trim() });
+    if (lines[i].trim()) items.push({ kind: "free", text: lines[i].trim(), line: i + 1 });
   }
   let title = "";
   const description: string[] = [];
@@ -103,7 +132,7 @@ export function parseText(text: string): Parsed {
     }
   }
   for (; i < lines.length; i++) {
-    if (lines[i].trim()) items.push(parseLine(lines[i]));
+    if (lines[i].trim()) items.push(parseLine(lines[i], i + 1));
   }
   return { title, description: description.join(" "), items };
 }
@@ -118,7 +147,7 @@ export function itemsToState(items: Item[]): object {
       fields[TEXT_FIELD] = item.text;
     } else {
       type = blockType(item.key);
-      item.nodes.forEach((node, slot) => { fields[objectField(slot)] = String(node); });
+      item.values.forEach((value, slot) => { fields[objectField(slot)] = value; });
     }
     chain = { type, fields, ...(chain ? { next: { block: chain } } : {}) };
   }

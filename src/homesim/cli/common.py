@@ -7,7 +7,8 @@ from pathlib import Path
 
 from rich.console import Console
 
-from homesim.errors import HomesimError
+from homesim.errors import HomesimError, LimitError
+from homesim.limits import MAX_PROGRAM_BYTES
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
@@ -17,29 +18,29 @@ from homesim.world.homes import load_home
 console = Console(highlight=False, soft_wrap=True)
 err_console = Console(stderr=True, highlight=False, soft_wrap=True)
 
-MAX_PROGRAM_BYTES = 1024 * 1024
-"""Largest program file the CLI reads (real programs are under 2 KB)."""
-
 
 def read_program(path: str) -> Program:
-    """Read a program file (or ``-`` for standard input)."""
+    """Read a program file (or ``-`` for standard input), within `homesim.limits`."""
     if path == "-":
-        text = sys.stdin.read(MAX_PROGRAM_BYTES + 1)
         source = "<stdin>"
+        try:
+            text = sys.stdin.read(MAX_PROGRAM_BYTES + 1)  # parse_program refuses more
+        except UnicodeDecodeError:
+            raise HomesimError(f"{source}: not UTF-8 text") from None
     else:
         p = Path(path)
         try:
-            if p.stat().st_size > MAX_PROGRAM_BYTES:
-                raise HomesimError(f"{path}: file is over the {MAX_PROGRAM_BYTES // 1024} KiB "
-                                   "limit for a program")
+            size = p.stat().st_size
+            if size > MAX_PROGRAM_BYTES:
+                raise LimitError(f"{path}: file of {size} bytes, over the limit of "
+                                 f"{MAX_PROGRAM_BYTES // 1024} KiB for a program "
+                                 "(MAX_PROGRAM_BYTES)", "MAX_PROGRAM_BYTES")
             text = p.read_text(encoding="utf-8")
         except UnicodeDecodeError:
             raise HomesimError(f"{path}: not UTF-8 text") from None
         except OSError as e:
             raise HomesimError(f"{path}: cannot read program ({e.strerror})") from None
         source = path
-    if len(text) > MAX_PROGRAM_BYTES:
-        raise HomesimError(f"{source}: over the {MAX_PROGRAM_BYTES // 1024} KiB limit")
     return parse_program(text, source=source)
 
 

@@ -11,6 +11,7 @@ from rich.table import Table
 
 from homesim.cli.common import console
 from homesim.errors import HomesimError
+from homesim.files import check_target
 from homesim.knowledge.fetch import (
     NUM_PROGRAMS,
     PACKAGE,
@@ -72,6 +73,8 @@ def stats_cmd(
     top: Annotated[int, typer.Option(min=1, help="Fig. 4: how many actions and objects.")] = 50,
     skip_bad: Annotated[bool, typer.Option(help="Leave out bad files (listed) instead of "
                                            "stopping at the first.")] = False,
+    force: Annotated[bool, typer.Option(help="Replace the outputs in OUT if they exist.")]
+    = False,
 ) -> None:
     """Reproduce the paper's dataset analysis: Table 1(a-c) and Fig. 4."""
     try:
@@ -81,7 +84,13 @@ def stats_cmd(
         raise HomesimError(f"'homesim data stats' needs the stats extra ({e.name} is "
                            "missing): pip install 'homesim[stats]'") from None
     from homesim.knowledge.datasets import ActivityDataset
+    from homesim.knowledge.stats_plots import OUTPUTS
 
+    if out.exists() and not out.is_dir():
+        raise HomesimError(f"{out}: not a folder; --out names the folder for the outputs")
+    if out.is_dir():  # before the work, not after it
+        for name in OUTPUTS:
+            check_target(out / name, force)
     data = ActivityDataset.load(dataset, skip_bad=skip_bad)
     for line in data.skipped:
         console.print(f"[yellow]skipped[/]: {line}")
@@ -91,7 +100,7 @@ def stats_cmd(
         stats = compute_stats(data, activity, min_programs, top,
                               progress=lambda done, total: bar.update(task, completed=done))
     _print_stats(stats)
-    for path in write_stats(stats, out):
+    for path in write_stats(stats, out, force=force):
         console.print(f"wrote {path}")
 
 

@@ -12,6 +12,7 @@ from rich.table import Table
 
 from homesim.cli.common import console
 from homesim.errors import HomesimError
+from homesim.files import check_target, write_text
 
 app = typer.Typer(help="Learn to write programs from descriptions (paper section 5).",
                   no_args_is_help=True)
@@ -38,7 +39,8 @@ def _torch(threads: int) -> None:
                            "'learn' extra") from None
     if threads < 1:
         raise HomesimError(f"--threads must be at least 1, got {threads}")
-    torch.set_num_threads(threads)
+    torch.set_num_threads(threads)  # the thread count changes float sums: keep it fixed
+    torch.use_deterministic_algorithms(True)  # refuse ops without a deterministic kernel
 
 
 def _bar() -> Progress:
@@ -84,10 +86,9 @@ def train(
         raise HomesimError(f"--task {task}: only {', '.join(TASKS)} is available")
     _torch(threads)
     datasets = _datasets(data)
-    for name in datasets:
-        if (out / name / "mle.pt").exists() and not force:
-            raise HomesimError(f"{out / name}: holds checkpoints; pass --force to replace them")
-    from homesim.learn.table import RunConfig, train_dataset
+    from homesim.learn.table import MODELS, RunConfig, train_dataset
+
+    _check_run_folder(out, datasets, tuple(f"{m}.pt" for m in MODELS), force)
 
     total_start = time.perf_counter()
     for name in datasets:
@@ -101,6 +102,19 @@ def train(
     console.print(f"trained in {time.perf_counter() - total_start:.0f} s wall time")
 
 
+def _check_run_folder(out: Path, datasets: tuple[str, ...], files: tuple[str, ...],
+                      force: bool) -> None:
+    """Fail before training when OUT (or OUT/<data set>) is a file, or holds a checkpoint."""
+    for folder in (out, *(out / name for name in datasets)):
+        if folder.exists() and not folder.is_dir():
+            raise HomesimError(f"{folder}: not a folder; --out names the run folder")
+    for name in datasets:
+        for file in files:
+            if (out / name / file).exists() and not force:
+                raise HomesimError(f"{out / name / file}: already exists; pass --force to "
+                                   "replace the checkpoints")
+
+
 @app.command("eval")
 def evaluate(
     runs: Annotated[Path, typer.Option(help="Run folder written by 'homesim learn train'.")],
@@ -109,13 +123,24 @@ def evaluate(
     force: Annotated[bool, typer.Option(help="Replace the markdown file if it exists.")] = False,
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
 ) -> None:
-    """Score every row of Table 3 on the test splits and print it."""
+    """Score every row of Table 3 on the test splits and print it.
+
+    With --data both, a data set with no checkpoints in RUNS/<data set> is left out with
+    a note; the others are scored.
+    """
     _torch(threads)
     datasets = _datasets(data)
-    if markdown is not None and markdown.exists() and not force:
-        raise HomesimError(f"{markdown}: already exists; pass --force to replace it")
+    if markdown is not None:
+        check_target(markdown, force)
     from homesim.learn.report import markdown_table
-    from homesim.learn.table import evaluate_dataset, write_json
+    from homesim.learn.table import evaluate_dataset, trained, write_json
+
+    if data == "both":
+        present = tuple(name for name in datasets if trained(runs / name))
+        for name in datasets:
+            if name not in present:
+                console.print(f"[yellow]skipped[/] {name}: nothing trained in {runs / name}")
+        datasets = present or datasets  # none trained: evaluate_dataset names what is missing
 
     results = []
     start = time.perf_counter()
@@ -128,7 +153,8 @@ def evaluate(
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        markdown.write_text(markdown_table(results, eval_seconds=seconds, machine=_machine()))
+        write_text(markdown, markdown_table(results, eval_seconds=seconds, machine=_machine()),
+                   force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
 
 

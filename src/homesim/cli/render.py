@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 from pathlib import Path
 from typing import Annotated
 
@@ -9,9 +10,9 @@ import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
 from homesim.cli.common import console, read_graph, read_program
-from homesim.errors import GroundingError, HomesimError
+from homesim.errors import HomesimError
 from homesim.examples import DEMO_HOME, load_example
-from homesim.ground.search import prepare_and_ground
+from homesim.ground.pipeline import run_program
 
 
 def _render_module():
@@ -51,13 +52,19 @@ def render(
     r = _render_module()
     prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
-    if not prog.is_grounded and not no_ground:
-        try:
-            prepared, grounding = prepare_and_ground(prog, g, seed=seed)
-        except GroundingError as e:
-            raise HomesimError(f"cannot ground the program in {gname}: {e}") from None
-        g, prog = prepared.graph, grounding.program
-        added = ", ".join(g.node(a.node_id).label() for a in prepared.added)
+    ran = run_program(prog, g, seed=seed, reference=no_ground)
+    if ran.stage == "grounding":
+        raise HomesimError(f"cannot ground the program in {gname}: {ran.message}")
+    g = ran.graph
+    extra = {}
+    if ran.grounding is not None:
+        prog = ran.grounding.program
+        # Where grounding stood the agent for each step, once render walks there.
+        if ran.grounding.standing and "standing" in inspect.signature(
+                r.render_program).parameters:
+            extra["standing"] = ran.grounding.standing
+    if ran.prepared is not None:
+        added = ", ".join(g.node(a.node_id).label() for a in ran.prepared.added)
         console.print(f"grounded in {gname} (seed {seed})" + (f"; added {added}" if added else ""),
                       markup=False)
     bar = Progress(TextColumn("rendering"), BarColumn(), MofNCompleteColumn(),
@@ -73,7 +80,8 @@ def render(
 
     try:
         result = r.render_program(prog, g, out, width=width, height=height, fps=fps,
-                                  seed=seed, progress=progress, agent=agent)
+                                  seed=seed, progress=progress, agent=agent, home=gname,
+                                  **extra)
     finally:
         if task is not None:
             bar.stop()

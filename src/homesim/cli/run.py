@@ -10,53 +10,12 @@ from rich.markup import escape
 from rich.table import Table
 
 from homesim.cli.common import console, read_graph, read_program
-from homesim.errors import GroundingError, HomesimError
+from homesim.errors import HomesimError
 from homesim.examples import DEMO_HOME, load_example
+from homesim.ground.pipeline import run_program
 from homesim.ground.prepare import Prepared
-from homesim.ground.search import Grounding, prepare_and_ground
-from homesim.sim.execute import ExecutionResult, execute
+from homesim.ground.search import Grounding
 from homesim.world.graph import EnvironmentGraph
-
-
-def result_to_json(result: ExecutionResult) -> dict:
-    """A machine-readable summary of an execution (with its trace, if recorded)."""
-    steps = []
-    for rec in result.trace or []:
-        steps.append({
-            "index": rec.index,
-            "step": str(rec.step),
-            "nodes": list(rec.nodes),
-            "ok": rec.ok,
-            "reason": rec.reason,
-            "changes": {
-                "added": [list(e) for e in rec.changes.added],
-                "removed": [list(e) for e in rec.changes.removed],
-                "states": [[n, sorted(a), sorted(b)] for n, a, b in rec.changes.states],
-                "nodes": list(rec.changes.nodes),
-            },
-        })
-    return {
-        "program": str(result.program),
-        "executable": result.executable,
-        "failed_step": result.failed_step,
-        "reason": result.reason,
-        "message": result.message,
-        "steps": steps,
-    }
-
-
-def grounding_to_json(prepared: Prepared, grounding: Grounding) -> dict:
-    """What preparation added and which instances grounding chose, for ``--json``."""
-    return {
-        "added": [{"node_id": a.node_id, "class_name": a.class_name,
-                   "destination_id": a.destination_id, "relation": a.relation,
-                   "room": a.room} for a in prepared.added],
-        "states": [[n, sorted(a), sorted(b)] for n, a, b in prepared.states],
-        "bindings": [{"object": f"<{name}> ({inst})", "node_id": node}
-                     for (name, inst), node in grounding.bindings.items()],
-        "standing": None if grounding.standing is None else
-        {str(i): [round(x, 3), round(z, 3)] for i, (x, z) in grounding.standing.items()},
-    }
 
 
 def _show_grounding(g: EnvironmentGraph, prepared: Prepared, grounding: Grounding) -> None:
@@ -100,35 +59,27 @@ def run(
 ) -> None:
     """Execute a program step by step and show what each step did or why it failed.
 
-    An ungrounded program (``<cup> (1)``, no node ids) is first prepared (objects the home
-    lacks are added) and grounded (each object bound to an instance of the home).
+    Runs `homesim.run_program`: an ungrounded program (``<cup> (1)``, no node ids) is first
+    prepared (objects the home lacks are added) and grounded (each object bound to an
+    instance of the home); a grounded one is checked (its nodes exist and are of its
+    classes) and run as it is. ``--json`` prints `Run.to_dict()`, as the web API answers.
     """
     prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
     if not prog.steps:
         raise HomesimError(f"{program or 'demo'}: the program has no steps")
-    prepared = grounding = None
-    if not prog.is_grounded and not no_ground:
-        try:
-            prepared, grounding = prepare_and_ground(prog, g, seed=seed)
-        except GroundingError as e:
-            if as_json:
-                console.print_json(json.dumps({"program": str(prog), "executable": False,
-                                               "grounding_error": str(e)}))
-            else:
-                console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(str(e))}")
-            raise typer.Exit(1) from None
-        g = prepared.graph
-        prog = grounding.program
-    result = execute(prog, g, trace=True)
+    ran = run_program(prog, g, seed=seed, trace=True, reference=no_ground)
     if as_json:
-        data = result_to_json(result)
-        if prepared is not None and grounding is not None:
-            data["grounding"] = grounding_to_json(prepared, grounding)
-        console.print_json(json.dumps(data))
-        raise typer.Exit(0 if result.executable else 1)
-    if prepared is not None and grounding is not None:
-        _show_grounding(g, prepared, grounding)
+        console.print_json(json.dumps(ran.to_dict()))
+        raise typer.Exit(0 if ran.executable else 1)
+    result = ran.result
+    if result is None:
+        console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(ran.message)}")
+        raise typer.Exit(1)
+    g = ran.graph
+    if ran.prepared is not None and ran.grounding is not None:
+        _show_grounding(g, ran.prepared, ran.grounding)
+    prog = result.program
     label = result.state.label
     title = prog.title or (program or "demo")
     table = Table(title=f"{title} — {gname} ({len(g)} nodes)", title_justify="left",

@@ -1,4 +1,4 @@
-"""`homesim synth`: write synthetic programs with descriptions as JSON lines."""
+"""`homesim synth`: write synthetic programs with descriptions as a JSONL data set."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
 from homesim.cli.common import console
 from homesim.errors import HomesimError
+from homesim.files import check_target
 from homesim.synth import DEFAULT_HOMES, generate, write_jsonl
 from homesim.world.homes import home_names
 
@@ -23,13 +24,15 @@ def synth(
     force: Annotated[bool, typer.Option(help="Replace OUT if it exists.")] = False,
 ) -> None:
     """Sample programs from the grammar over the 12 animated actions, executable by
-    construction in the homes, each with a templated description."""
+    construction in the homes, each with a templated description.
+
+    OUT is a JSONL data set (docs/knowledge.md) that every homesim loader reads. It is
+    written to a temporary file first and only replaces OUT once complete, so an
+    interrupted run leaves nothing behind.
+    """
     if n < 1:
         raise HomesimError(f"--n must be at least 1, got {n}")
-    if out.exists() and not force:
-        raise HomesimError(f"{out}: already exists; pass --force to replace it")
-    if not out.parent.is_dir():
-        raise HomesimError(f"{out.parent}: no such directory")
+    check_target(out, force)  # before the work, not after it
     homes = tuple(home) if home else DEFAULT_HOMES
     unknown = [h for h in homes if h not in home_names()]
     if unknown:
@@ -44,5 +47,5 @@ def synth(
                 yield sp
                 bar.advance(task)
 
-        written = write_jsonl(counted(), out)
+        written = write_jsonl(counted(), out, force=force)
     console.print(f"[green]ok[/]: {written} programs in {out} (seed {seed})")

@@ -5,8 +5,10 @@ Glossary:
     ground: bind each program object (``<cup> (1)``) to a node of the home.
     placement: where an added object may go (the placement knowledge base).
     standing: free floor next to an object where the agent stands to act on it.
+    run_program: the one pipeline every entry point uses (prepare, ground, execute).
 """
 
+from homesim.ground.pipeline import Run, run_program
 from homesim.ground.prepare import Addition, Prepared, prepare
 from homesim.ground.search import Grounding, ground, prepare_and_ground, unground
 
@@ -14,8 +16,10 @@ __all__ = [
     "Addition",
     "Grounding",
     "Prepared",
+    "Run",
     "ground",
     "prepare",
     "prepare_and_ground",
+    "run_program",
     "unground",
 ]

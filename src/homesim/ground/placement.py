@@ -16,6 +16,7 @@ True
 
 from __future__ import annotations
 
+import math
 import random
 from collections.abc import Sequence
 
@@ -61,6 +62,8 @@ def place_box(size: Size, dest: BoundingBox, relation: str, others: Sequence[Bou
     for fx, fz in spots:
         box = BoundingBox((dest.center[0] + fx * room_x, y, dest.center[2] + fz * room_z),
                           (sx, sy, sz))
+        if not all(map(math.isfinite, box.center)):
+            return None  # a destination so large that the arithmetic overflowed
         if not any(overlaps_y(box, o) and overlaps_xz(box, o, _GAP) for o in others):
             return box
     return None

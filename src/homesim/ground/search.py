@@ -29,17 +29,21 @@ Grounding finds node ids for them under which every step executes:
 
 from __future__ import annotations
 
+import difflib
 import random
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
-from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
-from homesim.ground.standing import FloorPlan, Spot, has_geometry
+from homesim.ground.prepare import Prepared, first_use, instances_of, prepare
+from homesim.ground.standing import FloorPlan, Spot, has_geometry, square_distance
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
-from homesim.world.graph import EnvironmentGraph
+from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 Key = tuple[str, int]
@@ -54,7 +58,7 @@ class Grounding:
 
     Attributes:
         program: the program with every object ref bound to a node (``<cup> (1.417)``).
-        bindings: (class name, instance) -> node id, for `homesim.sim.execute`.
+        bindings: (class name, instance) -> node id: the same binding as a map.
         standing: step index (0-based) -> (x, z) where the agent stands for that step,
             when the home has geometry; else None. Steps that act on what the agent holds
             keep the previous spot.
@@ -62,15 +66,42 @@ class Grounding:
     """
 
     program: Program
-    bindings: dict[Key, int]
+    bindings: Bindings
     standing: dict[int, Spot] | None
     step_runs: int
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: grounded program, bindings, standing spots ({"0": [x, z]}), effort."""
+        standing = None
+        if self.standing is not None:
+            standing = {str(i): [round(x, 3), round(z, 3)]
+                        for i, (x, z) in sorted(self.standing.items())}
+        return {"program": str(self.program), "bindings": self.bindings.to_list(),
+                "standing": standing, "step_runs": self.step_runs}
 
 
 class _OutOfBudget(Exception):
     pass
 
 
+@dataclass(slots=True)
+class _Ran:
+    """A step that ran; undone (to `mark`) when the steps after it fail."""
+
+    mark: int
+
+
+@dataclass(slots=True)
+class _Choice:
+    """Candidates for the first unbound object of step `step`; `pos` is the next one to
+    try, `node` the one bound now, `blame` what the tries so far blamed."""
+
+    step: int
+    ref: ObjectRef
+    candidates: list[int]
+    pos: int = 0
+    node: int = -1
+    blame: set[Key] = field(default_factory=set)
 
 
 class _Search:
@@ -96,9 +127,7 @@ class _Search:
         self.needs: dict[Key, list[frozenset[str]]] = {}
         for step in program.steps:
             for pos, ref in enumerate(step.args):
-                need = NEEDS.get((step.action.key, pos))
-                if need is not None:
-                    self.needs.setdefault(ref.key, []).append(need)
+                self.needs.setdefault(ref.key, []).extend(step.action.needs_of(pos))
         self.spots: list[Spot | None] = [None] * len(self.steps)
         for ref in program.object_refs():
             classes = class_names_for(ref.name, kb)
@@ -107,7 +136,7 @@ class _Search:
                 n, text = first_use(program, ref.key)
                 raise GroundingError(
                     f"step {n} {text}: the home has no {' or '.join(classes)} for "
-                    f"<{ref.name}> ({ref.instance}); prepare() adds missing objects",
+                    f"<{ref.name}> ({ref.instance}){_similar(ref.name, graph)}",
                     n, str(ref), ", ".join(classes))
             self.domains[ref.key] = ids
         # Nodes that can only be one program object (often one scene preparation added
@@ -115,14 +144,32 @@ class _Search:
         self.fixed = [d[0] for d in self.domains.values() if len(d) == 1]
 
     # ------------------------------------------------------------------ search
-    def solve(self, i: int) -> set[Key] | None:
-        """Bind and run steps i.. ; None on success, else the objects to blame."""
+    # The search is depth-first over steps and choices; it keeps its frames on an explicit
+    # stack (not Python's), so a program of any length grounds without a recursion limit.
+    # `_enter(i)` starts "solve steps i..": it returns the next step index to enter, or a
+    # result (None: solved; a set: the objects to blame) for the frame on top of the stack.
+
+    def solve(self) -> set[Key] | None:
+        """Bind and run every step; None on success, else the objects to blame."""
+        stack: list[_Ran | _Choice] = []
+        action = self._enter(0, stack)
+        while True:
+            if isinstance(action, int):
+                action = self._enter(action, stack)
+            elif not stack:
+                return action
+            else:
+                action = self._resume(stack.pop(), action, stack)
+
+    def _enter(self, i: int, stack: list[_Ran | _Choice]) -> int | set[Key] | None:
+        """Start solving steps i..: bind the step's first unbound object, or run it."""
         if i == len(self.steps):
             return None
         step = self.steps[i]
         for ref in step.args:
             if ref.key not in self.assign:
-                return self.choose(i, ref)
+                self.tried.setdefault(ref.key, [])
+                return self._next_choice(_Choice(i, ref, self.order(ref.key)), stack)
         ids = tuple([self.assign[ref.key] for ref in step.args])
         self.runs += 1
         if self.runs > self.budget:
@@ -140,38 +187,50 @@ class _Search:
                 self.deepest_bindings = dict(self.assign)
             st.undo(mark)
             return self.blame(step)
-        blame = self.solve(i + 1)
-        if blame is not None:
-            st.undo(mark)
-        return blame
+        stack.append(_Ran(mark))
+        return i + 1
 
-    def choose(self, i: int, ref: ObjectRef) -> set[Key] | None:
-        key = ref.key
-        blame: set[Key] = set()
-        tried = self.tried.setdefault(key, [])
-        for node in self.order(key):
+    def _resume(self, frame: _Ran | _Choice, result: set[Key] | None,
+                stack: list[_Ran | _Choice]) -> int | set[Key] | None:
+        """Hand the result of the steps after `frame` back to it."""
+        if isinstance(frame, _Ran):
+            if result is not None:
+                self.st.undo(frame.mark)
+            return result
+        if result is None:
+            return None
+        key = frame.ref.key
+        del self.assign[key]
+        del self.owner[frame.node]
+        if key not in result:
+            return result  # backjump: this object's choice is not to blame
+        frame.blame |= result
+        return self._next_choice(frame, stack)
+
+    def _next_choice(self, frame: _Choice, stack: list[_Ran | _Choice]) -> int | set[Key]:
+        """Bind the frame's object to its next free candidate, or give up with the blame."""
+        key = frame.ref.key
+        tried = self.tried[key]
+        while frame.pos < len(frame.candidates):
+            node = frame.candidates[frame.pos]
+            frame.pos += 1
             other = self.owner.get(node)
             if other is not None:
-                blame.add(other)
+                frame.blame.add(other)
                 continue
             if node not in tried:
                 tried.append(node)
             self.assign[key] = node
             self.owner[node] = key
-            result = self.solve(i)
-            if result is None:
-                return None
-            del self.assign[key]
-            del self.owner[node]
-            if key not in result:
-                return result  # backjump: this object's choice is not to blame
-            blame |= result
-        if self.owner.keys() >= set(self.domains[key]) and i >= self.deepest[0]:
+            frame.node = node
+            stack.append(frame)
+            return frame.step
+        if self.owner.keys() >= set(self.domains[key]) and frame.step >= self.deepest[0]:
             taken = len(self.domains[key])
-            self.deepest = (i, f"all {taken} instances of <{ref.name}> in the home are "
-                               "bound to other objects of the program")
-        blame.discard(key)
-        return blame
+            self.deepest = (frame.step, f"all {taken} instances of <{frame.ref.name}> in the "
+                                        "home are bound to other objects of the program")
+        frame.blame.discard(key)
+        return frame.blame
 
     def blame(self, step: Step) -> set[Key]:
         """The objects a failed step may depend on: its own and those the character is
@@ -191,37 +250,47 @@ class _Search:
         """Candidates for `key`, best first (see the module docstring); those lacking a
         property the program's steps need come last."""
         st = self.st
-        char_room = st.room_of(st.char)
         bound = [n for n in self.assign.values() if n not in st.rooms]
         anchors = bound + [n for n in self.fixed if n not in self.owner and n not in st.rooms]
-        used_rooms = {st.room_of(n) for n in self.assign.values()}
+        rooms = (st.room_of(st.char), {st.room_of(n) for n in self.assign.values()})
         boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
                              if n in self.graph.nodes) if b is not None]
-        scored = []
         needs = self.needs.get(key, ())
-        for node in self.domains[key]:
-            props = st.properties(node)
-            lacking = sum(1 for need in needs if props.isdisjoint(need))
-            related = 0
-            if anchors:
-                near = st.targets(node, CLOSE)
-                under = st.targets(node, ON) | st.targets(node, INSIDE)
-                for b in anchors:
-                    if b in near or b in under or not under.isdisjoint(st.targets(b, ON)):
-                        related += 1
-            room = st.room_of(node)
-            room_rank = 0 if room == char_room else (1 if room in used_rooms else 2)
-            dist = 0.0
-            box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
-            if boxes and box is not None:
-                dist = min((box.center[0] - b.center[0]) ** 2 + (box.center[2] - b.center[2]) ** 2
-                           for b in boxes)
-            tie = self.tie.get(node)
-            if tie is None:
-                tie = self.tie[node] = self.rng.random()
-            scored.append((lacking, -related, room_rank, dist, tie, node))
+        scored = [self._score(node, needs, anchors, rooms, boxes) for node in self.domains[key]]
         scored.sort()
         return [s[-1] for s in scored]
+
+    def _score(self, node: int, needs: Sequence[frozenset[str]], anchors: list[int],
+               rooms: tuple[int | None, set[int | None]], boxes: list[BoundingBox]
+               ) -> tuple[int, int, int, float, float, int]:
+        """The sort key of one candidate (lower is better)."""
+        st = self.st
+        props = st.properties(node)
+        lacking = sum(1 for need in needs if props.isdisjoint(need))
+        room = st.room_of(node)
+        room_rank = 0 if room == rooms[0] else (1 if room in rooms[1] else 2)
+        tie = self.tie.get(node)
+        if tie is None:
+            tie = self.tie[node] = self.rng.random()
+        return (lacking, -self._related(node, anchors), room_rank,
+                self._distance(node, boxes), tie, node)
+
+    def _related(self, node: int, anchors: list[int]) -> int:
+        """How many anchors `node` is close to, on or in, or shares a surface with."""
+        if not anchors:
+            return 0
+        st = self.st
+        near = st.targets(node, CLOSE)
+        under = st.targets(node, ON) | st.targets(node, INSIDE)
+        return sum(1 for b in anchors
+                   if b in near or b in under or not under.isdisjoint(st.targets(b, ON)))
+
+    def _distance(self, node: int, boxes: list[BoundingBox]) -> float:
+        """Squared floor distance from `node` to the nearest bound object (0 without)."""
+        box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
+        if not boxes or box is None:
+            return 0.0
+        return min(square_distance(box.center, b.center) for b in boxes)
 
     # ------------------------------------------------------------------ standing
     def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:
@@ -264,6 +333,12 @@ class _Search:
         return None
 
 
+def _similar(name: str, graph: EnvironmentGraph) -> str:
+    """``"; did you mean television?"``: the home's classes spelled like `name`, if any."""
+    close = difflib.get_close_matches(name, sorted(graph.class_names()), n=3, cutoff=0.6)
+    return f"; did you mean {' or '.join(close)}?" if close else ""
+
+
 def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
            kb: ObjectKnowledge | None = None, budget: int = DEFAULT_BUDGET) -> Grounding:
     """Bind every object of `program` to a node of `graph` so that the program executes.
@@ -271,7 +346,8 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     Args:
         program: the program; node ids it may carry are ignored (use `unground` to see
             it as the search does).
-        graph: the home, with every object the program needs (see `prepare`).
+        graph: the home, with every object the program needs (`prepare` adds missing
+            ones; this search only binds what is there).
         seed: breaks ties between equally preferred candidates and picks standing spots.
         kb: the object knowledge base, for name equivalences (default: `load_kb()`).
         budget: how many step runs the search may spend.
@@ -285,17 +361,17 @@ def ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     if not program.steps:
-        return Grounding(program, {}, None, 0)
+        return Grounding(program, Bindings(), None, 0)
     geometry = has_geometry(graph)
     search = _Search(program, graph, seed, kb, budget, geometry)
     stopped = False
     try:
-        result = search.solve(0)
+        result = search.solve()
     except _OutOfBudget:
         result, stopped = set(), True
     if result is not None:
         raise _failure(search, stopped)
-    bindings = dict(search.assign)
+    bindings = Bindings(search.assign)
     grounded = program.with_steps([
         Step(step.action, tuple(ref.ground(bindings[ref.key]) for ref in step.args))
         for step in program.steps])

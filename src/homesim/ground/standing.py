@@ -112,6 +112,9 @@ class FloorPlan:
         floors, obstacles = self._rects(room)
         hx, hz = size_x / 2, size_z / 2
         x0, x1, z0, z1 = x - hx, x + hx, z - hz, z + hz
+        if not (math.isfinite(x0) and math.isfinite(x1) and math.isfinite(z0)
+                and math.isfinite(z1)):
+            return False  # huge boxes (1e308) overflow to inf: no spot there
         for cx, cz in ((x0, z0), (x0, z1), (x1, z0), (x1, z1)):
             for fx0, fx1, fz0, fz1, _ in floors:
                 if fx0 <= cx <= fx1 and fz0 <= cz <= fz1:
@@ -220,7 +223,7 @@ class FloorPlan:
                 for fz in (-0.25, 0.0, 0.25):
                     candidates.append((f.center[0] + fx * f.size[0],
                                        f.center[2] + fz * f.size[2]))
-        candidates.sort(key=lambda s: ((s[0] - cx) ** 2 + (s[1] - cz) ** 2, s))
+        candidates.sort(key=lambda s: (square_distance((s[0], 0.0, s[1]), (cx, 0.0, cz)), s))
         return next((s for s in candidates if self.is_free(room, *s)), None)
 
 
@@ -290,6 +293,13 @@ def note_prepared(prepared: EnvironmentGraph, base: EnvironmentGraph,
     """Record that `prepare` made `prepared` from `base`, adding floor obstacles only in
     `changed_rooms`: the plans of `prepared` then reuse those of `base` for other rooms."""
     _PLANS.note_prepared(prepared, base, changed_rooms)
+
+
+def square_distance(a: tuple[float, ...], b: tuple[float, ...]) -> float:
+    """Squared distance in the floor plane (x, z) of two points (x, y, z); inf, not an
+    OverflowError, for coordinates so large that the square overflows (``** 2`` raises)."""
+    dx, dz = a[0] - b[0], a[2] - b[2]
+    return dx * dx + dz * dz
 
 
 def _rect(box: BoundingBox) -> _Rect:

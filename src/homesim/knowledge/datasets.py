@@ -5,8 +5,11 @@ Glossary:
         normalized title (`normalize_title`: lower case, single spaces, no end punctuation).
     ActivityPrograms format: a text file holding a title line, a description (one or more
         lines), a blank line, then one step per line.
-    JSONL format: one JSON object per line, ``{"id", "title", "description", "program":
-        [step lines], "graph": path or null}``.
+    JSONL format: one `ActivityProgram` per line, the format `homesim synth` writes and
+        every loader reads: ``{"id", "title", "description", "program": [step lines],
+        "graph": path or null, "home": built-in home or null, "bindings": [[class name,
+        instance, node id], ...]}``; ``graph``, ``home`` and ``bindings`` may be left out
+        (docs/knowledge.md describes each field).
 
 `ActivityDataset.load` reads a file or folder in either format, or the fetched eai-eval
 data set (518 programs with initial and final graphs). Every program must have a title,
@@ -18,14 +21,17 @@ from __future__ import annotations
 
 import json
 import random
-from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
 from pathlib import Path
 
 from homesim.errors import DataError, HomesimError
-from homesim.program.model import Program
+from homesim.files import atomic_write
+from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program, parse_steps
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.homes import load_home
 
 SPLITS = ("train", "val", "test")
 
@@ -41,20 +47,26 @@ def normalize_title(title: str) -> str:
 
 @dataclass(frozen=True)
 class ActivityProgram:
-    """One program of a data set.
+    """One program of a data set: the one record type of every data set homesim reads or
+    writes (real, synthetic, learning examples).
 
     Attributes:
         id: unique within its data set (file stem or path relative to the folder, or the
-            JSONL ``id``).
+            JSONL ``id``; ``synth-<seed>-<index>`` for synthetic programs).
         program: the parsed program, with its title and description.
-        source: where it was read from (``path`` or ``path:line``).
+        source: where it was read from (``path`` or ``path:line``), or ``synth``.
         graph_path: JSON file with ``init_graph`` and ``final_graph``, if the data set has one.
+        home: the built-in home the program belongs to (`homesim.load_home`), if any.
+        bindings: (class name, instance) -> node id of the program's objects in its home
+            (synthetic programs; learning examples of ungrounded real programs).
     """
 
     id: str
     program: Program
     source: str = ""
     graph_path: Path | None = None
+    home: str | None = None
+    bindings: dict[tuple[str, int], int] = field(default_factory=dict, compare=False)
 
     @property
     def title(self) -> str:
@@ -65,23 +77,78 @@ class ActivityProgram:
         return self.program.description
 
     @property
+    def text(self) -> str:
+        """Title and description as one text (what a description -> program model reads)."""
+        return f"{self.program.title}. {self.program.description}".strip()
+
+    @property
     def activity(self) -> str:
         """The normalized title, used to group programs by activity."""
         return normalize_title(self.program.title)
 
-    def graphs(self) -> tuple[EnvironmentGraph, EnvironmentGraph]:
-        """The stored initial and final graphs; `DataError` if this program has none."""
+    def graph_dicts(self) -> tuple[dict, dict]:
+        """The stored initial and final graphs as raw VirtualHome dicts."""
         if self.graph_path is None:
             raise DataError(f"{self.source or self.id}: no stored graphs for this program")
-        from homesim.knowledge.realdata import RealProgram
+        try:
+            data = json.loads(self.graph_path.read_text(encoding="utf-8"))
+            return data["init_graph"], data["final_graph"]
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            raise DataError(f"{self.graph_path}: cannot read stored graphs ({e})") from None
 
-        return RealProgram(self.id, self.program, self.graph_path).graphs()
+    def graphs(self) -> tuple[EnvironmentGraph, EnvironmentGraph]:
+        """The stored initial and final graphs; `DataError` if this program has none."""
+        init, final = self.graph_dicts()
+        where = str(self.graph_path)
+        return (EnvironmentGraph.from_dict(init, f"{where}:init_graph"),
+                EnvironmentGraph.from_dict(final, f"{where}:final_graph"))
+
+    def graph(self) -> EnvironmentGraph:
+        """The home the program starts in: its stored initial graph, else its built-in home
+        (loaded once per process and shared: read-only)."""
+        if self.graph_path is not None:
+            return _stored_initial_graph(str(self.graph_path))
+        if self.home is not None:
+            return load_home(self.home)
+        raise DataError(f"{self.source or self.id}: no home or stored graph for this program")
+
+    def ungrounded(self) -> ActivityProgram:
+        """This record with node ids taken out of the program and kept in `bindings`."""
+        bindings = dict(self.bindings)
+        steps = []
+        for step in self.program.steps:
+            for ref in step.args:
+                if ref.node_id is not None:
+                    bindings.setdefault(ref.key, ref.node_id)
+            steps.append(Step(step.action, tuple(ObjectRef(r.name, r.instance)
+                                                 for r in step.args)))
+        return replace(self, program=replace(self.program, steps=tuple(steps)),
+                       bindings=bindings)
 
     def to_json(self) -> dict:
-        """The JSONL record of this program."""
-        return {"id": self.id, "title": self.title, "description": self.description,
-                "program": [str(s) for s in self.program.steps],
-                "graph": str(self.graph_path) if self.graph_path else None}
+        """The JSONL record of this program (fields in the module docstring)."""
+        record: dict = {"id": self.id, "title": self.title, "description": self.description,
+                        "program": [str(s) for s in self.program.steps],
+                        "graph": str(self.graph_path) if self.graph_path else None,
+                        "home": self.home}
+        if self.bindings:
+            record["bindings"] = [[n, i, v] for (n, i), v in sorted(self.bindings.items())]
+        return record
+
+    @classmethod
+    def from_json(cls, record: object, where: str = "", base: Path | None = None
+                  ) -> ActivityProgram:
+        """The record `to_json` wrote; `DataError` naming `where` if it is malformed.
+
+        A relative ``graph`` path is read from `base` (the JSONL file's folder).
+        """
+        return _from_record(record, where or "record", base or Path("."))
+
+
+@lru_cache(maxsize=1024)
+def _stored_initial_graph(path: str) -> EnvironmentGraph:
+    init, _ = ActivityProgram("", Program(), graph_path=Path(path)).graph_dicts()
+    return EnvironmentGraph.from_dict(init, f"{path}:init_graph")
 
 
 def _check(program: Program, where: str) -> Program:
@@ -206,7 +273,7 @@ class ActivityDataset(Sequence[ActivityProgram]):
                 continue
             where = f"{path}:{lineno}"
             try:
-                items.append(_from_record(line, where, path.parent))
+                items.append(_from_record(_json_line(line, where), where, path.parent))
             except HomesimError as e:
                 if not skip_bad:
                     raise
@@ -220,11 +287,7 @@ class ActivityDataset(Sequence[ActivityProgram]):
         """The fetched eai-eval data set: 518 programs, each with its stored graphs."""
         from homesim.knowledge.realdata import real_programs
 
-        items = []
-        for r in real_programs(directory):
-            source = str(r.graph_path.parents[1] / "programs" / f"{r.id}.txt")
-            items.append(ActivityProgram(r.id, _check(r.program, source), source, r.graph_path))
-        return cls(items, "eai-eval-1.0.5")
+        return cls(real_programs(directory), "eai-eval-1.0.5")
 
     @classmethod
     def load(cls, path: str | Path | None = None, skip_bad: bool = False) -> ActivityDataset:
@@ -251,8 +314,7 @@ class ActivityDataset(Sequence[ActivityProgram]):
         path = Path(path)
         if path.exists() and not overwrite:
             raise DataError(f"{path}: already exists (pass overwrite=True to replace it)")
-        lines = [json.dumps(item.to_json(), ensure_ascii=False) for item in self._items]
-        path.write_text("".join(line + "\n" for line in lines), encoding="utf-8")
+        write_jsonl(self._items, path, force=overwrite)
         return path
 
     def split(self, seed: int = 0, fractions: tuple[float, float, float] = (0.8, 0.1, 0.1)
@@ -291,16 +353,32 @@ class ActivityDataset(Sequence[ActivityProgram]):
 _REQUIRED = ("title", "description", "program")
 
 
+def write_jsonl(items: Iterable[ActivityProgram], path: str | Path, force: bool = False) -> int:
+    """Write records as JSONL, atomically (`homesim.files`); return how many were written.
+
+    `items` may be a generator: nothing replaces `path` until the last record is written.
+    """
+    count = 0
+    with atomic_write(path, "w", force=force) as f:
+        for item in items:
+            f.write(json.dumps(item.to_json(), ensure_ascii=False) + "\n")
+            count += 1
+    return count
+
+
+def _json_line(line: str, where: str) -> object:
+    try:
+        return json.loads(line)
+    except ValueError as e:
+        raise DataError(f"{where}: not valid JSON ({e})") from None
+
+
 def _one_line(text: str) -> str:
     """Join wrapped lines as the ActivityPrograms parser does; keep spacing within a line."""
     return " ".join(line.strip() for line in text.splitlines() if line.strip())
 
 
-def _from_record(line: str, where: str, base: Path) -> ActivityProgram:
-    try:
-        record = json.loads(line)
-    except ValueError as e:
-        raise DataError(f"{where}: not valid JSON ({e})") from None
+def _from_record(record: object, where: str, base: Path) -> ActivityProgram:
     if not isinstance(record, dict):
         raise DataError(f"{where}: expected a JSON object, got {type(record).__name__}")
     missing = [k for k in _REQUIRED if k not in record]
@@ -321,6 +399,25 @@ def _from_record(line: str, where: str, base: Path) -> ActivityProgram:
     program = _check(Program(parsed.steps, title, description), where)
     graph = record.get("graph")
     graph_path = (base / graph) if isinstance(graph, str) and graph else None
+    home = record.get("home")
+    if home is not None and not isinstance(home, str):
+        raise DataError(f"{where}: 'home' must be a built-in home name or null")
     return ActivityProgram(str(record.get("id") or where.rsplit(":", 1)[-1]), program, where,
-                           graph_path)
+                           graph_path, home or None, _bindings(record.get("bindings"), where))
+
+
+def _bindings(value: object, where: str) -> dict[tuple[str, int], int]:
+    """``[[class name, instance, node id], ...]`` as a dict; `DataError` if malformed."""
+    if value is None:
+        return {}
+    try:
+        out = {}
+        for name, instance, node in value:  # type: ignore[union-attr]
+            if not isinstance(name, str) or type(instance) is not int or type(node) is not int:
+                raise TypeError
+            out[(name, instance)] = node
+        return out
+    except (TypeError, ValueError):
+        raise DataError(f"{where}: 'bindings' must be a list of [class name, instance, "
+                        "node id]") from None
 

@@ -11,6 +11,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from homesim.errors import DataError
+from homesim.files import atomic_write, write_text
 from homesim.knowledge.stats import DatasetStats, SimilarityMatrix
 
 SIMILARITY_PNG = "table1c_similarity.png"
@@ -47,7 +48,7 @@ def plot_similarity(matrix: SimilarityMatrix, path: Path, title: str = "") -> Pa
     ax.set_title(title or "Mean normalized LCS between activities (block-sorted)", fontsize=10)
     fig.colorbar(image, ax=ax, fraction=0.046, pad=0.04, label="normalized LCS")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    _save(fig, path)
     plt.close(fig)
     return path
 
@@ -62,7 +63,7 @@ def plot_counts(counts: list[tuple[str, int]], path: Path, title: str, color: st
     ax.set_ylabel("occurrences")
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    _save(fig, path)
     plt.close(fig)
     return path
 
@@ -126,9 +127,25 @@ def to_json(stats: DatasetStats) -> dict:
     })
 
 
-def write_stats(stats: DatasetStats, out: Path) -> list[Path]:
-    """Write the PNGs, ``stats.md`` and ``stats.json`` into `out` (created if needed)."""
+OUTPUTS = (SIMILARITY_PNG, ACTIONS_PNG, OBJECTS_PNG, MARKDOWN, JSON)
+"""The files `write_stats` writes into its folder."""
+
+
+def _save(fig, path: Path) -> None:
+    with atomic_write(path, "wb") as f:
+        fig.savefig(f, dpi=120, format="png")
+
+
+def write_stats(stats: DatasetStats, out: Path, force: bool = True) -> list[Path]:
+    """Write the PNGs, ``stats.md`` and ``stats.json`` into `out` (created if needed).
+
+    Each file is written atomically; `force=False` refuses (before writing any) when one
+    of them exists.
+    """
     out = Path(out)
+    existing = [out / name for name in OUTPUTS if (out / name).exists()]
+    if existing and not force:
+        raise DataError(f"{existing[0]}: already exists; pass --force to replace it")
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
@@ -144,6 +161,6 @@ def write_stats(stats: DatasetStats, out: Path) -> list[Path]:
         plot_counts(stats.objects, out / OBJECTS_PNG,
                     f"Fig. 4{name}: the {len(stats.objects)} most common objects", "tab:orange"),
     ]
-    (out / MARKDOWN).write_text(to_markdown(stats), encoding="utf-8")
-    (out / JSON).write_text(json.dumps(to_json(stats), indent=1) + "\n", encoding="utf-8")
+    write_text(out / MARKDOWN, to_markdown(stats))
+    write_text(out / JSON, json.dumps(to_json(stats), indent=1) + "\n")
     return [*written, out / MARKDOWN, out / JSON]

@@ -1,88 +1,75 @@
-"""Execute predicted (ungrounded) programs in an example's home.
+"""Execute predicted (ungrounded) programs in an example's home, as every entry point does.
 
-`executable` grounds the whole program in the home with `homesim.ground` (backtracking
-search over bindings) and executes it: this is the simulator reward and the Simulator %
-column. `StepRunner` serves constrained decoding, which must decide step by step: it binds
-each object the first time a step uses it (the node the true program used for it first,
-then the other nodes of its class) and keeps the first that lets the step run. A program
-it accepts is executable under that binding, so `ground` finds one too.
+`executable` is the simulator reward and the Simulator % column: `homesim.run_program`
+(prepare the home, ground the program, execute it). `StepRunner` serves constrained
+decoding, which must decide step by step: it accepts a step when the program so far plus
+that step passes `run_program`, so a decoded program is executable by the same rules
+(preparation, grounding with the knowledge base's equivalent names) as the reward.
 """
 
 from __future__ import annotations
 
-from itertools import product
-
-from homesim.errors import GroundingError
-from homesim.ground.search import ground
+from homesim.ground.pipeline import run_program, runs
 from homesim.learn.data import Example
 from homesim.learn.vocab import StepKey
 from homesim.program.actions import ACTIONS
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
-from homesim.sim.execute import execute, run_step
-from homesim.sim.state import SimState
 
-_MAX_CHOICES = 64  # cap on node combinations tried for one step
+SEED = 0
+"""Seed of preparation and grounding for the reward, the table and decoding."""
 
 
 class StepRunner:
-    """A simulated home that accepts or refuses one ungrounded step at a time."""
+    """A program growing one ungrounded step at a time in an example's home.
+
+    A step is accepted when `run_program` runs the steps accepted so far plus it (checked
+    with `homesim.ground.pipeline.runs`: preparation and grounding, whose search runs every
+    step). Verdicts on candidate steps are kept until the program grows.
+    """
 
     def __init__(self, example: Example):
         self.graph = example.graph()
-        self.state = SimState(self.graph)
-        self.hints = example.bindings
-        self.bound: dict[tuple[str, int], int] = {}
+        self.steps: tuple[Step, ...] = ()
+        self._verdicts: dict[Step, bool] = {}
 
-    def _candidates(self, ref: tuple[str, int]) -> list[int]:
-        if ref in self.bound:
-            return [self.bound[ref]]
-        taken = set(self.bound.values())
-        nodes = [n.id for n in self.graph.nodes_of_class(ref[0]) if n.id not in taken]
-        hint = self.hints.get(ref)
-        if hint in nodes:
-            nodes = [hint, *[n for n in nodes if n != hint]]
-        return nodes
+    @property
+    def bound(self) -> Bindings:
+        """Program objects -> nodes of the prepared home, as `run_program` binds them."""
+        bindings = run_program(Program(self.steps), self.graph, seed=SEED).bindings
+        return bindings if bindings is not None else Bindings()
+
+    def _runs(self, step: Step) -> bool:
+        ok = self._verdicts.get(step)
+        if ok is None:
+            ok = self._verdicts[step] = runs(Program((*self.steps, step)), self.graph, seed=SEED)
+        return ok
 
     def try_refs(self, action: str, refs: tuple[tuple[str, int], ...]) -> bool:
-        """Run the step if some binding lets it run (keeping its effects); else change nothing.
+        """Append the step if the program with it runs; else change nothing.
 
         `refs` are the step's objects as (class name, instance).
         """
         step = Step(ACTIONS[action], tuple(ObjectRef(*r) for r in refs))
-        options = [self._candidates(r) for r in refs]
-        for count, ids in enumerate(product(*options)):
-            if count >= _MAX_CHOICES:
-                break
-            if len(set(ids)) < len(ids) and len(set(refs)) == len(refs):
-                continue  # two different objects cannot be one node
-            if run_step(self.state, step, ids) is None:
-                for r, i in zip(refs, ids, strict=True):
-                    self.bound.setdefault(r, i)
-                return True
-        return False
+        ok = self._runs(step)
+        if ok:
+            self.steps += (step,)
+            self._verdicts = {}
+        return ok
 
     def try_step(self, key: StepKey) -> bool:
         """`try_refs` for a vocabulary step (every object is instance 1)."""
         return self.try_refs(key[0], tuple((name, 1) for name in key[1]))
 
     def can_run(self, key: StepKey) -> bool:
-        """Whether the step could run now (the state is left as it was)."""
-        mark = self.state.mark()
-        bound = dict(self.bound)
-        ok = self.try_step(key)
-        self.state.undo(mark)
-        self.bound = bound
-        return ok
+        """Whether the step could be appended now (nothing changes)."""
+        step = Step(ACTIONS[key[0]], tuple(ObjectRef(name, 1) for name in key[1]))
+        return self._runs(step)
 
 
 def executable(program: Program, example: Example) -> bool:
-    """Whether `program` can be grounded in the example's home and then executes."""
-    graph = example.graph()
-    try:
-        grounding = ground(program, graph, seed=0)
-    except GroundingError:
-        return False
-    return execute(program, graph, bindings=grounding.bindings).executable
+    """Whether `run_program` runs `program` in the example's home."""
+    return run_program(program, example.graph(), seed=SEED).executable
 
 
 def runs_greedily(program: Program, example: Example) -> bool:

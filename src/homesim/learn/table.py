@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from homesim.errors import HomesimError
+from homesim.files import write_text
 from homesim.learn import baselines
 from homesim.learn.data import Splits, real_examples, split, synthetic_examples
 from homesim.learn.execution import executable
@@ -109,6 +110,11 @@ def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None
     return paths
 
 
+def trained(run_dir: Path) -> bool:
+    """Whether `run_dir` holds any checkpoint of `train_dataset`."""
+    return any((run_dir / f"{name}.pt").is_file() for name in MODELS)
+
+
 def _scored(preds: list[Program], test: list) -> Scores:
     flags = [executable(p, e) for p, e in zip(preds, test, strict=True)]
     return score(preds, [e.program for e in test], flags)
@@ -151,4 +157,5 @@ def evaluate_dataset(run_dir: Path, report: Report | None = None) -> dict:
 
 
 def write_json(result: dict, path: Path) -> None:
-    path.write_text(json.dumps(result, indent=2) + "\n")
+    """Write a result as JSON, atomically (`homesim.files`)."""
+    write_text(path, json.dumps(result, indent=2) + "\n")

@@ -9,6 +9,7 @@ from pathlib import Path
 import torch
 
 from homesim.errors import HomesimError
+from homesim.files import atomic_write
 from homesim.learn import decode
 from homesim.learn.data import Example
 from homesim.learn.execution import StepRunner
@@ -81,11 +82,13 @@ class Text2Prog:
             out.extend(self.steps.decode(p) for p in ids)
         return out
 
-    def save(self, path: Path) -> None:
-        """Weights, config and vocabularies in one file."""
-        torch.save({"config": self.model.config.to_dict(), "state": self.model.state_dict(),
-                    "words": self.words.words, "steps": self.steps.to_json(),
-                    "meta": self.meta}, path)
+    def save(self, path: Path, force: bool = True) -> None:
+        """Weights, config and vocabularies in one file, written atomically (an interrupted
+        save leaves the old file); `force=False` refuses to replace one."""
+        with atomic_write(path, "wb", force=force) as f:
+            torch.save({"config": self.model.config.to_dict(),
+                        "state": self.model.state_dict(), "words": self.words.words,
+                        "steps": self.steps.to_json(), "meta": self.meta}, f)
 
     @classmethod
     def load(cls, path: Path) -> Text2Prog:

@@ -8,6 +8,7 @@ from homesim.program.actions import (
     actions_in,
     lookup_action,
 )
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step, normalize_name
 from homesim.program.parse import parse_program, parse_step, parse_steps
 
@@ -15,6 +16,7 @@ __all__ = [
     "ACTIONS",
     "ANIMATED",
     "ActionSpec",
+    "Bindings",
     "Category",
     "ObjectRef",
     "Program",

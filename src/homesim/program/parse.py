@@ -12,15 +12,21 @@ Every malformed line raises `ProgramError` (or its subclasses `UnknownActionErro
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
-from homesim.errors import ArityError, ProgramError, UnknownActionError
+from homesim import limits
+from homesim.errors import ArityError, LimitError, ProgramError, UnknownActionError, excerpt
 from homesim.program.actions import lookup_action, suggest_action
 from homesim.program.model import ObjectRef, Program, Step, normalize_name
 
 _ACTION = re.compile(r"\s*\[([^\[\]]*)\]")
 _NAME = re.compile(r"\s*<([^<>]*)>")
 _ID = re.compile(r"\s*\(\s*(\d+)(?:\s*\.\s*(\d+))?\s*\)")
+_END = re.compile(r"\s*\Z")
 _EXAMPLE = "a step like '[Walk] <sofa> (1)'"
+
+# Speed: every match is anchored at the current position and nothing copies the rest of
+# a line, so parsing is linear in the length of the text.
 
 
 def parse_step(line: str, lineno: int = 1, source: str | None = None) -> Step:
@@ -37,34 +43,51 @@ def parse_step(line: str, lineno: int = 1, source: str | None = None) -> Step:
     if m is None:
         raise fail(f"expected {_EXAMPLE}")
     word = m.group(1).strip()
+    if len(word) > limits.MAX_NAME_CHARS:
+        raise fail(f"action name of {len(word)} characters, over the limit of "
+                   f"{limits.MAX_NAME_CHARS} (MAX_NAME_CHARS)", UnknownActionError)
     action = lookup_action(word)
     if action is None:
         hint = suggest_action(word)
         extra = f" (did you mean {hint}?)" if hint else ""
-        raise fail(f"unknown action '{word}'{extra}", UnknownActionError)
+        raise fail(f"unknown action {excerpt(word)!r}{extra}", UnknownActionError)
     pos = m.end()
     args: list[ObjectRef] = []
-    while pos < len(line) and line[pos:].strip():
+    while _END.match(line, pos) is None:
         nm = _NAME.match(line, pos)
         if nm is None:
-            rest = line[pos:].strip()
+            rest = excerpt(line[pos:pos + limits.EXCERPT_CHARS + 1].strip())
             raise fail(f"expected an object like '<sofa> (1)' but found {rest!r}")
-        name = normalize_name(nm.group(1))
+        raw = nm.group(1)
+        if len(raw) > limits.MAX_NAME_CHARS:
+            raise fail(f"object name of {len(raw)} characters, over the limit of "
+                       f"{limits.MAX_NAME_CHARS} (MAX_NAME_CHARS)")
+        name = normalize_name(raw)
         if not name:
             raise fail("expected an object name between '<' and '>'")
         im = _ID.match(line, nm.end())
         if im is None:
-            raise fail(f"expected an id like '(1)' or '(1.417)' after <{nm.group(1)}>")
-        instance = int(im.group(1))
-        node_id = int(im.group(2)) if im.group(2) is not None else None
-        args.append(ObjectRef(name, instance, node_id))
+            raise fail(f"expected an id like '(1)' or '(1.417)' after <{raw}>")
+        args.append(ObjectRef(name, _number(im.group(1), fail),
+                              None if im.group(2) is None else _number(im.group(2), fail)))
         pos = im.end()
     if len(args) != action.arity:
-        plural = "object" if action.arity == 1 else "objects"
-        raise fail(
-            f"[{action.name}] takes {action.arity} {plural}, got {len(args)}", ArityError
-        )
+        raise fail(f"[{action.name}] takes {_objects(action.arity)}, got {len(args)}",
+                   ArityError)
     return Step(action, tuple(args))
+
+
+def _objects(n: int) -> str:
+    return f"{n} object" if n == 1 else f"{n} objects"
+
+
+def _number(digits: str, fail: Callable[[str], ProgramError]) -> int:
+    """An instance or node id; over `MAX_ID_DIGITS` digits is an error (int() of a few
+    thousand digits is refused by Python, and no home has that many nodes)."""
+    if len(digits) > limits.MAX_ID_DIGITS:
+        raise fail(f"id of {len(digits)} digits, over the limit of {limits.MAX_ID_DIGITS} "
+                   "(MAX_ID_DIGITS)")
+    return int(digits)
 
 
 def _is_step(line: str) -> bool:
@@ -83,6 +106,7 @@ def parse_program(text: str, source: str | None = None) -> Program:
     >>> p.title, len(p.steps)
     ('Watch TV', 2)
     """
+    check_text(text, source)
     lines = text.splitlines()
     i = 0
     while i < len(lines) and _is_skippable(lines[i]):
@@ -102,11 +126,45 @@ def parse_program(text: str, source: str | None = None) -> Program:
         line = lines[lineno - 1]
         if _is_skippable(line):
             continue
+        if len(steps) == limits.MAX_STEPS:
+            raise _too_many_steps(source)
         steps.append(parse_step(line, lineno, source))
     return Program(tuple(steps), title, description)
 
 
 def parse_steps(lines: list[str], source: str | None = None) -> Program:
     """Parse a list of step lines (no title or description), e.g. from a JSON data set."""
+    check_text("\n".join(lines), source)
     steps = [parse_step(line, n, source) for n, line in enumerate(lines, 1) if line.strip()]
+    if len(steps) > limits.MAX_STEPS:
+        raise _too_many_steps(source)
     return Program(tuple(steps))
+
+
+def check_text(text: str, source: str | None = None) -> None:
+    """Raise `LimitError` for a program text over `MAX_PROGRAM_BYTES` and `ProgramError`
+    for one that is not valid Unicode (a lone surrogate, which JSON strings may carry)."""
+    where = f"{source}: " if source else ""
+    if len(text) > limits.MAX_PROGRAM_BYTES:  # a character is at least one byte
+        raise LimitError(f"{where}program text of {len(text)} characters, over the limit of "
+                         f"{limits.MAX_PROGRAM_BYTES // 1024} KiB (MAX_PROGRAM_BYTES)",
+                         "MAX_PROGRAM_BYTES")
+    try:
+        size = len(text.encode("utf-8"))
+    except UnicodeEncodeError as e:
+        lineno = text.count("\n", 0, e.start) + 1
+        line = text[text.rfind("\n", 0, e.start) + 1:].split("\n", 1)[0]
+        raise ProgramError(lineno, line.encode("utf-8", "replace").decode(),
+                           f"not valid Unicode (a lone surrogate at character {e.start + 1})",
+                           source) from None
+    if size > limits.MAX_PROGRAM_BYTES:
+        raise LimitError(f"{where}program text of {size} bytes, over the limit of "
+                         f"{limits.MAX_PROGRAM_BYTES // 1024} KiB (MAX_PROGRAM_BYTES)",
+                         "MAX_PROGRAM_BYTES")
+
+
+def _too_many_steps(source: str | None) -> LimitError:
+    where = f"{source}: " if source else ""
+    most = limits.MAX_STEPS
+    return LimitError(f"{where}more than {most} steps, over the limit of {most} steps "
+                      "(MAX_STEPS)", "MAX_STEPS")

@@ -3,21 +3,22 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from homesim.errors import HomesimError
+from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
 from homesim.render.groundtruth import RecordingWriter, StepSpan
-from homesim.render.recorder import record, still_frames
+from homesim.render.recorder import iter_still_frames, record
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
-from homesim.sim.execute import Bindings, execute
+from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
 Progress = Callable[[int, int], None]
@@ -53,27 +54,36 @@ def _check_size(width: int, height: int, fps: int) -> None:
 
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
-            seed: int, bindings: Bindings | None, agent: str | None
+            seed: int, bindings: Bindings | None, agent: str | None,
+            standing: Mapping[int, tuple[float, float]] | None = None
             ) -> tuple[SceneModel, Timeline, str]:
     """Execute, build the scene and animate: everything before drawing."""
     if not program.steps:
         raise HomesimError("the program has no steps to render")
     name = agent or list(AGENTS)[seed % len(AGENTS)]
     shape = agent_shape(name)
-    result = execute(program, graph, trace=True, bindings=bindings)
+    # A program with plain ids (``<tv> (410)``) and no bindings names nodes by id, as
+    # documented in `render_program`; grounded ones are checked by `execute`.
+    reference = bindings is None and not program.is_grounded
+    result = execute(program, graph, trace=True, bindings=bindings, reference=reference)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
-    timeline = Animator(scene, graph, shape, fps=fps, seed=seed).run(result)
+    timeline = Animator(scene, graph, shape, fps=fps, seed=seed,
+                        standing=standing).run(result)
     return scene, timeline, name
 
 
 def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Path, *,
                    width: int = 640, height: int = 480, fps: int = 30, seed: int = 0,
                    bindings: Bindings | None = None, progress: Progress | None = None,
-                   agent: str | None = None) -> RenderResult:
+                   agent: str | None = None, home: str | None = None,
+                   standing: Mapping[int, tuple[float, float]] | None = None) -> RenderResult:
     """Animate a grounded program in a home with geometry and record it with ground truth.
 
     The program's objects name nodes of `graph` (``<tv> (1.410)``, or plain ``(410)``), or
-    `bindings` maps (class, instance) to node ids. Writes the folder layout described in
+    `bindings` maps (class, instance) to node ids. `home` names the home in ``meta.json``
+    (a built-in home's name or the graph file). `standing` (step index -> (x, z), as
+    `Grounding.standing`) gives where the agent stands for each step; without it render
+    picks spots next to the objects on its own. Writes the folder layout described in
     `homesim.render.groundtruth`; read it back with `load_recording`.
     """
     t0 = time.perf_counter()
@@ -82,7 +92,8 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
     if (out / "meta.json").exists() or (out / "video.mp4").exists():
         raise HomesimError(f"{out}: already holds a recording; choose another folder")
     scene, timeline, name = prepare(program, graph, width=width, height=height, fps=fps,
-                                    seed=seed, bindings=bindings, agent=agent)
+                                    seed=seed, bindings=bindings, agent=agent,
+                                    standing=standing)
     total = len(timeline)
     writer = RecordingWriter(out, width, height, fps)
     try:
@@ -96,12 +107,12 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
         raise
     steps = [StepSpan(i, str(program.steps[i]), a, b)
              for i, (a, b) in enumerate(timeline.step_frames)]
-    meta = _meta(program, graph, scene, name, width, height, fps, seed, total, steps)
+    meta = _meta(program, home or "graph", scene, name, width, height, fps, seed, total, steps)
     writer.close(meta)
     return RenderResult(out, total, width, height, fps, name, steps, time.perf_counter() - t0)
 
 
-def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, total,
+def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed, total,
           steps) -> dict:
     from homesim.render.agent import JOINTS
     from homesim.render.flow import intrinsics
@@ -110,7 +121,7 @@ def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, to
     return {
         "program": str(program),
         "title": program.title,
-        "home": getattr(graph, "source", None) or "graph",
+        "home": home,
         "agent": agent,
         "seed": seed,
         "width": width,
@@ -137,12 +148,26 @@ def _meta(program, graph, scene: SceneModel, agent, width, height, fps, seed, to
 
 def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
                      height: int = 240, seed: int = 0, bindings: Bindings | None = None,
-                     agent: str | None = None) -> list[tuple[int, np.ndarray]]:
-    """(step index, RGB frame at the end of that step) for each step; nothing is written."""
+                     agent: str | None = None,
+                     standing: Mapping[int, tuple[float, float]] | None = None
+                     ) -> list[tuple[int, np.ndarray]]:
+    """(step index, RGB frame at the end of that step) for each step; nothing is written.
+
+    `standing`: as for `render_program`."""
+    return list(iter_keyframes(program, graph, width=width, height=height, seed=seed,
+                               bindings=bindings, agent=agent, standing=standing))
+
+
+def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
+                   height: int = 240, seed: int = 0, bindings: Bindings | None = None,
+                   agent: str | None = None,
+                   standing: Mapping[int, tuple[float, float]] | None = None
+                   ) -> Iterator[tuple[int, np.ndarray]]:
+    """`render_keyframes` one frame at a time: memory holds one frame, not all of them."""
     _check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
-                                 seed=seed, bindings=bindings, agent=agent)
+                                 seed=seed, bindings=bindings, agent=agent, standing=standing)
     ends = [end for _, end in timeline.step_frames]
     with Renderer(scene, width, height) as renderer:
-        stills = still_frames(scene, timeline, renderer, ends)
-    return [(step, rgb) for step, (_, rgb) in enumerate(stills)]
+        for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, ends)):
+            yield step, rgb

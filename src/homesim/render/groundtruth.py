@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from homesim.errors import DataError
+from homesim.files import write_text
 from homesim.render.recorder import FrameTruth
 
 FORMAT_VERSION = 1
@@ -100,7 +101,7 @@ class RecordingWriter:
             joints_visible=np.asarray(pf["joints_visible"], bool),
             cut=np.asarray(pf["cut"], bool))
         meta = {"format": FORMAT_VERSION, **meta}
-        (self.out / "meta.json").write_text(json.dumps(meta, indent=1), encoding="utf-8")
+        write_text(self.out / "meta.json", json.dumps(meta, indent=1))  # last, atomically
 
     def abort(self) -> None:
         """Stop writing without finishing (the folder is left incomplete, no meta.json)."""

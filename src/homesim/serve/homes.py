@@ -47,13 +47,14 @@ def list_homes() -> dict[str, Any]:
 
 @router.get("/actions")
 def list_actions() -> dict[str, Any]:
-    """The action catalog by editor category."""
+    """The action catalog: every row (`ActionSpec.to_dict`, with ``connector`` and
+    ``aliases``) in ``actions``, and the same rows by editor category."""
     categories = []
     for category, label in CATEGORY_LABELS.items():
-        actions = [{"key": a.key, "name": a.name, "arity": a.arity, "animated": a.animated,
-                    "description": a.description} for a in actions_in(category)]
+        actions = [a.to_dict() for a in actions_in(category)]
         categories.append({"id": category.value, "label": label, "actions": actions})
-    return {"count": len(ACTIONS), "categories": categories}
+    return {"count": len(ACTIONS), "actions": [a.to_dict() for a in ACTIONS.values()],
+            "categories": categories}
 
 
 @lru_cache(maxsize=16)

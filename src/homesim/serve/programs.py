@@ -1,21 +1,31 @@
-"""Routes that check and run programs: ``/api/validate``, ``/api/execute``, ``/api/render``."""
+"""Routes that check and run programs: ``/api/validate``, ``/api/execute``; and the steps
+of ``/api/render`` (its jobs are in `homesim.serve.renders`).
+
+Handlers are plain functions of a request model. `answer` runs them in a thread for
+normal programs and in a worker process (`homesim.serve.workers.ProgramPool`) for
+programs over `INLINE_PROGRAM_CHARS`, so a large program never slows other requests.
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import inspect
+from collections.abc import Callable, Iterable
 from typing import Any
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
+from fastapi.responses import Response
+from starlette.concurrency import run_in_threadpool
 
+from homesim.ground.pipeline import Run, run_program
+from homesim.ground.search import unground
+from homesim.limits import INLINE_PROGRAM_CHARS, MAX_RENDER_PIXEL_FRAMES
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
-from homesim.serve import optional
-from homesim.serve.errors import ApiError
+from homesim.serve.errors import ApiError, SafeJSONResponse
 from homesim.serve.homes import get_home
-from homesim.serve.images import png_data_url
-from homesim.serve.results import execution_json, program_json, step_lines
-from homesim.serve.schemas import MAX_STEPS, ExecuteRequest, ProgramRequest, RenderRequest
-from homesim.sim.execute import execute
+from homesim.serve.results import program_json, step_lines
+from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest
+from homesim.sim.execute import binding_problems
 from homesim.world.graph import EnvironmentGraph
 
 router = APIRouter(prefix="/api", tags=["programs"])
@@ -24,112 +34,122 @@ _SOURCE = None  # messages read "line 3: ..."; the editor has one text
 
 
 def parse_request(text: str) -> tuple[Program, list[int]]:
-    """Parse a program from a request, with the line of each step; 422 when it is empty."""
-    program = parse_program(text, source=_SOURCE)  # a ProgramError answers 422 with its line
+    """Parse a program from a request, with the line of each step; 422 when it is empty.
+
+    A ProgramError answers 422 with its line, a LimitError (over `homesim.limits`) 413 or
+    422 naming the limit."""
+    program = parse_program(text, source=_SOURCE)
     if not program.steps:
         raise ApiError(422, "program", "the program has no steps")
-    if len(program.steps) > MAX_STEPS:
-        raise ApiError(422, "program", f"{len(program.steps)} steps, over the "
-                       f"limit of {MAX_STEPS} steps per request")
     return program, step_lines(text)
 
 
-def ref_problems(program: Program, lines: list[int], graph: EnvironmentGraph,
-                 can_ground: bool) -> list[dict]:
-    """Grounded refs that name no node of the home or a node of another class; refs
-    without a node id when there is no grounding to bind them."""
+def ref_problems(program: Program, lines: list[int], graph: EnvironmentGraph) -> list[dict]:
+    """Node ids the program carries that name no node of the home or one of another class
+    (equivalent names allowed, as in grounding). Refs without a node id are fine: they
+    are grounded when the program runs."""
     problems = []
-    for index, step in enumerate(program.steps):
-        for ref in step.args:
-            if ref.node_id is None:
-                if can_ground:
-                    continue
-                message = (f"<{ref.name}> ({ref.instance}) has no node id, and grounding is "
-                           "not available to choose one")
-                problems.append({"index": index, "line": lines[index], "step": str(step),
-                                 "message": f"line {lines[index]}: {message}"})
-                continue
-            node = graph.get(ref.node_id)
-            if node is None:
-                message = f"the home has no node {ref.node_id} for <{ref.name}> ({ref.instance})"
-            elif node.class_name != ref.name:
-                message = (f"node {ref.node_id} is a {node.class_name}, "
-                           f"not a {ref.name}")
-            else:
-                continue
-            problems.append({"index": index, "line": lines[index], "step": str(step),
-                             "message": f"line {lines[index]}: {message}"})
+    for e in binding_problems(program, graph):
+        if e.node is None:
+            continue
+        index = e.step - 1
+        message = str(e).split(": ", 1)[1]  # drop "step N [...]", the line says where
+        problems.append({"index": index, "line": lines[index], "step": str(program.steps[index]),
+                         "message": f"line {lines[index]}: {message}"})
     return problems
 
 
-@dataclass(frozen=True)
-class Grounded:
-    program: Program
-    bindings: dict[tuple[str, int], int] | None
+def run_request(program: Program, graph: EnvironmentGraph, ground: bool | None, seed: int,
+                trace: bool) -> Run:
+    """`run_program` as a request asks: ground None runs it as `homesim run` does (grounded
+    programs as they are, others prepared and grounded); True grounds it anew; False
+    reads (N) as node N, as the reference simulator does."""
+    if ground:
+        program = unground(program)
+    return run_program(program, graph, seed=seed, trace=trace, reference=ground is False)
 
 
-def ground_if_needed(program: Program, lines: list[int], graph: EnvironmentGraph,
-                     ground: bool | None, seed: int) -> Grounded:
-    """Bind the program's objects to nodes when asked, or when some ref lacks a node id."""
-    needed = ground if ground is not None else not program.is_grounded
-    if not needed:
-        return Grounded(program, None)
-    function, why = optional.grounding()
-    if function is None:
-        if ground:
-            raise ApiError(501, "grounding", f"grounding is not available: {why}")
-        index, ref = next((i, r) for i, s in enumerate(program.steps) for r in s.args
-                          if r.node_id is None)
-        raise ApiError(
-            422, "grounding",
-            f"line {lines[index]}: <{ref.name}> ({ref.instance}) names no node of the home, "
-            f"and grounding is not available ({why}); pick the object from the block's "
-            f"dropdown or write it as <{ref.name}> ({ref.instance}.NODE_ID), or send "
-            "ground=false to read (N) as node N like the reference simulator",
-            line=lines[index], index=index)
-    grounding = function(program, graph, seed=seed)  # GroundingError answers 422
-    return Grounded(grounding.program, {tuple(k): v for k, v in grounding.bindings.items()})
-
-
-@router.post("/validate")
 def validate(request: ProgramRequest) -> dict[str, Any]:
-    """Parse a program; with a home, also check that its node ids exist there."""
+    """Parse a program; with a home, also check the node ids it carries there."""
     program, lines = parse_request(request.program)
     answer = program_json(program, lines)
-    function, _ = optional.grounding()
     problems: list[dict] = []
     if request.home is not None:
-        problems = ref_problems(program, lines, get_home(request.home), function is not None)
-    return {"ok": not problems, "problems": problems,
-            "grounding_available": function is not None, **answer}
+        problems = ref_problems(program, lines, get_home(request.home))
+    return {"ok": not problems, "problems": problems, **answer}
 
 
-@router.post("/execute")
 def run(request: ExecuteRequest) -> dict[str, Any]:
+    """Run a program in a home (`run_program`): every step ✓/✗ with its reason and changes."""
+    program, lines = parse_request(request.program)
+    graph = get_home(request.home)
+    ran = run_request(program, graph, request.ground, request.seed, trace=True)
+    return {**ran.to_dict(lines), "home": request.home}
+
+
+def keyframe_renderer() -> Callable[..., Any]:
+    """`homesim.render.iter_keyframes`; 501 when the render extra is not installed."""
+    try:
+        from homesim.render import iter_keyframes
+    except ImportError as e:  # mujoco or a system library missing
+        raise ApiError(501, "render", f"rendering is not available on this server: {e} "
+                       "(install the 'render' extra)") from None
+    return iter_keyframes
+
+
+def render_plan(request: RenderRequest) -> dict[str, Any]:
+    """Check a render request before queueing it: the program parses, the home exists and
+    frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the line of each key frame."""
+    program, lines = parse_request(request.program)
+    get_home(request.home)
+    pixel_frames = len(program.steps) * request.width * request.height
+    if pixel_frames > MAX_RENDER_PIXEL_FRAMES:
+        raise ApiError(422, "render", f"{len(program.steps)} key frames of "
+                       f"{request.width}x{request.height} pixels are {pixel_frames:,} "
+                       f"pixel-frames, over the limit of {MAX_RENDER_PIXEL_FRAMES:,}; render "
+                       "fewer steps or smaller frames")
+    return {"lines": lines}
+
+
+def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
+    """Key frames of a program (the frame at the end of each step), one at a time, as
+    (step index, RGB array); runs in a render worker process."""
+    function = keyframe_renderer()
+    program, lines = parse_request(request.program)
+    graph = get_home(request.home)
+    ran = run_request(program, graph, None, request.seed, trace=False)
+    if ran.grounding is None:
+        index = None if ran.failed_step is None else ran.failed_step - 1
+        raise ApiError(422, "grounding", ran.message,
+                       **({} if index is None else {"line": lines[index], "index": index}))
+    extra = {}
+    # Where grounding stood the agent for each step, once the renderer walks there.
+    if ran.grounding.standing and "standing" in inspect.signature(function).parameters:
+        extra["standing"] = ran.grounding.standing
+    return function(ran.grounding.program, ran.graph, width=request.width,
+                    height=request.height, seed=request.seed, **extra)
+
+
+def is_large(request: ProgramRequest | ExecuteRequest | RenderRequest) -> bool:
+    return len(request.program) > INLINE_PROGRAM_CHARS
+
+
+async def answer(http: Request, handler: Callable[[Any], dict[str, Any]], request: Any
+                 ) -> Response:
+    """`handler(request)` as a JSON answer: in a thread, or in a program worker process
+    when the program is large."""
+    if is_large(request):
+        return await http.app.state.programs.answer(handler, request)
+    return SafeJSONResponse(await run_in_threadpool(handler, request))
+
+
+@router.post("/validate", response_class=SafeJSONResponse)
+async def validate_route(request: ProgramRequest, http: Request) -> Response:
+    """Parse a program; with a home, also check that its node ids exist there."""
+    return await answer(http, validate, request)
+
+
+@router.post("/execute", response_class=SafeJSONResponse)
+async def run_route(request: ExecuteRequest, http: Request) -> Response:
     """Execute a program on a home: every step ✓/✗ with its reason and state changes."""
-    program, lines = parse_request(request.program)
-    graph = get_home(request.home)
-    grounded = ground_if_needed(program, lines, graph, request.ground, request.seed)
-    result = execute(grounded.program, graph, trace=True)
-    answer = execution_json(result, lines)
-    answer["home"] = request.home
-    answer["bindings"] = None if grounded.bindings is None else [
-        {"name": n, "instance": i, "node_id": v} for (n, i), v in grounded.bindings.items()]
-    return answer
-
-
-@router.post("/render")
-def render(request: RenderRequest) -> dict[str, Any]:
-    """Key frames of a program (the frame at the end of each step), as PNG data URLs."""
-    function, why = optional.keyframe_renderer()
-    if function is None:
-        raise ApiError(501, "render", f"rendering is not available on this server: {why} "
-                       "(install the 'render' extra)")
-    program, lines = parse_request(request.program)
-    graph = get_home(request.home)
-    grounded = ground_if_needed(program, lines, graph, None, request.seed)
-    frames = function(grounded.program, graph, width=request.width, height=request.height,
-                      seed=request.seed)
-    return {"home": request.home, "width": request.width, "height": request.height,
-            "frames": [{"index": int(i), "line": lines[int(i)], "image": png_data_url(rgb)}
-                       for i, rgb in frames]}
+    return await answer(http, run, request)

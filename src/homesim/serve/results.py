@@ -1,12 +1,14 @@
-"""JSON views of parsed programs and execution traces, with the text line of every step."""
+"""JSON views of parsed programs, with the text line of every step.
+
+Runs are encoded by the library (`homesim.ground.pipeline.Run.to_dict`), in the same shape
+as ``homesim run --json``.
+"""
 
 from __future__ import annotations
 
 from typing import Any
 
 from homesim.program.model import Program, Step
-from homesim.sim.execute import ExecutionResult
-from homesim.sim.state import Changes
 
 
 def step_lines(text: str) -> list[int]:
@@ -39,44 +41,4 @@ def program_json(program: Program, lines: list[int]) -> dict[str, Any]:
         "grounded": program.is_grounded,
         "steps": [{"index": i, "line": lines[i], **step_json(s)}
                   for i, s in enumerate(program.steps)],
-    }
-
-
-def changes_json(changes: Changes) -> dict[str, Any]:
-    return {
-        "added": [list(e) for e in changes.added],
-        "removed": [list(e) for e in changes.removed],
-        "states": [{"node": n, "before": sorted(a), "after": sorted(b)}
-                   for n, a, b in changes.states],
-        "nodes": list(changes.nodes),
-    }
-
-
-def execution_json(result: ExecutionResult, lines: list[int]) -> dict[str, Any]:
-    """Each attempted step ✓/✗ with its reason and changes; the steps after a failure."""
-    label = result.state.label
-    steps = []
-    for rec in result.trace or []:
-        steps.append({
-            "index": rec.index,
-            "line": lines[rec.index],
-            "step": str(rec.step),
-            "nodes": list(rec.nodes),
-            "ok": rec.ok,
-            "reason": rec.reason,
-            "changes": changes_json(rec.changes),
-            "summary": rec.changes.describe(label) if rec.ok else rec.reason,
-        })
-    program = result.program
-    not_run = [{"index": i, "line": lines[i], "step": str(program.steps[i])}
-               for i in range(len(steps), len(program.steps))]
-    return {
-        "executable": result.executable,
-        "failed_step": result.failed_step,
-        "failed_line": None if result.failed_index is None else lines[result.failed_index],
-        "reason": result.reason,
-        "message": result.message,
-        "program": str(program),
-        "steps": steps,
-        "not_run": not_run,
     }

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from pydantic import BaseModel, Field
 
-MAX_STEPS = 1000
-"""Most steps a program sent to the API may have (real programs have under 100)."""
+from homesim.limits import MAX_RENDER_HEIGHT, MAX_RENDER_WIDTH, MAX_STEPS, MIN_RENDER_SIDE
+
+__all__ = ["MAX_STEPS", "ExecuteRequest", "ProgramRequest", "RenderRequest"]
 
 
 class ProgramRequest(BaseModel):
@@ -18,14 +19,16 @@ class ProgramRequest(BaseModel):
 class ExecuteRequest(BaseModel):
     """A program to run on a home.
 
-    ``ground``: None (default) grounds only when some object ref lacks a node id; True
-    always grounds; False reads ``(N)`` as node N, as the reference simulator does.
+    Run by `homesim.run_program`, as ``homesim run`` does. ``ground``: None (default)
+    prepares and grounds a program when some object ref lacks a node id, and checks and
+    runs a grounded one as it is; True grounds it anew even when it carries node ids;
+    False reads ``(N)`` as node N, as the reference simulator does.
     """
 
     program: str
     home: str
     ground: bool | None = None
-    seed: int = Field(default=0, description="seed of the grounding search")
+    seed: int = Field(default=0, description="seed of preparation and grounding")
 
 
 class RenderRequest(BaseModel):
@@ -33,6 +36,6 @@ class RenderRequest(BaseModel):
 
     program: str
     home: str
-    width: int = Field(default=320, ge=16, le=1280)
-    height: int = Field(default=240, ge=16, le=960)
+    width: int = Field(default=320, ge=MIN_RENDER_SIDE, le=MAX_RENDER_WIDTH)
+    height: int = Field(default=240, ge=MIN_RENDER_SIDE, le=MAX_RENDER_HEIGHT)
     seed: int = 0

@@ -11,28 +11,38 @@
 ...     "edges": [{"from_id": 2, "relation_type": "INSIDE", "to_id": 1},
 ...               {"from_id": 3, "relation_type": "INSIDE", "to_id": 1},
 ...               {"from_id": 4, "relation_type": "INSIDE", "to_id": 3}]})
->>> r = execute(parse_program("[Walk] <fridge> (3)\\n[Grab] <cup> (4)"), g)
+>>> r = execute(parse_program("[Walk] <fridge> (1.3)\\n[Grab] <cup> (1.4)"), g)
 >>> r.executable, r.message
-(False, 'step 2 [Grab] <cup> (4): cup 4 is inside closed fridge 3')
+(False, 'step 2 [Grab] <cup> (1.4): cup 4 is inside closed fridge 3')
 >>> text = "[Walk] <fridge> (3)\\n[Open] <fridge> (3)\\n[Find] <cup> (4)\\n[Grab] <cup> (4)"
->>> r = execute(parse_program(text), g)
+>>> r = execute(parse_program(text), g, reference=True)  # (N) read as node N
 >>> r.executable, sorted(r.final_graph.node(3).states)
 (True, ['OPEN'])
+
+A program runs under one binding of its objects to nodes (`homesim.program.Bindings`):
+the node ids its refs carry (``<cup> (1.4)``) or a `Bindings` map given beside it.
+`execute` refuses a ref that names no node or a node of another class (`BindingError`),
+unless ``reference=True`` asks for the reference simulator's reading of ``(N)`` as node N.
+To run a program written for no particular home, use `homesim.run_program`, which
+prepares the home and grounds the program first.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
-from homesim.program.model import Program, Step
+from homesim.errors import BindingError
+from homesim.program.bindings import unbound_error
+from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.effects import EFFECTS
 from homesim.sim.state import Changes, SimState
 from homesim.world.graph import EnvironmentGraph
 
-Bindings = Mapping[tuple[str, int], int]
-"""Program object (class name, instance) -> node id of the home."""
+if TYPE_CHECKING:
+    from homesim.ground.kbtypes import ObjectKnowledge
 
 
 @dataclass(frozen=True, slots=True)
@@ -54,6 +64,16 @@ class StepRecord:
     ok: bool
     reason: str | None
     changes: Changes
+
+    def to_dict(self, label: Callable[[int], str] | None = None,
+                line: int | None = None) -> dict[str, Any]:
+        """JSON view; ``summary`` is `Changes.describe` with `label` (or the reason)."""
+        summary = self.reason
+        if self.ok:
+            summary = self.changes.describe(label or str)
+        return {"index": self.index, "line": line, "step": str(self.step),
+                "nodes": list(self.nodes), "ok": self.ok, "reason": self.reason,
+                "changes": self.changes.to_dict(), "summary": summary}
 
 
 @dataclass(eq=False)
@@ -104,16 +124,116 @@ class ExecutionResult:
         """Net changes of the whole run against the input graph."""
         return self.state.changes_since(0)
 
+    def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
+        """JSON view: verdict, message, each attempted step and the steps not run.
 
-def node_ids(step: Step, bindings: Bindings | None = None) -> tuple[int, ...]:
-    """The node ids a step's objects refer to.
+        `lines` gives the text line of each step (``line`` fields are None without it).
+        """
+        def line(i: int | None) -> int | None:
+            return None if lines is None or i is None else lines[i]
+
+        label = self.state.label
+        steps = [rec.to_dict(label, line(rec.index)) for rec in self.trace or []]
+        done = len(steps)  # without a trace: the steps after the failed one are not run
+        if self.trace is None:
+            done = len(self.program.steps) if self.failed_index is None else self.failed_index + 1
+        return {
+            "program": str(self.program),
+            "executable": self.executable,
+            "failed_step": self.failed_step,
+            "failed_line": line(self.failed_index),
+            "reason": self.reason,
+            "message": self.message,
+            "steps": steps,
+            "not_run": [{"index": i, "line": line(i), "step": str(self.program.steps[i])}
+                        for i in range(done, len(self.program.steps))],
+        }
+
+
+def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
+             ) -> tuple[int, ...]:
+    """The node ids a step's objects refer to, read as the reference simulator does.
 
     Without bindings a ref's node id is its grounded id (``(1.417)`` -> 417), else its
-    instance number, as the reference simulator reads ``(417)``.
+    instance number (``(417)`` -> 417); bindings, when given, win.
     """
     if bindings is None:
         return step.nodes
     return tuple([bindings.get(ref.key, ref.node) for ref in step.args])
+
+
+def binding_problems(program: Program, graph: EnvironmentGraph,
+                     bindings: Mapping[tuple[str, int], int] | None = None,
+                     kb: ObjectKnowledge | None = None) -> list[BindingError]:
+    """Every object ref of `program` that names no node of `graph`, or one of another class.
+
+    A ref names the node `bindings` gives it, else its node id (``<tv> (1.410)``).
+    Classes match as grounding matches them: by the knowledge base's equivalent names
+    (``television`` and ``tv``, see `homesim.ground.kbtypes.class_names_for`).
+    One error per object, at the first step that uses it, in step order.
+    """
+    def class_of(node: int) -> str | None:
+        n = graph.nodes.get(node)
+        return None if n is None else n.class_name
+
+    return _problems(program, bindings or {}, class_of, kb, stop=False)
+
+
+_NONE: Mapping[tuple[str, int], int] = {}
+
+
+def _problems(program: Program, given: Mapping[tuple[str, int], int],
+              class_of: Callable[[int], str | None], kb: ObjectKnowledge | None,
+              stop: bool) -> list[BindingError]:
+    problems: list[BindingError] = []
+    first: dict[tuple[str, int], int | None] = {}  # each object's node at its first use
+    for index, step in enumerate(program.steps):
+        for ref in step.args:
+            key = ref.key
+            node = given.get(key, ref.node_id)
+            if key in first:
+                if first[key] == node:
+                    continue
+                problem = BindingError(
+                    f"step {index + 1} {step}: <{ref.name}> ({ref.instance}) is node {node} "
+                    f"here but node {first[key]} at an earlier step; one object is one node",
+                    index + 1, f"<{ref.name}> ({ref.instance})", node)
+            else:
+                first[key] = node
+                cls = None if node is None else class_of(node)
+                if cls == ref.name:  # the common case, without the knowledge base
+                    continue
+                kb, names = _class_names(ref.name, kb)
+                if cls is not None and cls in names:
+                    continue
+                problem = _ref_problem(index, step, ref, node, cls, names)
+            problems.append(problem)
+            if stop:
+                return problems
+    return problems
+
+
+def _class_names(name: str, kb: ObjectKnowledge | None
+                 ) -> tuple[ObjectKnowledge, list[str]]:
+    """The knowledge base (loaded if None) and the home classes `name` may stand for."""
+    # Imported here: grounding's view of the knowledge base sits above the simulator.
+    from homesim.ground.kbtypes import class_names_for, default_kb
+
+    kb = kb or default_kb()
+    return kb, class_names_for(name, kb)
+
+
+def _ref_problem(index: int, step: Step, ref: ObjectRef, node: int | None, cls: str | None,
+                 names: list[str]) -> BindingError:
+    if node is None:
+        return unbound_error(index, step, ref)
+    obj = f"<{ref.name}> ({ref.instance})"
+    where = f"step {index + 1} {step}"
+    if cls is None:
+        return BindingError(f"{where}: the home has no node {node} for {obj}",
+                            index + 1, obj, node)
+    return BindingError(f"{where}: {obj} is node {node}, a {cls}, not a {' or '.join(names)}",
+                        index + 1, obj, node)
 
 
 def _missing(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
@@ -129,26 +249,46 @@ def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
 
 
 def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
-            bindings: Bindings | None = None) -> ExecutionResult:
+            bindings: Mapping[tuple[str, int], int] | None = None, *,
+            reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
     """Execute `program` on `graph`; the graph is not changed.
 
     Args:
-        program: the program; its refs name nodes by id (see `node_ids`).
+        program: the program: grounded (``<tv> (1.410)``), or bound by `bindings`.
         graph: the home.
         trace: record each step's outcome and changes (as deltas, not graph copies).
-        bindings: optional map from program objects to node ids (from grounding).
+        bindings: program objects -> node ids (a `Bindings`, e.g. from grounding); they
+            win over node ids the refs carry.
+        reference: read the program as the reference simulator does: a ref without a
+            node id names node N by its instance ``(N)``, and nothing is checked.
+        kb: the knowledge base for equivalent class names (default: `load_kb()`).
 
     Returns:
         An `ExecutionResult`; `executable` is False at the first step whose preconditions
         fail, and `message` says which and why.
+
+    Raises:
+        BindingError: (unless `reference`) a ref names no node, a node the home lacks, or
+            a node of another class (``<tv>`` bound to a bathroom).
     """
     st = SimState(graph)
-    return execute_on(program, st, trace=trace, bindings=bindings)
+    return execute_on(program, st, trace=trace, bindings=bindings, reference=reference, kb=kb)
 
 
 def execute_on(program: Program, st: SimState, trace: bool = False,
-               bindings: Bindings | None = None) -> ExecutionResult:
+               bindings: Mapping[tuple[str, int], int] | None = None, *,
+               reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
     """Like `execute`, but continue from an existing state (which it modifies)."""
+    if not reference:
+        base_nodes, new_nodes = st._base_nodes, st._new_nodes
+
+        def class_of(node: int) -> str | None:
+            n = new_nodes.get(node) or base_nodes.get(node)
+            return None if n is None else n.class_name
+
+        problems = _problems(program, bindings or _NONE, class_of, kb, stop=True)
+        if problems:
+            raise problems[0]
     records: list[StepRecord] | None = [] if trace else None
     journal = st.journal
     effects = EFFECTS

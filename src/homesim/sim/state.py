@@ -69,6 +69,16 @@ class Changes:
         parts += [f"added {label(n)}" for n in self.nodes]
         return "; ".join(parts) or "no change"
 
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: edges as [from, relation, to]; states as {node, before, after}."""
+        return {
+            "added": [list(e) for e in self.added],
+            "removed": [list(e) for e in self.removed],
+            "states": [{"node": n, "before": sorted(a), "after": sorted(b)}
+                       for n, a, b in self.states],
+            "nodes": list(self.nodes),
+        }
+
 
 class SimState:
     """The evolving state of one execution on top of a base graph."""

@@ -9,16 +9,18 @@ Glossary:
         is drawn. What is kept therefore executes, in order, from the home's initial state.
 
 The program is written ungrounded (``<cup> (1)``: instance numbers count distinct nodes of
-a class within the program); the nodes it used are kept as `bindings` beside the home name.
+a class within the program); it is an `ActivityProgram` whose `home` names the built-in home
+and whose `bindings` keep the nodes it used.
 """
 
 from __future__ import annotations
 
 import random
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache
 
+from homesim.knowledge.datasets import ActivityProgram
 from homesim.program.actions import ACTIONS
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
@@ -44,6 +46,10 @@ _STRUCTURE = frozenset({"floor", "wall", "ceiling", "doorjamb", "closetdrawer", 
                         "window", "ceilinglamp", "walllamp"})
 _SAYABLE = frozenset({GRABBABLE, SURFACES, SITTABLE, CAN_OPEN, HAS_SWITCH, LOOKABLE})
 
+SOURCE = "synth"
+"""The `ActivityProgram.source` of a synthetic program (its id is ``synth-<seed>-<index>``;
+its `home` and `bindings` say where and on which nodes it executes)."""
+
 StepSpec = tuple[str, tuple[int, ...]]
 """An action key and the node ids of its objects."""
 
@@ -56,39 +62,6 @@ class Expansion:
     slots: dict[str, int]
     steps: list[StepSpec]
     ends_program: bool = False  # sitting with no stand-up: nothing can follow
-
-
-@dataclass(frozen=True)
-class SynthProgram:
-    """A synthetic program with its description, its home and the nodes it was built on.
-
-    Attributes:
-        id: ``synth-<seed>-<index>``.
-        home: built-in home name (`homesim.load_home`).
-        program: ungrounded program with title and description.
-        bindings: (class name, instance) -> node id of `home`; executing `program` with
-            these bindings on the home succeeds.
-    """
-
-    id: str
-    home: str
-    program: Program
-    bindings: dict[tuple[str, int], int] = field(default_factory=dict)
-
-    def to_json(self) -> dict:
-        return {"id": self.id, "home": self.home, "title": self.program.title,
-                "description": self.program.description,
-                "steps": [str(s) for s in self.program.steps],
-                "bindings": [[n, i, v] for (n, i), v in sorted(self.bindings.items())]}
-
-    @classmethod
-    def from_json(cls, data: dict) -> SynthProgram:
-        from homesim.program.parse import parse_program
-
-        text = f"{data['title']}\n{data['description']}\n\n" + "\n".join(data["steps"])
-        program = parse_program(text, source=data["id"])
-        bindings = {(n, int(i)): int(v) for n, i, v in data["bindings"]}
-        return cls(data["id"], data["home"], program, bindings)
 
 
 @cache
@@ -282,7 +255,7 @@ class Grammar:
     def __init__(self, homes: tuple[str, ...] = DEFAULT_HOMES):
         self.homes = homes
 
-    def sample(self, rng: random.Random, program_id: str) -> SynthProgram:
+    def sample(self, rng: random.Random, program_id: str) -> ActivityProgram:
         """One program; every random choice comes from `rng`."""
         while True:
             home = rng.choice(self.homes)
@@ -311,7 +284,7 @@ class Grammar:
 
 
 def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
-           rng: random.Random) -> SynthProgram:
+           rng: random.Random) -> ActivityProgram:
     """The ungrounded program, its description and bindings from the chosen expansions."""
     instance: dict[int, tuple[str, int]] = {}
     counts: dict[str, int] = {}
@@ -337,10 +310,11 @@ def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
     title = next(t for k, t in templates.TITLES.items() if first.startswith(k))
     program = Program(tuple(steps), title, templates.join(phrases, rng))
     bindings = {key: node for node, key in instance.items()}
-    return SynthProgram(program_id, home, program, bindings)
+    return ActivityProgram(program_id, program, SOURCE, home=home, bindings=bindings)
 
 
-def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES) -> Iterator[SynthProgram]:
+def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES
+             ) -> Iterator[ActivityProgram]:
     """`n` programs; the same seed gives the same programs."""
     rng = random.Random(seed)
     grammar = Grammar(homes)

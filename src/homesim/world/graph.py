@@ -21,7 +21,8 @@ from pathlib import Path
 from typing import Any, cast
 
 from homesim.errors import GraphError
-from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_SIZE
+from homesim.files import write_bytes, write_text
+from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
 from homesim.world.index import HomeIndex, index_edges
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS, ROOM_CATEGORY
 
@@ -187,6 +188,9 @@ class EnvironmentGraph:
             raise GraphError(f"{path}: not UTF-8 text") from None
         except json.JSONDecodeError as e:
             raise GraphError(f"{path}: {_json_problem(e)}") from None
+        except RecursionError:
+            raise GraphError(f"{path}: JSON nested deeper than the limit of {MAX_JSON_DEPTH} "
+                             "levels (MAX_JSON_DEPTH)") from None
         graph = cls.from_dict(data, source=str(path))
         if graph.character_id is None:
             raise GraphError(f"{path}: the graph has no character node (class_name "
@@ -207,10 +211,10 @@ class EnvironmentGraph:
         """Write the graph as JSON (gzip-compressed when the name ends in ``.gz``)."""
         path = Path(path)
         text = json.dumps(self.to_dict())
-        if path.suffix == ".gz":
-            path.write_bytes(gzip.compress(text.encode(), mtime=0))
+        if path.suffix == ".gz":  # atomically: an interrupted save leaves the old file
+            write_bytes(path, gzip.compress(text.encode(), mtime=0))
         else:
-            path.write_text(text)
+            write_text(path, text)
 
     # ----------------------------------------------------------------- queries
     def __len__(self) -> int:
@@ -401,6 +405,9 @@ def _node_from_dict(raw: Any, where: str, i: int) -> Node:
     extra = None
     if not raw.keys() <= _NODE_KEY_SET:
         extra = {k: v for k, v in raw.items() if k not in _NODE_KEY_SET}
+        if deeper_than(extra, MAX_JSON_DEPTH - 3):  # graph > nodes > node > extra
+            raise GraphError(f"{_node_where(where, i, node_id)}: JSON nested deeper than the "
+                             f"limit of {MAX_JSON_DEPTH} levels (MAX_JSON_DEPTH)")
     return Node(node_id, class_name, _opt_str(raw, "category", where, i, node_id),
                 _str_set(raw, "properties", where, i, node_id),
                 _str_set(raw, "states", where, i, node_id),

@@ -1,0 +1,39 @@
+"""Run `homesim` in a child process, to interrupt it for real (SIGINT, SIGTERM)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import homesim
+
+SRC = str(Path(homesim.__file__).resolve().parents[1])
+
+
+def start_cli(args: list[str], env: dict[str, str] | None = None,
+              prelude: str = "") -> subprocess.Popen:
+    """`homesim ARGS` in a child process of this Python, with this checkout's sources;
+    `prelude` is Python code run first (e.g. to put a stand-in for pip)."""
+    full_env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [SRC, *filter(None, [os.environ.get("PYTHONPATH")])]), **(env or {})}
+    code = f"{prelude}\nimport sys\nfrom homesim.cli.main import main\nsys.exit(main({args!r}))"
+    return subprocess.Popen([sys.executable, "-c", code], env=full_env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def wait_for(condition: Callable[[], bool], proc: subprocess.Popen,
+             timeout: float = 60.0) -> None:
+    """Poll `condition` until it holds; fail if the child exits or time runs out first."""
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if proc.poll() is not None:
+            _, err = proc.communicate()
+            raise AssertionError(f"homesim exited with {proc.returncode} too early: {err}")
+        if time.monotonic() > deadline:
+            proc.kill()
+            raise AssertionError("timed out waiting for homesim")
+        time.sleep(0.05)
