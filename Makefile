@@ -30,6 +30,8 @@ demo: setup
 test: setup
 	$(BIN)/homesim data fetch
 	$(BIN)/ruff check src tests benchmarks tools
+	$(BIN)/mypy
+	RADON=$(BIN)/radon sh tools/check_complexity.sh
 	HOMESIM_REQUIRE_DATA=1 HOMESIM_REQUIRE_E2E=1 $(BIN)/python -m pytest
 
 bench: setup

@@ -18,7 +18,7 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 
 from homesim.errors import GraphError
 from homesim.files import write_bytes, write_text
@@ -333,7 +333,7 @@ _NUMBER = (int, float)
 _EDGE_KEYS = itemgetter("from_id", "relation_type", "to_id")
 
 
-def _is_int(x: Any) -> bool:
+def _is_int(x: Any) -> TypeGuard[int]:
     return isinstance(x, int) and not isinstance(x, bool)
 
 
