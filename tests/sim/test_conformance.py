@@ -63,3 +63,12 @@ def test_every_real_program_round_trips_through_print(real_data):
 
     for rp in real_programs(real_data):
         assert parse_program(str(rp.program)) == rp.program
+
+
+def test_the_real_programs_pass_the_binding_check_with_the_same_outcome(outcomes):
+    """The stored programs are grounded (``(1.417)``): checked mode runs them as the
+    reference mode does."""
+    for rp, ref, _ in outcomes:
+        init, _ = rp.graphs()
+        checked = execute(rp.program, init)
+        assert (checked.executable, checked.final_graph) == (ref.executable, ref.final_graph)

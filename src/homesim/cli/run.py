@@ -59,8 +59,10 @@ def run(
 ) -> None:
     """Execute a program step by step and show what each step did or why it failed.
 
-    An ungrounded program (``<cup> (1)``, no node ids) is first prepared (objects the home
-    lacks are added) and grounded (each object bound to an instance of the home).
+    Runs `homesim.run_program`: an ungrounded program (``<cup> (1)``, no node ids) is first
+    prepared (objects the home lacks are added) and grounded (each object bound to an
+    instance of the home); a grounded one is checked (its nodes exist and are of its
+    classes) and run as it is. ``--json`` prints `Run.to_dict()`, as the web API answers.
     """
     prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)

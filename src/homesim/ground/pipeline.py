@@ -10,7 +10,8 @@ Simulator % column, constrained decoding (step by step, see
   to a node; `homesim.ground.search`), then executed in the prepared home.
 - A grounded program (every ref carries a node id, ``<cup> (1.417)``) is checked (each
   ref names a node of the home of its class, equivalent names allowed) and executed as is.
-  A partly grounded program counts as ungrounded: its node ids are ignored.
+  A partly grounded program counts as ungrounded: its node ids are ignored. So does a
+  program without objects (``[StandUp]`` is prepared: the character starts seated).
 - ``reference=True`` runs the program as the reference simulator does: no preparation or
   grounding, ``(N)`` read as node N, nothing checked.
 
@@ -158,7 +159,7 @@ def runs(program: Program, home: EnvironmentGraph, *, prepare: bool = True, seed
     """``run_program(program, home, ...).executable``, for a program that is not grounded,
     without the final execution (grounding's search has run every step already): the
     check constrained decoding makes for each candidate step."""
-    if program.is_grounded:
+    if _grounded(program):
         return run_program(program, home, prepare=prepare, seed=seed, kb=kb).executable
     try:
         _ground(program, home, prepare, seed, kb or default_kb())
@@ -170,11 +171,16 @@ def runs(program: Program, home: EnvironmentGraph, *, prepare: bool = True, seed
 def _ground(program: Program, home: EnvironmentGraph, prepare: bool, seed: int,
             kb: ObjectKnowledge) -> tuple[Prepared | None, Grounding]:
     """Preparation (if asked) and grounding; a grounded program is taken as it is."""
-    if program.is_grounded:
+    if _grounded(program):
         return None, Grounding(program, Bindings.of(program), None, 0)
     if prepare:
         return prepare_and_ground(program, home, seed=seed, kb=kb)
     return None, ground(program, home, seed=seed, kb=kb)
+
+
+def _grounded(program: Program) -> bool:
+    # A program without objects (``[StandUp]``) is prepared too: it may presuppose states.
+    return program.is_grounded and any(step.args for step in program.steps)
 
 
 def _finished(program: Program, result: ExecutionResult, prepared: Prepared | None,

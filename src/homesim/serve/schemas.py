@@ -19,14 +19,16 @@ class ProgramRequest(BaseModel):
 class ExecuteRequest(BaseModel):
     """A program to run on a home.
 
-    ``ground``: None (default) grounds only when some object ref lacks a node id; True
-    always grounds; False reads ``(N)`` as node N, as the reference simulator does.
+    Run by `homesim.run_program`, as ``homesim run`` does. ``ground``: None (default)
+    prepares and grounds a program when some object ref lacks a node id, and checks and
+    runs a grounded one as it is; True grounds it anew even when it carries node ids;
+    False reads ``(N)`` as node N, as the reference simulator does.
     """
 
     program: str
     home: str
     ground: bool | None = None
-    seed: int = Field(default=0, description="seed of the grounding search")
+    seed: int = Field(default=0, description="seed of preparation and grounding")
 
 
 class RenderRequest(BaseModel):

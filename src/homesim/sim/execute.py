@@ -134,7 +134,9 @@ class ExecutionResult:
 
         label = self.state.label
         steps = [rec.to_dict(label, line(rec.index)) for rec in self.trace or []]
-        done = len(steps) if self.trace is not None else self.steps_run
+        done = len(steps)  # without a trace: the steps after the failed one are not run
+        if self.trace is None:
+            done = len(self.program.steps) if self.failed_index is None else self.failed_index + 1
         return {
             "program": str(self.program),
             "executable": self.executable,
@@ -177,12 +179,12 @@ def binding_problems(program: Program, graph: EnvironmentGraph,
     return _problems(program, bindings or {}, class_of, kb, stop=False)
 
 
+_NONE: Mapping[tuple[str, int], int] = {}
+
+
 def _problems(program: Program, given: Mapping[tuple[str, int], int],
               class_of: Callable[[int], str | None], kb: ObjectKnowledge | None,
               stop: bool) -> list[BindingError]:
-    # Imported here: grounding's view of the knowledge base sits above the simulator.
-    from homesim.ground.kbtypes import class_names_for, default_kb
-
     problems: list[BindingError] = []
     first: dict[tuple[str, int], int | None] = {}  # each object's node at its first use
     for index, step in enumerate(program.steps):
@@ -192,40 +194,44 @@ def _problems(program: Program, given: Mapping[tuple[str, int], int],
             if key in first:
                 if first[key] == node:
                     continue
-                obj = f"<{ref.name}> ({ref.instance})"
                 problem = BindingError(
-                    f"step {index + 1} {step}: {obj} is node {node} here but node "
-                    f"{first[key]} at an earlier step; one object is one node",
-                    index + 1, obj, node)
+                    f"step {index + 1} {step}: <{ref.name}> ({ref.instance}) is node {node} "
+                    f"here but node {first[key]} at an earlier step; one object is one node",
+                    index + 1, f"<{ref.name}> ({ref.instance})", node)
             else:
                 first[key] = node
-                problem = _ref_problem(index, step, ref, node, class_of, kb or default_kb(),
-                                       class_names_for)
-                if problem is None:
+                cls = None if node is None else class_of(node)
+                if cls == ref.name:  # the common case, without the knowledge base
                     continue
+                kb, names = _class_names(ref.name, kb)
+                if cls is not None and cls in names:
+                    continue
+                problem = _ref_problem(index, step, ref, node, cls, names)
             problems.append(problem)
             if stop:
-                break
-        if stop and problems:
-            break
+                return problems
     return problems
 
 
-def _ref_problem(index: int, step: Step, ref: ObjectRef, node: int | None,
-                 class_of: Callable[[int], str | None], kb: ObjectKnowledge,
-                 class_names_for: Callable[[str, ObjectKnowledge], list[str]]
-                 ) -> BindingError | None:
+def _class_names(name: str, kb: ObjectKnowledge | None
+                 ) -> tuple[ObjectKnowledge, list[str]]:
+    """The knowledge base (loaded if None) and the home classes `name` may stand for."""
+    # Imported here: grounding's view of the knowledge base sits above the simulator.
+    from homesim.ground.kbtypes import class_names_for, default_kb
+
+    kb = kb or default_kb()
+    return kb, class_names_for(name, kb)
+
+
+def _ref_problem(index: int, step: Step, ref: ObjectRef, node: int | None, cls: str | None,
+                 names: list[str]) -> BindingError:
     if node is None:
         return unbound_error(index, step, ref)
     obj = f"<{ref.name}> ({ref.instance})"
     where = f"step {index + 1} {step}"
-    cls = class_of(node)
     if cls is None:
         return BindingError(f"{where}: the home has no node {node} for {obj}",
                             index + 1, obj, node)
-    names = class_names_for(ref.name, kb)
-    if cls in names:
-        return None
     return BindingError(f"{where}: {obj} is node {node}, a {cls}, not a {' or '.join(names)}",
                         index + 1, obj, node)
 
@@ -274,10 +280,13 @@ def execute_on(program: Program, st: SimState, trace: bool = False,
                reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
     """Like `execute`, but continue from an existing state (which it modifies)."""
     if not reference:
-        def class_of(node: int) -> str | None:
-            return st.class_name(node) if node in st else None
+        base_nodes, new_nodes = st._base_nodes, st._new_nodes
 
-        problems = _problems(program, bindings or {}, class_of, kb, stop=True)
+        def class_of(node: int) -> str | None:
+            n = new_nodes.get(node) or base_nodes.get(node)
+            return None if n is None else n.class_name
+
+        problems = _problems(program, bindings or _NONE, class_of, kb, stop=True)
         if problems:
             raise problems[0]
     records: list[StepRecord] | None = [] if trace else None
