@@ -29,15 +29,18 @@ Grounding finds node ids for them under which every step executes:
 
 from __future__ import annotations
 
+import bisect
 import difflib
+import math
 import random
+from collections import Counter
 from dataclasses import dataclass, field
 from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
-from homesim.ground.standing import FloorPlan, Spot, has_geometry, square_distance
+from homesim.ground.standing import FloorPlan, Spot, has_geometry
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
@@ -81,6 +84,43 @@ class Grounding:
 
 class _OutOfBudget(Exception):
     pass
+
+
+class _Points:
+    """Points in the floor plane, sorted by x, for the nearest one to a point.
+
+    Speed: the search walks out from the point's x in both directions and stops where
+    the x gap alone is over the best squared distance so far, so a program with many
+    objects does not compare every pair. The result is the exact minimum of
+    `square_distance` (a skipped point is strictly farther)."""
+
+    def __init__(self, centers: list[tuple[float, float, float]]):
+        self.points = sorted((c[0], c[2]) for c in centers)
+        self.xs = [p[0] for p in self.points]
+
+    def __bool__(self) -> bool:
+        return bool(self.points)
+
+    def nearest(self, center: tuple[float, float, float]) -> float:
+        """The smallest squared (x, z) distance from `center` to a point."""
+        x, z = center[0], center[2]
+        points, xs, n = self.points, self.xs, len(self.points)
+        best = math.inf
+        right = bisect.bisect_left(xs, x)
+        left = right - 1
+        while left >= 0 or right < n:
+            # The next point is the one with the smaller x gap, on either side.
+            if left >= 0 and (right >= n or x - xs[left] <= xs[right] - x):
+                i, left = left, left - 1
+            else:
+                i, right = right, right + 1
+            dx, dz = x - points[i][0], z - points[i][1]
+            if dx * dx > best:
+                break  # every point left is at least as far in x alone
+            d = dx * dx + dz * dz
+            if d < best:
+                best = d
+        return best
 
 
 @dataclass(slots=True)
@@ -255,8 +295,16 @@ class _Search:
         bound = [n for n in self.assign.values() if n not in st.rooms]
         anchors = bound + [n for n in self.fixed if n not in self.owner and n not in st.rooms]
         used_rooms = {st.room_of(n) for n in self.assign.values()}
-        boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
-                             if n in self.graph.nodes) if b is not None]
+        boxes = _Points([b.center for b in (self.graph.nodes[n].bounding_box for n in bound
+                                            if n in self.graph.nodes) if b is not None])
+        # Speed: anchors by surface they are on, so a candidate's related anchors are a few
+        # set lookups, not a loop over every anchor (a program with 1000 objects).
+        weight = Counter(anchors)  # an anchor may come twice (two objects, one instance)
+        single = len(weight) == len(anchors)
+        on_surface: dict[int, set[int]] = {}
+        for b in weight:
+            for surface in st.targets(b, ON):
+                on_surface.setdefault(surface, set()).add(b)
         scored = []
         needs = self.needs.get(key, ())
         for node in self.domains[key]:
@@ -264,17 +312,22 @@ class _Search:
             lacking = sum(1 for need in needs if props.isdisjoint(need))
             related = 0
             if anchors:
-                near = st.targets(node, CLOSE)
+                # Anchors close to it, under it, or on what it is on or in.
                 under = st.targets(node, ON) | st.targets(node, INSIDE)
-                for b in anchors:
-                    if b in near or b in under or not under.isdisjoint(st.targets(b, ON)):
-                        related += 1
+                hit = weight.keys() & (st.targets(node, CLOSE) | under)
+                shared = [on_surface[s] for s in under if s in on_surface]
+                if single and len(shared) == 1:  # the usual case, without copying the set
+                    related = len(shared[0]) + sum(1 for b in hit if b not in shared[0])
+                else:
+                    for anchors_there in shared:
+                        hit.update(anchors_there)
+                    related = len(hit) if single else sum(weight[b] for b in hit)
             room = st.room_of(node)
             room_rank = 0 if room == char_room else (1 if room in used_rooms else 2)
             dist = 0.0
             box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
             if boxes and box is not None:
-                dist = min(square_distance(box.center, b.center) for b in boxes)
+                dist = boxes.nearest(box.center)
             tie = self.tie.get(node)
             if tie is None:
                 tie = self.tie[node] = self.rng.random()
