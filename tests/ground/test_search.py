@@ -244,5 +244,5 @@ def test_a_program_with_many_objects_grounds_each_to_its_own_instance():
     # objects (1000 cups: 186 s); benchmarks/grounding.py keeps the same bindings.
     p = parse_program("".join(f"[Walk] <cup> ({i})\n" for i in range(1, 61)))
     for home in ("scene1_trimmed", "scene1"):
-        prep, g = prepare_and_ground(p, load_home(home))
+        _, g = prepare_and_ground(p, load_home(home))
         assert len(set(g.bindings.values())) == 60
