@@ -240,8 +240,8 @@ def test_nearest_point_is_the_exact_minimum_of_square_distance():
 
 
 def test_a_program_with_many_objects_grounds_each_to_its_own_instance():
-    # order() compared every candidate with every chosen object: cubic in the number of
-    # objects (1000 cups: 186 s); benchmarks/grounding.py keeps the same bindings.
+    # Many chosen objects on one surface: the surface index and the nearest-point sweep of
+    # order() (benchmarks/grounding_many.py times them against comparing every pair).
     p = parse_program("".join(f"[Walk] <cup> ({i})\n" for i in range(1, 61)))
     for home in ("scene1_trimmed", "scene1"):
         _, g = prepare_and_ground(p, load_home(home))
