@@ -43,7 +43,7 @@ def _run_home(job: tuple[str, list[str], int]) -> tuple[str, dict]:
     from homesim.world import load_home
 
     graph = load_home(home)
-    client = TestClient(create_app())
+    client = TestClient(create_app(), base_url="http://127.0.0.1")  # a loopback Host
     runner = CliRunner()
     counts = {"n": len(texts), "library": 0, "api": 0, "ground_only": 0, "same": 0,
               "cli_n": 0, "cli": 0, "cli_same": 0, "mismatches": []}

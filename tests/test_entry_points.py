@@ -46,7 +46,7 @@ IDS = ["grounded", "prepared", "equivalent-name", "grounded-equivalent", "ungrou
 
 @pytest.fixture(scope="module")
 def client() -> TestClient:
-    return TestClient(create_app(), raise_server_exceptions=False)
+    return TestClient(create_app(), base_url="http://127.0.0.1", raise_server_exceptions=False)
 
 
 def _library(home: str, text: str) -> tuple[bool, str | None, str]:

@@ -63,6 +63,41 @@ RENDER_WORKERS = 1
 RENDER_QUEUE = 4
 """Render requests that may wait for a worker; more are refused with 503."""
 
+# ------------------------------------------------------------------ server
+RENDER_TIMEOUT_S = 120.0
+"""Longest a render job may run before its worker process is killed."""
+
+RENDER_KEEP_JOBS = 16
+"""Finished render jobs whose frames the server keeps (the oldest go first)."""
+
+RENDER_KEEP_S = 600.0
+"""Seconds a finished render job's frames stay available."""
+
+INLINE_PROGRAM_CHARS = 16 * 1024
+"""Programs up to this many characters are checked and run in the server process; larger
+ones go to a program worker process, so their parsing never holds up other requests."""
+
+PROGRAM_WORKERS = 1
+"""Worker processes for large programs."""
+
+PROGRAM_QUEUE = 8
+"""Large-program requests that may wait for a program worker; more are refused with 503."""
+
+HEADER_TIMEOUT_S = 10.0
+"""Seconds a client has to send a request's headers; slower connections are closed."""
+
+BODY_TIMEOUT_S = 10.0
+"""Seconds a client has to send a request body; slower ones get 408."""
+
+KEEP_ALIVE_S = 5
+"""Seconds an idle keep-alive connection stays open."""
+
+SHUTDOWN_GRACE_S = 3
+"""Seconds a stopping server waits for requests in flight before cancelling them."""
+
+MAX_MESSAGE_CHARS = 500
+"""Longest error message (and quoted text) in an API answer (then an ellipsis)."""
+
 
 def deeper_than(value: object, depth: int) -> bool:
     """Whether JSON data (dicts, lists, scalars) nests more than `depth` levels.

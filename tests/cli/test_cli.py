@@ -142,3 +142,37 @@ def test_errors_keep_bracketed_text_and_stay_on_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert f"{p}: cannot read program" in err
     assert err.count("\n") == 1
+
+
+def test_version(capsys):
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == "homesim 0.1.0"
+
+
+def test_a_parse_error_with_json_is_json(tmp_path, capsys):
+    p = tmp_path / "p.txt"
+    p.write_text("[Wlak] <tv> (1)\n")
+    assert main(["run", str(p), "--json"]) == 2
+    data = json.loads(capsys.readouterr().out)
+    assert "unknown action 'Wlak' (did you mean Walk?)" in data["error"]
+
+
+@pytest.mark.parametrize("command", [[], ["run"], ["synth"], ["data"], ["data", "stats"],
+                                     ["learn", "train"], ["learn", "eval"], ["render"]])
+def test_help_has_no_hard_line_breaks_or_rst(command, capsys, monkeypatch):
+    from homesim.cli.main import app, tidy_help
+
+    monkeypatch.setenv("COLUMNS", "400")  # one line per paragraph
+    assert main([*command, "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "``" not in out
+    group = app
+    for name in command:  # the command's docstring: each paragraph is one printed line
+        sub = {g.name: g.typer_instance for g in group.registered_groups}
+        if name in sub:
+            group = sub[name]
+            continue
+        cmd = next(c for c in group.registered_commands
+                   if (c.name or c.callback.__name__) == name)
+        for paragraph in tidy_help(cmd.help).split("\n\n"):
+            assert paragraph.replace("\\[", "[") in out  # rich prints \[ as [

@@ -83,3 +83,24 @@ def test_fetch_is_idempotent(tmp_path, monkeypatch):
 def test_data_root_follows_the_environment(monkeypatch, tmp_path):
     monkeypatch.setenv("HOMESIM_DATA", str(tmp_path))
     assert fetch_mod.dataset_dir() == tmp_path / "eai-eval-1.0.5"
+
+
+def test_leftovers_of_killed_fetches_are_removed_and_nothing_else(tmp_path):
+    import os
+
+    def folder(name, files=("eai_eval-1.0.5-py3-none-any.whl",), age=0.0):
+        path = tmp_path / name
+        path.mkdir()
+        for f in files:
+            (path / f).write_bytes(b"x")
+        os.utime(path, (1e9 - age, 1e9 - age))
+        return path
+
+    old_ours = folder(".homesim-fetch-abc", age=2 * fetch_mod.STALE_SECONDS)
+    new_ours = folder(".homesim-fetch-def", age=10)  # a fetch running beside us
+    legacy_tmp = folder("tmpk3j2", ("eai_eval-1.0.5-py3-none-any.whl.part",))
+    legacy_partial = folder("eai-eval-1.0.5.partial", ("MANIFEST.json",))
+    users = folder("tmpmine", ("notes.txt",))
+    removed = fetch_mod.remove_leftovers(tmp_path, now=1e9)
+    assert sorted(removed) == sorted([old_ours, legacy_tmp, legacy_partial])
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([new_ours.name, users.name])

@@ -16,7 +16,7 @@ from homesim.serve import create_app
 
 @pytest.fixture(scope="session")
 def client() -> TestClient:
-    return TestClient(create_app(), raise_server_exceptions=False)
+    return TestClient(create_app(), base_url="http://127.0.0.1", raise_server_exceptions=False)
 
 
 @pytest.fixture(scope="session")
@@ -25,13 +25,17 @@ def watch_tv() -> str:
     return str(load_example("watch_tv"))
 
 
-def start_server(static_dir: Path | None = None) -> tuple[str, object, threading.Thread]:
+def start_server(static_dir: Path | None = None, app=None, **config
+                 ) -> tuple[str, object, threading.Thread]:
+    """uvicorn with the settings of ``homesim serve`` in a thread; `config` goes to
+    `uvicorn_config` (e.g. a short ``header_timeout``)."""
     import uvicorn
 
+    from homesim.serve.server import uvicorn_config
+
     # Port 0: the OS picks a free port when uvicorn binds, so parallel runs cannot collide.
-    config = uvicorn.Config(create_app(static_dir=static_dir), host="127.0.0.1", port=0,
-                            log_level="warning")
-    server = uvicorn.Server(config)
+    app = app or create_app(static_dir=static_dir)
+    server = uvicorn.Server(uvicorn_config(app, "127.0.0.1", 0, **config))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
     deadline = time.monotonic() + 20

@@ -64,3 +64,69 @@ def test_live_server_answers_bad_requests_and_stays_up(live_server, watch_tv, se
         assert fragment in r.json()["error"]["message"]
         ok = c.post("/api/execute", json={"program": watch_tv, "home": "scene1"})
         assert ok.status_code == 200 and ok.json()["executable"] is True
+
+
+@pytest.mark.parametrize("body", [
+    b'{"program": ' + b"[" * 5000 + b"]" * 5000 + b"}",  # deeper than json.loads recurses
+    b"[" * 100 + b"]" * 100,
+    b'{"a":' * 40 + b"1" + b"}" * 40,
+])
+def test_json_nested_too_deep_is_422(client, body):
+    from homesim.limits import MAX_JSON_DEPTH
+
+    r = client.post("/api/validate", content=body, headers={"content-type": "application/json"})
+    assert r.status_code == 422
+    assert r.json()["error"]["message"] == (f"request body is nested deeper than {MAX_JSON_DEPTH} "
+                                            "levels of JSON arrays and objects")
+
+
+def test_brackets_inside_strings_are_not_nesting(client):
+    program = "[Walk] <tv> (1.410)\n" * 200 + '\\"[[[[' * 50
+    r = client.post("/api/validate", json={"program": program})
+    assert r.status_code in (200, 422) and "nested deeper" not in r.text
+
+
+def trickle(url: str, start: bytes, limit_s: float = 5.0) -> tuple[bytes, float]:
+    """Send `start`, then one byte every 0.05 s until the server answers and closes the
+    connection; the answer and the seconds it took."""
+    import select
+    import socket
+    import time
+    from urllib.parse import urlsplit
+
+    address = urlsplit(url)
+    answer = b""
+    with socket.create_connection((address.hostname, address.port), timeout=limit_s) as sock:
+        sock.sendall(start)
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < limit_s:
+            if select.select([sock], [], [], 0.05)[0]:
+                try:
+                    chunk = sock.recv(65536)
+                except ConnectionResetError:
+                    break
+                if not chunk:
+                    break
+                answer += chunk
+                continue
+            try:
+                sock.sendall(b" ")
+            except (BrokenPipeError, ConnectionResetError):
+                break
+        return answer, time.monotonic() - t0
+
+
+def test_a_body_trickled_slower_than_its_deadline_gets_408_and_is_closed(tmp_path):
+    from homesim.serve import create_app
+    from tests.serve.conftest import start_server
+
+    url, server, thread = start_server(app=create_app(static_dir=tmp_path, body_timeout=0.5))
+    try:
+        answer, seconds = trickle(url, b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                                  b"content-type: application/json\r\n"
+                                  b"content-length: 100000\r\n\r\n{")
+        assert seconds < 3
+        assert answer.startswith(b"HTTP/1.1 408") and b"not received within 0.5 s" in answer
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10)

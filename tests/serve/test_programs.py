@@ -133,65 +133,6 @@ def test_render_without_renderer_is_501(client, watch_tv, monkeypatch):
     assert r.json()["error"]["message"].startswith("rendering is not available on this server")
 
 
-def test_render_returns_one_png_per_key_frame(client, watch_tv, monkeypatch):
-    def fake_render(program, graph, *, width, height, seed):
-        return [(i, [[[i * 40, 0, 255]] * width] * height) for i in range(len(program.steps))]
-
-    monkeypatch.setattr(programs, "keyframe_renderer", lambda: fake_render)
-    r = client.post("/api/render",
-                    json={"program": watch_tv, "home": "scene1", "width": 16, "height": 16})
-    assert r.status_code == 200
-    frames = r.json()["frames"]
-    assert [f["index"] for f in frames] == [0, 1, 2, 3, 4]
-    assert [f["line"] for f in frames] == [4, 5, 6, 7, 8]
-    assert all(f["image"].startswith("data:image/png;base64,iVBORw0KGgo") for f in frames)
-
-
-def test_render_grounds_an_ungrounded_program_first(client, monkeypatch):
-    seen = []
-
-    def fake_render(program, graph, *, width, height, seed):
-        seen.append((str(program), len(graph)))
-        return [(0, [[[0, 0, 0]] * width] * height)]
-
-    monkeypatch.setattr(programs, "keyframe_renderer", lambda: fake_render)
-    r = client.post("/api/render", json={"program": "[Walk] <tv> (1)", "home": "scene1",
-                                         "width": 16, "height": 16})
-    assert r.status_code == 200 and seen[0][0].startswith("[Walk] <tv> (1.")
-    r = client.post("/api/render", json={"program": "[Walk] <garage> (1)", "home": "scene1"})
-    assert r.status_code == 422 and r.json()["error"]["kind"] == "grounding"
-
-
-@pytest.mark.render
-def test_render_with_the_real_renderer_shows_each_step(client, watch_tv):
-    gl = pytest.importorskip("homesim.render.gl")  # picks MUJOCO_GL before mujoco loads
-    if not gl.gl_available():
-        pytest.skip(f"no OpenGL context with MUJOCO_GL={gl.BACKEND}")
-    import base64
-    import io
-
-    import numpy as np
-    from PIL import Image
-
-    r = client.post("/api/render",
-                    json={"program": watch_tv, "home": "scene1", "width": 64, "height": 48})
-    assert r.status_code == 200, r.text
-    frames = r.json()["frames"]
-    assert [f["line"] for f in frames] == [4, 5, 6, 7, 8]
-    images = [np.asarray(Image.open(io.BytesIO(base64.b64decode(f["image"].split(",", 1)[1]))))
-              for f in frames]
-    assert all(im.shape == (48, 64, 3) for im in images)
-    assert all(im.std() > 5 for im in images)  # a scene, not a blank frame
-    assert not np.array_equal(images[0], images[-1])  # the agent moved between steps
-
-
-def test_render_of_a_home_without_geometry_is_422(client, watch_tv):
-    pytest.importorskip("homesim.render.gl")
-    r = client.post("/api/render", json={"program": "[Walk] <tv> (1)", "home": "scene1_trimmed"})
-    assert r.status_code == 422
-    assert "needs a home with 3D geometry" in r.json()["error"]["message"]
-
-
 @pytest.mark.dataset
 def test_every_real_program_file_validates_with_its_lines(client, real_data):
     from homesim.knowledge import real_programs

@@ -28,7 +28,12 @@ export interface Execution {
   reason: string | null; message: string; steps: StepResult[];
   not_run: { index: number; line: number; step: string }[];
 }
-export interface Frames { frames: { index: number; line: number; image: string }[] }
+export interface Frame { index: number; line: number; url: string }
+export interface RenderJob {
+  id: string; url: string; status: "queued" | "running" | "done" | "failed" | "cancelled";
+  total: number; ready: number; frames: Frame[];
+  error: { status: number; kind: string; message: string; line?: number } | null;
+}
 
 export class ApiError extends Error {
   constructor(readonly status: number, message: string, readonly line: number | null) {
@@ -58,5 +63,30 @@ export const api = {
   objects: (home: string) => call<Objects>(`homes/${encodeURIComponent(home)}/objects`),
   validate: (program: string, home: string) => call<Validation>("validate", { program, home }),
   execute: (program: string, home: string) => call<Execution>("execute", { program, home }),
-  render: (program: string, home: string) => call<Frames>("render", { program, home }),
+  render: (program: string, home: string) => call<RenderJob>("render", { program, home }),
+  renderStatus: (id: string) => call<RenderJob>(`render/${encodeURIComponent(id)}`),
 };
+
+/** The URL of one key frame (a PNG), relative to the page like every API call. */
+export const frameUrl = (id: string, index: number): string =>
+  `api/render/${encodeURIComponent(id)}/frames/${index}`;
+
+/** Queue a render and call `onFrame` for each key frame as it is drawn; resolves with the
+ * finished job, or throws the job's error. */
+export async function renderKeyFrames(program: string, home: string,
+  onFrame: (frame: Frame, job: RenderJob) => void, pollMs = 300): Promise<RenderJob> {
+  let job = await api.render(program, home);
+  let shown = 0;
+  for (;;) {
+    for (const frame of job.frames.slice(shown)) onFrame(frame, job);
+    shown = Math.max(shown, job.frames.length);
+    if (job.status === "failed" || job.status === "cancelled") {
+      const error = job.error;
+      throw new ApiError(error?.status ?? 500, error?.message ?? `render ${job.status}`,
+        typeof error?.line === "number" ? error.line : null);
+    }
+    if (job.status === "done") return job;
+    await new Promise((resolve) => window.setTimeout(resolve, pollMs));
+    job = await api.renderStatus(job.id);
+  }
+}

@@ -2,7 +2,7 @@
 // checked and run by the homesim server.
 import * as Blockly from "blockly/core";
 import * as En from "blockly/msg/en";
-import { ApiError, api, type Execution } from "./api";
+import { ApiError, api, frameUrl, renderKeyFrames, type Execution } from "./api";
 import { defineBlocks, toolbox } from "./blocks";
 import { parseUnbound, setObjects, setUnbound } from "./objects";
 import { itemsToState, parseText, workspaceToText, type Generated } from "./program";
@@ -235,18 +235,18 @@ async function renderFrames(): Promise<void> {
   frameBox.replaceChildren();
   setStatus("rendering key frames…");
   try {
-    const { frames } = await api.render(generated.text, homeSelect.value);
-    for (const frame of frames) {
+    const job = await renderKeyFrames(generated.text, homeSelect.value, (frame, progress) => {
       const figure = document.createElement("figure");
       const image = document.createElement("img");
-      image.src = frame.image;
+      image.src = frameUrl(progress.id, frame.index);
       image.alt = `after step ${frame.index + 1}`;
       const caption = document.createElement("figcaption");
       caption.textContent = `after step ${frame.index + 1}`;
       figure.append(image, caption);
       frameBox.append(figure);
-    }
-    setStatus(`✓ ${frames.length} key frames`, "ok");
+      setStatus(`rendering key frames… ${frame.index + 1} of ${progress.total}`);
+    });
+    setStatus(`✓ ${job.total} key frames`, "ok");
   } catch (e) {
     showError(e);
   }

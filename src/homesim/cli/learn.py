@@ -39,7 +39,8 @@ def _torch(threads: int) -> None:
                            "'learn' extra") from None
     if threads < 1:
         raise HomesimError(f"--threads must be at least 1, got {threads}")
-    torch.set_num_threads(threads)
+    torch.set_num_threads(threads)  # the thread count changes float sums: keep it fixed
+    torch.use_deterministic_algorithms(True)  # refuse ops without a deterministic kernel
 
 
 def _bar() -> Progress:
@@ -124,8 +125,8 @@ def evaluate(
 ) -> None:
     """Score every row of Table 3 on the test splits and print it.
 
-    With --data both, a data set that was not trained (no OUT/<data set>/mle.pt) is left
-    out with a note; the others are scored.
+    With --data both, a data set with no checkpoints in RUNS/<data set> is left out with
+    a note; the others are scored.
     """
     _torch(threads)
     datasets = _datasets(data)

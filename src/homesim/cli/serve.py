@@ -12,6 +12,17 @@ from homesim.errors import HomesimError
 LOOPBACK = "127.0.0.1"
 
 
+def served_names(host: str) -> list[str]:
+    """The Host name of the listening address itself (not of a wildcard address).
+
+    >>> served_names("192.168.1.5"), served_names("::1"), served_names("0.0.0.0")
+    (['192.168.1.5'], ['[::1]'], [])
+    """
+    if host in ("0.0.0.0", "::", ""):
+        return []
+    return [f"[{host}]" if ":" in host else host]
+
+
 def serve(
     host: Annotated[str, typer.Option(
         help="Address to listen on; the default only accepts connections from this "
@@ -19,12 +30,18 @@ def serve(
     = LOOPBACK,
     port: Annotated[int, typer.Option(help="TCP port.")] = 8000,
     log_level: Annotated[str, typer.Option(help="uvicorn log level.")] = "warning",
+    allowed_host: Annotated[list[str] | None, typer.Option(
+        help="A Host name the server answers to (repeatable; '*' for any). Default: "
+             "localhost, 127.0.0.1, [::1] and the --host address. Other names get 400, "
+             "which stops DNS-rebinding pages from reaching the server.")] = None,
 ) -> None:
     """Serve the block editor and the JSON API (docs at /docs)."""
     try:
         import uvicorn
 
         from homesim.serve import create_app
+        from homesim.serve.hosts import LOOPBACK_HOSTS
+        from homesim.serve.server import uvicorn_config
         from homesim.serve.static import BUILD_HINT, default_static_dir, is_built
     except ModuleNotFoundError as e:
         # No brackets in the text: the CLI prints errors as rich markup.
@@ -36,7 +53,9 @@ def serve(
         console.print(f"[yellow]note[/]: {BUILD_HINT}; serving the API only")
     console.print(f"homesim editor on [bold]http://{host}:{port}/[/] (API docs at /docs); "
                   "Ctrl-C stops it")
+    hosts = allowed_host or [*LOOPBACK_HOSTS, *served_names(host)]
+    app = create_app(allowed_hosts=hosts)
     try:
-        uvicorn.run(create_app(), host=host, port=port, log_level=log_level)
+        uvicorn.Server(uvicorn_config(app, host, port, log_level)).run()
     except OSError as e:
         raise HomesimError(f"cannot listen on {host}:{port} ({e.strerror or e})") from None

@@ -83,7 +83,7 @@ class Run:
     @property
     def bindings(self) -> Bindings | None:
         """Program objects -> node ids of `graph`, when grounded."""
-        return None if self.grounding is None else Bindings(self.grounding.bindings)
+        return None if self.grounding is None else self.grounding.bindings
 
     def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
         """JSON view, the one shape of ``homesim run --json`` and ``/api/execute``.

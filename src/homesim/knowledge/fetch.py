@@ -13,7 +13,8 @@ extract the programs, graphs and object resources into the data directory::
 
 Fetching again is a no-op when the manifest and files check out. Downloads and extraction
 happen in ``.homesim-*`` folders beside the data that are removed however the fetch stops
-(an error, Ctrl-C, SIGTERM), and pip is killed with it.
+(an error, Ctrl-C, SIGTERM), and pip is killed with it. What a killed fetch could not
+clean (SIGKILL) is removed by the next fetch (`remove_leftovers`).
 """
 
 from __future__ import annotations
@@ -24,15 +25,17 @@ import hashlib
 import io
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
+import time
 import zipfile
 from collections.abc import Callable
 from pathlib import Path
 
 from homesim.errors import DataError
-from homesim.files import temp_dir
+from homesim.files import TEMP_PREFIX, temp_dir
 
 PACKAGE = "eai-eval"
 VERSION = "1.0.5"
@@ -206,6 +209,41 @@ def _swap_in(new: Path, directory: Path) -> None:
         new.rename(directory)
 
 
+STALE_SECONDS = 3600.0
+"""A ``.homesim-*`` folder untouched this long is a leftover of a killed fetch (SIGKILL or
+power loss: nothing could clean up), not the work of a fetch running beside us."""
+
+
+def remove_leftovers(root: Path, now: float | None = None) -> list[Path]:
+    """Remove what killed fetches left in `root`; return the removed folders.
+
+    That is ``.homesim-fetch-*``, ``.homesim-extract-*`` and ``.homesim-old-*`` folders older
+    than `STALE_SECONDS`, and what fetches before homesim 0.1.0 left: ``tmp*`` folders that
+    hold only a partial or complete eai-eval wheel, and ``eai-eval-1.0.5.partial``.
+    """
+    now = time.time() if now is None else now
+    removed = []
+    for path in sorted(root.iterdir()) if root.is_dir() else []:
+        if not path.is_dir() or path.is_symlink():
+            continue
+        ours = path.name.startswith(tuple(f"{TEMP_PREFIX}{k}-" for k in ("fetch", "extract",
+                                                                          "old")))
+        stale = ours and now - path.stat().st_mtime > STALE_SECONDS
+        legacy = path.name == f"{PACKAGE}-{VERSION}.partial" or (
+            path.name.startswith("tmp") and _only_wheels(path))
+        if stale or legacy:
+            shutil.rmtree(path, ignore_errors=True)
+            removed.append(path)
+    return removed
+
+
+def _only_wheels(folder: Path) -> bool:
+    """Whether `folder` holds files named like the eai-eval wheel and nothing else."""
+    entries = list(folder.iterdir())
+    return bool(entries) and all(e.is_file() and e.name.startswith("eai_eval-")
+                                 for e in entries)
+
+
 def fetch_dataset(root: Path | None = None, force: bool = False,
           progress: Progress | None = None) -> Path:
     """Make sure the real data set is in the data directory; return its path."""
@@ -215,6 +253,7 @@ def fetch_dataset(root: Path | None = None, force: bool = False,
             progress("present", 1, 1)
         return directory
     directory.parent.mkdir(parents=True, exist_ok=True)
+    remove_leftovers(directory.parent)
     with temp_dir(directory.parent, "fetch") as tmp:  # removed however we stop
         if progress:
             progress("download", 0, 1)

@@ -73,6 +73,9 @@ def word2vec_vectors(words: list[str], texts: list[str], seed: int,
 @cache
 def _sentence_model():
     from sentence_transformers import SentenceTransformer
+    from transformers.utils import logging
+
+    logging.disable_progress_bar()  # library code draws no bars ("Loading weights" in eval)
 
     return SentenceTransformer(str(minilm_dir()), device="cpu")
 

@@ -106,6 +106,7 @@ def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim:
     """Self-critical policy gradient from the current weights; returns mean sample reward
     of each epoch."""
     rng = random.Random(config.seed)
+    torch.manual_seed(config.seed)  # dropout draws from the global RNG: not from what ran before
     gen = torch.Generator().manual_seed(config.seed)
     opt = torch.optim.Adam(t2p.model.parameters(), lr=config.lr)
     history = []

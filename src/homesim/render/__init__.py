@@ -11,7 +11,7 @@ Only this package imports mujoco; `homesim.render.gl` picks the OpenGL backend
 (`MUJOCO_GL`: osmesa on CPU, egl on GPU).
 """
 
-from homesim.render.api import RenderResult, render_keyframes, render_program
+from homesim.render.api import RenderResult, iter_keyframes, render_keyframes, render_program
 from homesim.render.gl import BACKEND, gl_available
 from homesim.render.groundtruth import Recording, StepSpan, load_recording
 from homesim.render.renderer import Renderer
@@ -28,6 +28,7 @@ __all__ = [
     "build_scene",
     "contact_sheet",
     "gl_available",
+    "iter_keyframes",
     "load_recording",
     "render_keyframes",
     "render_program",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,7 +15,7 @@ from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
 from homesim.render.groundtruth import RecordingWriter, StepSpan
-from homesim.render.recorder import record, still_frames
+from homesim.render.recorder import iter_still_frames, record
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
 from homesim.sim.execute import execute
@@ -144,10 +144,18 @@ def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 
                      height: int = 240, seed: int = 0, bindings: Bindings | None = None,
                      agent: str | None = None) -> list[tuple[int, np.ndarray]]:
     """(step index, RGB frame at the end of that step) for each step; nothing is written."""
+    return list(iter_keyframes(program, graph, width=width, height=height, seed=seed,
+                               bindings=bindings, agent=agent))
+
+
+def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
+                   height: int = 240, seed: int = 0, bindings: Bindings | None = None,
+                   agent: str | None = None) -> Iterator[tuple[int, np.ndarray]]:
+    """`render_keyframes` one frame at a time: memory holds one frame, not all of them."""
     _check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
                                  seed=seed, bindings=bindings, agent=agent)
     ends = [end for _, end in timeline.step_frames]
     with Renderer(scene, width, height) as renderer:
-        stills = still_frames(scene, timeline, renderer, ends)
-    return [(step, rgb) for step, (_, rgb) in enumerate(stills)]
+        for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, ends)):
+            yield step, rgb

@@ -168,15 +168,19 @@ def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> Fra
 def still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
                  frames: list[int]) -> list[tuple[int, np.ndarray]]:
     """RGB of chosen frames only, each from the camera that sees the agent best."""
+    return list(iter_still_frames(scene, timeline, renderer, frames))
+
+
+def iter_still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
+                      frames: list[int]) -> Iterator[tuple[int, np.ndarray]]:
+    """`still_frames` one at a time, so a caller can store each and drop it."""
     state = SceneState(scene, timeline)
     body = scene.model.body("agent").id
     ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
-    out = []
     for i in frames:
         d = state.apply(i)
         director = Director(scene)  # a fresh choice per frame: no continuity needed
         cam = director.choose(d.xpos[body].copy(), None,
                               lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
-        out.append((i, renderer.rgb(d, cam)))
-    return out
+        yield i, renderer.rgb(d, cam)

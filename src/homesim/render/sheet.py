@@ -8,6 +8,8 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
+from homesim.files import atomic_write
+
 
 def contact_sheet(frames: list[tuple[str, np.ndarray]], path: str | Path,
                   columns: int = 3, title: str | None = None) -> Path:
@@ -31,5 +33,6 @@ def contact_sheet(frames: list[tuple[str, np.ndarray]], path: str | Path,
         draw.text((x + 4, y + 3), label[: max(8, w // 6)], fill=(0, 0, 0), font=font)
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
-    sheet.save(out)
+    with atomic_write(out, "wb") as f:
+        sheet.save(f, format="PNG")
     return out

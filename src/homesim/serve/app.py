@@ -1,32 +1,58 @@
-"""The app factory: API routers, error handlers, the body size limit and the editor."""
+"""The app factory: API routers, error handlers, request limits, workers and the editor."""
 
 from __future__ import annotations
 
+import threading
+from collections.abc import AsyncIterator, Iterable
+from contextlib import asynccontextmanager
 from pathlib import Path
 
 from fastapi import FastAPI
 
-from homesim.serve import homes, programs
-from homesim.serve.errors import install_error_handlers
+from homesim.limits import BODY_TIMEOUT_S
+from homesim.serve import homes, programs, renders
+from homesim.serve.errors import CatchBugs, SafeJSONResponse, install_error_handlers
+from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
 from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit
 from homesim.serve.static import default_static_dir, mount_editor
+from homesim.serve.workers import ProgramPool, warm_up
+
+
+@asynccontextmanager
+async def _lifespan(app: FastAPI) -> AsyncIterator[None]:
+    threading.Thread(target=warm_up, name="homesim-warm-up", daemon=True).start()
+    yield
+    app.state.renders.close()
+    app.state.programs.close()
 
 
 def create_app(static_dir: Path | None = None,
-               max_body_bytes: int = MAX_BODY_BYTES) -> FastAPI:
+               max_body_bytes: int = MAX_BODY_BYTES,
+               body_timeout: float = BODY_TIMEOUT_S,
+               allowed_hosts: Iterable[str] = LOOPBACK_HOSTS,
+               render_jobs: renders.RenderJobs | None = None) -> FastAPI:
     """Build the editor's web app.
 
     Args:
         static_dir: the built editor (default: the package's ``static/``).
         max_body_bytes: larger request bodies get 413.
+        body_timeout: bodies not received within this many seconds get 408.
+        allowed_hosts: Host header names served (default: loopback names; ``*``: any).
+        render_jobs: the render queue (default: one with the limits of `homesim.limits`).
     """
     from homesim import __version__
 
-    app = FastAPI(title="homesim editor API", version=__version__,
+    app = FastAPI(title="homesim editor API", version=__version__, lifespan=_lifespan,
+                  default_response_class=SafeJSONResponse,
                   description="Check and run homesim programs; serves the block editor.")
+    app.state.programs = ProgramPool()
+    app.state.renders = render_jobs or renders.RenderJobs()
     install_error_handlers(app)
     app.include_router(homes.router)
     app.include_router(programs.router)
-    app.add_middleware(BodySizeLimit, max_bytes=max_body_bytes)
+    app.include_router(renders.router)
+    app.add_middleware(BodySizeLimit, max_bytes=max_body_bytes, timeout=body_timeout)
+    app.add_middleware(HostCheck, allowed=allowed_hosts)
+    app.add_middleware(CatchBugs)  # last: outermost, so a bug anywhere answers 500
     mount_editor(app, static_dir or default_static_dir())  # last: "/" catches the rest
     return app

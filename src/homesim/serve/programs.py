@@ -1,20 +1,28 @@
-"""Routes that check and run programs: ``/api/validate``, ``/api/execute``, ``/api/render``."""
+"""Routes that check and run programs: ``/api/validate``, ``/api/execute``; and the steps
+of ``/api/render`` (its jobs are in `homesim.serve.renders`).
+
+Handlers are plain functions of a request model. `answer` runs them in a thread for
+normal programs and in a worker process (`homesim.serve.workers.ProgramPool`) for
+programs over `INLINE_PROGRAM_CHARS`, so a large program never slows other requests.
+"""
 
 from __future__ import annotations
 
 import inspect
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
+from fastapi.responses import Response
+from starlette.concurrency import run_in_threadpool
 
 from homesim.ground.pipeline import Run, run_program
 from homesim.ground.search import unground
+from homesim.limits import INLINE_PROGRAM_CHARS, MAX_RENDER_PIXEL_FRAMES
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
-from homesim.serve.errors import ApiError
+from homesim.serve.errors import ApiError, SafeJSONResponse
 from homesim.serve.homes import get_home
-from homesim.serve.images import png_data_url
 from homesim.serve.results import program_json, step_lines
 from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest
 from homesim.sim.execute import binding_problems
@@ -61,7 +69,6 @@ def run_request(program: Program, graph: EnvironmentGraph, ground: bool | None, 
     return run_program(program, graph, seed=seed, trace=trace, reference=ground is False)
 
 
-@router.post("/validate")
 def validate(request: ProgramRequest) -> dict[str, Any]:
     """Parse a program; with a home, also check the node ids it carries there."""
     program, lines = parse_request(request.program)
@@ -72,7 +79,6 @@ def validate(request: ProgramRequest) -> dict[str, Any]:
     return {"ok": not problems, "problems": problems, **answer}
 
 
-@router.post("/execute")
 def run(request: ExecuteRequest) -> dict[str, Any]:
     """Run a program in a home (`run_program`): every step ✓/✗ with its reason and changes."""
     program, lines = parse_request(request.program)
@@ -82,18 +88,32 @@ def run(request: ExecuteRequest) -> dict[str, Any]:
 
 
 def keyframe_renderer() -> Callable[..., Any]:
-    """`homesim.render.render_keyframes`; 501 when the render extra is not installed."""
+    """`homesim.render.iter_keyframes`; 501 when the render extra is not installed."""
     try:
-        from homesim.render import render_keyframes
+        from homesim.render import iter_keyframes
     except ImportError as e:  # mujoco or a system library missing
         raise ApiError(501, "render", f"rendering is not available on this server: {e} "
                        "(install the 'render' extra)") from None
-    return render_keyframes
+    return iter_keyframes
 
 
-@router.post("/render")
-def render(request: RenderRequest) -> dict[str, Any]:
-    """Key frames of a program (the frame at the end of each step), as PNG data URLs."""
+def render_plan(request: RenderRequest) -> dict[str, Any]:
+    """Check a render request before queueing it: the program parses, the home exists and
+    frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the line of each key frame."""
+    program, lines = parse_request(request.program)
+    get_home(request.home)
+    pixel_frames = len(program.steps) * request.width * request.height
+    if pixel_frames > MAX_RENDER_PIXEL_FRAMES:
+        raise ApiError(422, "render", f"{len(program.steps)} key frames of "
+                       f"{request.width}x{request.height} pixels are {pixel_frames:,} "
+                       f"pixel-frames, over the limit of {MAX_RENDER_PIXEL_FRAMES:,}; render "
+                       "fewer steps or smaller frames")
+    return {"lines": lines}
+
+
+def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
+    """Key frames of a program (the frame at the end of each step), one at a time, as
+    (step index, RGB array); runs in a render worker process."""
     function = keyframe_renderer()
     program, lines = parse_request(request.program)
     graph = get_home(request.home)
@@ -106,8 +126,30 @@ def render(request: RenderRequest) -> dict[str, Any]:
     # Where grounding stood the agent for each step, once the renderer walks there.
     if ran.grounding.standing and "standing" in inspect.signature(function).parameters:
         extra["standing"] = ran.grounding.standing
-    frames = function(ran.grounding.program, ran.graph, width=request.width,
-                      height=request.height, seed=request.seed, **extra)
-    return {"home": request.home, "width": request.width, "height": request.height,
-            "frames": [{"index": int(i), "line": lines[int(i)], "image": png_data_url(rgb)}
-                       for i, rgb in frames]}
+    return function(ran.grounding.program, ran.graph, width=request.width,
+                    height=request.height, seed=request.seed, **extra)
+
+
+def is_large(request: ProgramRequest | ExecuteRequest | RenderRequest) -> bool:
+    return len(request.program) > INLINE_PROGRAM_CHARS
+
+
+async def answer(http: Request, handler: Callable[[Any], dict[str, Any]], request: Any
+                 ) -> Response:
+    """`handler(request)` as a JSON answer: in a thread, or in a program worker process
+    when the program is large."""
+    if is_large(request):
+        return await http.app.state.programs.answer(handler, request)
+    return SafeJSONResponse(await run_in_threadpool(handler, request))
+
+
+@router.post("/validate", response_class=SafeJSONResponse)
+async def validate_route(request: ProgramRequest, http: Request) -> Response:
+    """Parse a program; with a home, also check that its node ids exist there."""
+    return await answer(http, validate, request)
+
+
+@router.post("/execute", response_class=SafeJSONResponse)
+async def run_route(request: ExecuteRequest, http: Request) -> Response:
+    """Execute a program on a home: every step ✓/✗ with its reason and state changes."""
+    return await answer(http, run, request)

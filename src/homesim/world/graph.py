@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from homesim.errors import GraphError, excerpt
+from homesim.files import write_bytes, write_text
 from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
 from homesim.world.index import HomeIndex, index_edges
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS, ROOM_CATEGORY
@@ -218,10 +219,10 @@ class EnvironmentGraph:
         """Write the graph as JSON (gzip-compressed when the name ends in ``.gz``)."""
         path = Path(path)
         text = json.dumps(self.to_dict())
-        if path.suffix == ".gz":
-            path.write_bytes(gzip.compress(text.encode(), mtime=0))
+        if path.suffix == ".gz":  # atomically: an interrupted save leaves the old file
+            write_bytes(path, gzip.compress(text.encode(), mtime=0))
         else:
-            path.write_text(text)
+            write_text(path, text)
 
     # ----------------------------------------------------------------- queries
     def __len__(self) -> int:

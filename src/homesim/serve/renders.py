@@ -1,0 +1,321 @@
+"""Render jobs: ``POST /api/render`` queues one, the client then fetches its frames by URL.
+
+Rendering is CPU-heavy and slow (MuJoCo), so it never runs in the server process:
+
+- ``POST /api/render`` checks the request (program, home, frames x pixels; see
+  `programs.render_plan`), queues a job and answers 202 with its id and URLs; 503 with
+  ``Retry-After`` when `RENDER_WORKERS` jobs run and `RENDER_QUEUE` more wait.
+- Each job runs in its own worker process (niced), which writes one PNG per key frame
+  into the job's folder as soon as it is drawn, so memory holds one frame at a time.
+  A job running longer than `RENDER_TIMEOUT_S` is killed.
+- ``GET /api/render/{id}`` tells the job's status and the frames ready so far;
+  ``GET /api/render/{id}/frames/{index}`` is one PNG; ``DELETE`` cancels a job.
+- Finished jobs are kept `RENDER_KEEP_S` seconds, the newest `RENDER_KEEP_JOBS` of them.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import atexit
+import json
+import os
+import secrets
+import shutil
+import tempfile
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from multiprocessing.context import BaseContext
+from pathlib import Path
+from typing import Any
+
+from fastapi import APIRouter, Request
+from fastapi.responses import Response
+from starlette.concurrency import run_in_threadpool
+
+from homesim.limits import (
+    RENDER_KEEP_JOBS,
+    RENDER_KEEP_S,
+    RENDER_QUEUE,
+    RENDER_TIMEOUT_S,
+    RENDER_WORKERS,
+)
+from homesim.serve import programs
+from homesim.serve.errors import ApiError, SafeJSONResponse, error_of
+from homesim.serve.images import encode_png
+from homesim.serve.programs import is_large, render_frames, render_plan
+from homesim.serve.schemas import RenderRequest
+from homesim.serve.workers import busy, lower_priority, worker_context
+
+router = APIRouter(prefix="/api", tags=["programs"])
+
+FrameSource = Callable[[Any], Iterable[tuple[int, Any]]]
+"""``source(request) -> (step index, RGB frame) ...``, called in the worker process."""
+
+_POLL_S = 0.05
+
+
+def frame_name(index: int) -> str:
+    return f"{index:05d}.png"
+
+
+def _write_atomically(path: Path, data: bytes) -> None:
+    """Write to a side file, then rename: readers never see half a file."""
+    part = path.with_name(path.name + ".part")
+    part.write_bytes(data)
+    os.replace(part, path)
+
+
+def run_job(source: FrameSource, request: Any, out_dir: str) -> None:
+    """The body of a render worker process: PNGs as frames come, then ``done.json`` or
+    ``error.json`` (status and error body, as the API answers them)."""
+    out = Path(out_dir)
+    lower_priority()
+    try:
+        count = 0
+        for index, rgb in source(request):
+            _write_atomically(out / frame_name(index), encode_png(rgb))
+            count += 1
+        _write_atomically(out / "done.json", json.dumps({"frames": count}).encode())
+    except Exception as e:  # reported to the client through the job's status
+        status, body = error_of(e)
+        _write_atomically(out / "error.json",
+                          json.dumps({"status": status, **body}).encode())
+
+
+@dataclass
+class Job:
+    """One render request: its folder, the line of each key frame and its state."""
+
+    id: str
+    folder: Path
+    request: RenderRequest
+    lines: list[int]
+    state: str = "queued"  # queued, running, done, failed, cancelled
+    created: float = field(default_factory=time.monotonic)
+    started: float | None = None
+    finished: float | None = None
+    error: dict[str, Any] | None = None
+    process: Any = None
+
+    @property
+    def total(self) -> int:
+        return len(self.lines)
+
+    def ready(self) -> int:
+        """Frames written so far (frames are written in step order)."""
+        if self.state == "queued" or not self.folder.is_dir():
+            return 0
+        return sum(1 for name in os.listdir(self.folder) if name.endswith(".png"))
+
+    def to_json(self) -> dict[str, Any]:
+        ready = self.ready()
+        url = f"/api/render/{self.id}"
+        return {
+            "id": self.id, "url": url, "status": self.state,
+            "home": self.request.home, "width": self.request.width,
+            "height": self.request.height, "total": self.total, "ready": ready,
+            "frames": [{"index": i, "line": self.lines[i], "url": f"{url}/frames/{i}"}
+                       for i in range(ready)],
+            "error": self.error,
+        }
+
+
+class RenderJobs:
+    """The queue and worker processes of render jobs (one process per running job).
+
+    `source` draws the frames in the worker; `context` starts workers (default: the fork
+    server of `homesim.serve.workers`; tests pass ``fork`` to use local functions).
+    """
+
+    def __init__(self, source: FrameSource = render_frames, workers: int = RENDER_WORKERS,
+                 queue: int = RENDER_QUEUE, timeout: float = RENDER_TIMEOUT_S,
+                 keep_jobs: int = RENDER_KEEP_JOBS, keep_s: float = RENDER_KEEP_S,
+                 context: BaseContext | None = None):
+        self.source = source
+        self.context = context
+        self.workers = workers
+        self.queue = queue
+        self.timeout = timeout
+        self.keep_jobs = keep_jobs
+        self.keep_s = keep_s
+        self.jobs: dict[str, Job] = {}
+        self._root: Path | None = None
+        self._supervisor: asyncio.Task[None] | None = None
+        atexit.register(self.close)
+
+    # ------------------------------------------------------------------ queries
+    def _in_state(self, *states: str) -> list[Job]:
+        return [j for j in self.jobs.values() if j.state in states]
+
+    def get(self, job_id: str) -> Job:
+        job = self.jobs.get(job_id)
+        if job is None:
+            raise ApiError(404, "render", f"no render job {job_id[:40]!r} (finished jobs are "
+                           f"kept {self.keep_s:g} s)")
+        return job
+
+    def frame(self, job_id: str, index: int) -> bytes:
+        """The PNG of a frame that is ready; 404 or 409 (not yet, or the job failed)."""
+        job = self.get(job_id)
+        if not 0 <= index < job.total:
+            raise ApiError(404, "render", f"render job {job_id} has frames 0..{job.total - 1}, "
+                           f"not {index}")
+        path = job.folder / frame_name(index)
+        if job.state in ("queued", "running") and not path.is_file():
+            raise ApiError(409, "render", f"frame {index} of render job {job_id} is not "
+                           f"ready yet ({job.ready()} of {job.total} done)")
+        try:
+            return path.read_bytes()
+        except OSError:
+            why = job.error["message"] if job.error else f"the job is {job.state}"
+            raise ApiError(409, "render", f"frame {index} of render job {job_id} was not "
+                           f"rendered: {why}") from None
+
+    # ------------------------------------------------------------------ changes
+    def submit(self, request: RenderRequest, lines: list[int]) -> Job:
+        """Queue a job; 503 when the queue is full."""
+        waiting = len(self._in_state("queued"))
+        if len(self._in_state("running")) >= self.workers and waiting >= self.queue:
+            raise busy(f"{self.workers} render job(s) running and {waiting} waiting",
+                       retry_after=5)
+        if self._root is None:
+            self._root = Path(tempfile.mkdtemp(prefix="homesim-render-"))
+        job_id = secrets.token_hex(8)
+        job = Job(job_id, self._root / job_id, request, lines)
+        self.jobs[job_id] = job
+        self._start_ready()
+        loop = asyncio.get_running_loop()
+        old = self._supervisor
+        if old is not None and not old.done() and old.get_loop() is loop:
+            old.cancel()  # it may be idling for minutes: watch closely from now on
+        self._supervisor = loop.create_task(self._supervise())
+        return job
+
+    def cancel(self, job_id: str) -> Job:
+        job = self.get(job_id)
+        if job.state in ("queued", "running"):
+            self._stop(job)
+            job.state, job.finished = "cancelled", time.monotonic()
+            self._start_ready()
+        return job
+
+    def close(self) -> None:
+        """Stop every worker and delete every job's frames."""
+        for job in self.jobs.values():
+            self._stop(job)
+        self.jobs.clear()
+        if self._supervisor is not None:
+            self._supervisor.cancel()
+            self._supervisor = None
+        if self._root is not None:
+            shutil.rmtree(self._root, ignore_errors=True)
+            self._root = None
+
+    # ------------------------------------------------------------------ workers
+    def _start_ready(self) -> None:
+        free = self.workers - len(self._in_state("running"))
+        for job in sorted(self._in_state("queued"), key=lambda j: j.created)[:max(free, 0)]:
+            job.folder.mkdir(parents=True)
+            job.process = (self.context or worker_context()).Process(
+                target=run_job, args=(self.source, job.request, str(job.folder)),
+                name=f"homesim-render-{job.id}", daemon=True)
+            job.process.start()
+            job.state, job.started = "running", time.monotonic()
+
+    def _stop(self, job: Job) -> None:
+        if job.process is not None and job.process.is_alive():
+            job.process.kill()
+            job.process.join(timeout=5)
+
+    def _finish(self, job: Job) -> None:
+        """Read what a worker left: done, or its error."""
+        job.finished = time.monotonic()
+        error = job.folder / "error.json"
+        if (job.folder / "done.json").is_file():
+            job.state = "done"
+        elif error.is_file():
+            body = json.loads(error.read_text(encoding="utf-8"))
+            job.state, job.error = "failed", {"status": body["status"], **body["error"]}
+        else:
+            job.state = "failed"
+            job.error = {"status": 500, "kind": "internal", "message": "the render worker "
+                         f"stopped without an answer (exit code {job.process.exitcode})"}
+        job.process = None
+
+    def _tick(self) -> None:
+        now = time.monotonic()
+        for job in self._in_state("running"):
+            if job.process.exitcode is not None:
+                job.process.join()
+                self._finish(job)
+            elif now - (job.started or now) > self.timeout:
+                self._stop(job)
+                job.state, job.finished, job.process = "failed", now, None
+                job.error = {"status": 422, "kind": "render", "message": f"the render took "
+                             f"longer than {self.timeout:g} s and was stopped; render fewer "
+                             "steps or smaller frames"}
+        self._start_ready()
+        self._expire(now)
+
+    def _expire(self, now: float) -> None:
+        finished = sorted((j for j in self.jobs.values() if j.finished is not None),
+                          key=lambda j: j.finished or 0.0, reverse=True)
+        for rank, job in enumerate(finished):
+            if rank >= self.keep_jobs or now - (job.finished or now) > self.keep_s:
+                shutil.rmtree(job.folder, ignore_errors=True)
+                del self.jobs[job.id]
+
+    async def _supervise(self) -> None:
+        """Watch workers while jobs are queued or running; expire old jobs."""
+        while True:
+            self._tick()
+            if not self._in_state("queued", "running"):
+                if not self.jobs:
+                    return
+                await asyncio.sleep(min(self.keep_s, 30.0))
+                continue
+            await asyncio.sleep(_POLL_S)
+
+
+def _jobs(http: Request) -> RenderJobs:
+    return http.app.state.renders
+
+
+@router.post("/render", status_code=202, response_class=SafeJSONResponse)
+async def render(request: RenderRequest, http: Request) -> Response:
+    """Queue a render of a program's key frames (one per step); 202 with the job's URL."""
+    # In a thread: the first look imports mujoco (seconds), which must not stop the loop.
+    await run_in_threadpool(programs.keyframe_renderer)  # 501 without the render extra
+    if is_large(request):
+        checked = await http.app.state.programs.answer(render_plan, request)
+        if checked.status_code != 200:
+            return checked
+        plan = json.loads(checked.body)
+    else:
+        plan = await run_in_threadpool(render_plan, request)
+    job = _jobs(http).submit(request, plan["lines"])
+    return SafeJSONResponse(job.to_json(), status_code=202)
+
+
+@router.get("/render/{job_id}", response_class=SafeJSONResponse)
+async def render_status(job_id: str, http: Request) -> Response:
+    """A render job's status and the frames ready so far."""
+    jobs = _jobs(http)
+    jobs._tick()  # the answer is current even between supervisor rounds
+    return SafeJSONResponse(jobs.get(job_id).to_json())
+
+
+@router.get("/render/{job_id}/frames/{index}", response_class=Response,
+            responses={200: {"content": {"image/png": {}}}})
+async def render_frame(job_id: str, index: int, http: Request) -> Response:
+    """One key frame of a render job, as PNG."""
+    png = _jobs(http).frame(job_id, index)
+    return Response(png, media_type="image/png",
+                    headers={"Cache-Control": "private, max-age=600"})
+
+
+@router.delete("/render/{job_id}", response_class=SafeJSONResponse)
+async def cancel_render(job_id: str, http: Request) -> Response:
+    """Cancel a queued or running render job (its frames so far stay available)."""
+    return SafeJSONResponse(_jobs(http).cancel(job_id).to_json())

@@ -1,0 +1,166 @@
+"""Render jobs: queued in worker processes, frames fetched one by one, bounded queue."""
+
+from __future__ import annotations
+
+import io
+import multiprocessing
+import time
+
+import pytest
+from fastapi.testclient import TestClient
+
+from homesim.errors import HomesimError
+from homesim.limits import MAX_RENDER_PIXEL_FRAMES
+from homesim.serve import create_app
+from homesim.serve.renders import RenderJobs
+
+FORK = multiprocessing.get_context("fork")  # workers run this module's functions
+
+
+def coloured_frames(request):
+    """One flat frame per step, step i in red level 40 * i."""
+    steps = [line for line in request.program.splitlines() if line.startswith("[")]
+    for i in range(len(steps)):
+        yield i, [[[i * 40, 0, 255]] * request.width] * request.height
+
+
+def first_frame_then_wait(request):
+    yield 0, [[[0, 0, 0]] * request.width] * request.height
+    time.sleep(60)
+
+
+def failing_frames(request):
+    raise HomesimError("the home has no floor boxes: rendering needs a home with 3D geometry")
+    yield  # a generator, as real sources are
+
+
+def _client(**jobs) -> TestClient:
+    app = create_app(render_jobs=RenderJobs(context=FORK, **jobs))
+    return TestClient(app, base_url="http://127.0.0.1", raise_server_exceptions=False)
+
+
+def _wait(client: TestClient, job: dict, until=("done", "failed", "cancelled")) -> dict:
+    deadline = time.monotonic() + 20
+    while True:
+        status = client.get(job["url"]).json()
+        if status["status"] in until or time.monotonic() > deadline:
+            return status
+        time.sleep(0.05)
+
+
+def test_render_answers_202_with_a_job_then_one_png_per_key_frame(watch_tv):
+    from PIL import Image
+
+    with _client(source=coloured_frames) as client:
+        r = client.post("/api/render",
+                        json={"program": watch_tv, "home": "scene1", "width": 24, "height": 16})
+        assert r.status_code == 202, r.text
+        job = r.json()
+        assert job["status"] in ("queued", "running") and job["total"] == 5
+        status = _wait(client, job)
+        assert status["status"] == "done" and status["ready"] == 5
+        assert [f["line"] for f in status["frames"]] == [4, 5, 6, 7, 8]
+        for frame in status["frames"]:
+            png = client.get(frame["url"])
+            assert png.status_code == 200 and png.headers["content-type"] == "image/png"
+            image = Image.open(io.BytesIO(png.content))
+            assert image.size == (24, 16)
+            assert image.getpixel((0, 0)) == (frame["index"] * 40, 0, 255)
+        assert client.get(f"{job['url']}/frames/5").status_code == 404
+
+
+def test_render_over_the_pixel_frame_limit_is_422_before_queueing(watch_tv):
+    with _client(source=coloured_frames) as client:
+        steps = MAX_RENDER_PIXEL_FRAMES // (1280 * 960) + 1
+        program = "[Walk] <tv> (1.410)\n" * steps
+        r = client.post("/api/render", json={"program": program, "home": "scene1",
+                                             "width": 1280, "height": 960})
+        assert r.status_code == 422
+        assert f"over the limit of {MAX_RENDER_PIXEL_FRAMES:,}" in r.json()["error"]["message"]
+        assert client.app.state.renders.jobs == {}
+
+
+def test_full_render_queue_is_503_with_retry_after(watch_tv):
+    with _client(source=first_frame_then_wait, workers=1, queue=1) as client:
+        body = {"program": watch_tv, "home": "scene1", "width": 16, "height": 16}
+        running, waiting = (client.post("/api/render", json=body) for _ in range(2))
+        assert running.status_code == waiting.status_code == 202
+        r = client.post("/api/render", json=body)
+        assert r.status_code == 503 and int(r.headers["retry-after"]) > 0
+        assert "busy" in r.json()["error"]["message"]
+        # a frame that is not drawn yet, and cancelling frees the queue
+        status = _wait(client, running.json(), until=("running",))
+        assert client.get(f"{status['url']}/frames/3").status_code == 409
+        assert client.delete(status["url"]).json()["status"] == "cancelled"
+        assert client.post("/api/render", json=body).status_code == 202
+
+
+def test_a_render_job_that_fails_reports_the_error_in_its_status(watch_tv):
+    with _client(source=failing_frames) as client:
+        job = client.post("/api/render", json={"program": watch_tv, "home": "scene1"}).json()
+        status = _wait(client, job)
+        assert status["status"] == "failed" and status["ready"] == 0
+        assert status["error"]["status"] == 422
+        assert "needs a home with 3D geometry" in status["error"]["message"]
+
+
+def test_a_render_job_over_its_time_is_stopped(watch_tv):
+    with _client(source=first_frame_then_wait, timeout=0.5) as client:
+        job = client.post("/api/render", json={"program": watch_tv, "home": "scene1",
+                                               "width": 16, "height": 16}).json()
+        status = _wait(client, job)
+        assert status["status"] == "failed" and status["ready"] == 1
+        assert "longer than 0.5 s" in status["error"]["message"]
+        assert client.get(status["frames"][0]["url"]).status_code == 200
+
+
+def test_render_grounds_an_ungrounded_program_first(monkeypatch):
+    from homesim.serve import programs
+
+    def fake_render(program, graph, *, width, height, seed):
+        assert str(program).startswith("[Walk] <tv> (1.")  # grounded to a node of scene1
+        yield 0, [[[0, 0, 0]] * width] * height
+
+    monkeypatch.setattr(programs, "keyframe_renderer", lambda: fake_render)  # forked workers
+    with _client() as client:
+        job = client.post("/api/render", json={"program": "[Walk] <tv> (1)", "home": "scene1",
+                                               "width": 16, "height": 16}).json()
+        assert _wait(client, job)["status"] == "done"
+        job = client.post("/api/render",
+                          json={"program": "[Walk] <garage> (1)", "home": "scene1"}).json()
+        status = _wait(client, job)
+        assert status["status"] == "failed" and status["error"]["kind"] == "grounding"
+        assert status["error"]["status"] == 422
+
+
+def test_unknown_render_job_is_404(client):
+    r = client.get("/api/render/0123456789abcdef")
+    assert r.status_code == 404 and "no render job" in r.json()["error"]["message"]
+
+
+@pytest.mark.render
+def test_render_with_the_real_renderer_shows_each_step(watch_tv):
+    gl = pytest.importorskip("homesim.render.gl")  # picks MUJOCO_GL before mujoco loads
+    if not gl.gl_available():
+        pytest.skip(f"no OpenGL context with MUJOCO_GL={gl.BACKEND}")
+    import numpy as np
+    from PIL import Image
+
+    app = create_app()  # the real worker processes (fork server) and renderer
+    with TestClient(app, base_url="http://127.0.0.1") as client:
+        job = client.post("/api/render", json={"program": watch_tv, "home": "scene1",
+                                               "width": 64, "height": 48}).json()
+        status = _wait(client, job)
+        assert status["status"] == "done", status
+        assert [f["line"] for f in status["frames"]] == [4, 5, 6, 7, 8]
+        images = [np.asarray(Image.open(io.BytesIO(client.get(f["url"]).content)))
+                  for f in status["frames"]]
+        assert all(im.shape == (48, 64, 3) for im in images)
+        assert all(im.std() > 5 for im in images)  # a scene, not a blank frame
+        assert not np.array_equal(images[0], images[-1])  # the agent moved between steps
+
+        job = client.post("/api/render",
+                          json={"program": "[Walk] <tv> (1)", "home": "scene1_trimmed"}).json()
+        status = _wait(client, job)
+        assert status["status"] == "failed" and status["error"]["status"] == 422
+        assert "needs a home with 3D geometry" in status["error"]["message"]

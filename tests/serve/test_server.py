@@ -1,0 +1,77 @@
+"""uvicorn settings of ``homesim serve``: slow clients are cut off, stopping is quick."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import httpx
+
+from tests.serve.conftest import start_server
+from tests.serve.test_limits import trickle
+
+SRC = Path(__file__).resolve().parents[2] / "src"
+
+
+def test_headers_trickled_slower_than_their_deadline_are_cut_off(tmp_path):
+    from homesim.serve import create_app
+
+    url, server, thread = start_server(app=create_app(static_dir=tmp_path), header_timeout=0.5)
+    try:
+        answer, seconds = trickle(url, b"GET /api/homes HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")
+        assert seconds < 3 and answer.startswith(b"HTTP/1.1 408")
+        # after an answer, the next request's headers get the deadline too
+        with httpx.Client(base_url=url) as client:
+            assert client.get("/api/homes").status_code == 200
+        answer, seconds = trickle(url, b"GET /api/homes HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"
+                                  b"GET /api/homes HTTP/1.1\r\nX-Slow: ")
+        assert seconds < 3 and answer.count(b"HTTP/1.1 ") == 2 and b"HTTP/1.1 408" in answer
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10)
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_sigterm_stops_the_server_within_5_s_with_slow_clients_open():
+    port = _free_port()
+    env = {**os.environ, "PYTHONPATH": f"{SRC}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"}
+    server = subprocess.Popen([sys.executable, "-m", "homesim.cli.main", "serve", "--port",
+                               str(port)], env=env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    slow = []
+    try:
+        deadline = time.monotonic() + 30
+        while True:
+            try:
+                httpx.get(f"http://127.0.0.1:{port}/api/homes", timeout=1)
+                break
+            except httpx.TransportError:
+                assert time.monotonic() < deadline and server.poll() is None
+                time.sleep(0.1)
+        for start in (b"GET /api/homes HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ",
+                      b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                      b"content-length: 1000\r\n\r\n{", b""):
+            sock = socket.create_connection(("127.0.0.1", port))
+            sock.sendall(start)
+            slow.append(sock)
+        time.sleep(0.3)
+        t0 = time.monotonic()
+        server.send_signal(signal.SIGTERM)
+        server.wait(timeout=10)
+        assert time.monotonic() - t0 <= 5
+    finally:
+        for sock in slow:
+            sock.close()
+        if server.poll() is None:
+            server.kill()
+            server.wait()
