@@ -34,12 +34,13 @@ import difflib
 import math
 import random
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
-from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
+from homesim.ground.prepare import Prepared, first_use, instances_of, prepare
 from homesim.ground.standing import FloorPlan, Spot, has_geometry
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
@@ -123,6 +124,34 @@ class _Points:
         return best
 
 
+class _Anchors:
+    """Objects already chosen (or fixed), indexed by the surfaces they are on.
+
+    Speed: a candidate's related anchors are a few set lookups, not a loop over every
+    anchor, so a program with many objects (1000 cups) does not compare every pair."""
+
+    def __init__(self, st: SimState, anchors: list[int]):
+        self.weight = Counter(anchors)  # an anchor may come twice (two objects, one node)
+        self.single = len(self.weight) == len(anchors)
+        self.on_surface: dict[int, set[int]] = {}
+        for b in self.weight:
+            for surface in st.targets(b, ON):
+                self.on_surface.setdefault(surface, set()).add(b)
+
+    def __bool__(self) -> bool:
+        return bool(self.weight)
+
+    def count(self, near: frozenset[int] | set[int], under: frozenset[int] | set[int]) -> int:
+        """How many anchors are in `near` or `under`, or on a surface in `under`."""
+        hit = self.weight.keys() & (near | under)
+        shared = [self.on_surface[s] for s in under if s in self.on_surface]
+        if self.single and len(shared) == 1:  # the usual case, without copying the set
+            return len(shared[0]) + sum(1 for b in hit if b not in shared[0])
+        for anchors_there in shared:
+            hit.update(anchors_there)
+        return len(hit) if self.single else sum(self.weight[b] for b in hit)
+
+
 @dataclass(slots=True)
 class _Ran:
     """A step that ran; undone (to `mark`) when the steps after it fail."""
@@ -166,9 +195,7 @@ class _Search:
         self.needs: dict[Key, list[frozenset[str]]] = {}
         for step in program.steps:
             for pos, ref in enumerate(step.args):
-                need = NEEDS.get((step.action.key, pos))
-                if need is not None:
-                    self.needs.setdefault(ref.key, []).append(need)
+                self.needs.setdefault(ref.key, []).extend(step.action.needs_of(pos))
         self.spots: list[Spot | None] = [None] * len(self.steps)
         for ref in program.object_refs():
             classes = class_names_for(ref.name, kb)
@@ -291,49 +318,46 @@ class _Search:
         """Candidates for `key`, best first (see the module docstring); those lacking a
         property the program's steps need come last."""
         st = self.st
-        char_room = st.room_of(st.char)
         bound = [n for n in self.assign.values() if n not in st.rooms]
         anchors = bound + [n for n in self.fixed if n not in self.owner and n not in st.rooms]
-        used_rooms = {st.room_of(n) for n in self.assign.values()}
+        rooms = (st.room_of(st.char), {st.room_of(n) for n in self.assign.values()})
         boxes = _Points([b.center for b in (self.graph.nodes[n].bounding_box for n in bound
                                             if n in self.graph.nodes) if b is not None])
-        # Speed: anchors by surface they are on, so a candidate's related anchors are a few
-        # set lookups, not a loop over every anchor (a program with 1000 objects).
-        weight = Counter(anchors)  # an anchor may come twice (two objects, one instance)
-        single = len(weight) == len(anchors)
-        on_surface: dict[int, set[int]] = {}
-        for b in weight:
-            for surface in st.targets(b, ON):
-                on_surface.setdefault(surface, set()).add(b)
-        scored = []
         needs = self.needs.get(key, ())
-        for node in self.domains[key]:
-            props = st.properties(node)
-            lacking = sum(1 for need in needs if props.isdisjoint(need))
-            related = 0
-            if anchors:
-                # Anchors close to it, under it, or on what it is on or in.
-                under = st.targets(node, ON) | st.targets(node, INSIDE)
-                hit = weight.keys() & (st.targets(node, CLOSE) | under)
-                shared = [on_surface[s] for s in under if s in on_surface]
-                if single and len(shared) == 1:  # the usual case, without copying the set
-                    related = len(shared[0]) + sum(1 for b in hit if b not in shared[0])
-                else:
-                    for anchors_there in shared:
-                        hit.update(anchors_there)
-                    related = len(hit) if single else sum(weight[b] for b in hit)
-            room = st.room_of(node)
-            room_rank = 0 if room == char_room else (1 if room in used_rooms else 2)
-            dist = 0.0
-            box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
-            if boxes and box is not None:
-                dist = boxes.nearest(box.center)
-            tie = self.tie.get(node)
-            if tie is None:
-                tie = self.tie[node] = self.rng.random()
-            scored.append((lacking, -related, room_rank, dist, tie, node))
+        index = _Anchors(st, anchors)
+        scored = [self._score(node, needs, index, rooms, boxes) for node in self.domains[key]]
         scored.sort()
         return [s[-1] for s in scored]
+
+    def _score(self, node: int, needs: Sequence[frozenset[str]], anchors: _Anchors,
+               rooms: tuple[int | None, set[int | None]], boxes: _Points
+               ) -> tuple[int, int, int, float, float, int]:
+        """The sort key of one candidate (lower is better)."""
+        st = self.st
+        props = st.properties(node)
+        lacking = sum(1 for need in needs if props.isdisjoint(need))
+        room = st.room_of(node)
+        room_rank = 0 if room == rooms[0] else (1 if room in rooms[1] else 2)
+        tie = self.tie.get(node)
+        if tie is None:
+            tie = self.tie[node] = self.rng.random()
+        return (lacking, -self._related(node, anchors), room_rank,
+                self._distance(node, boxes), tie, node)
+
+    def _related(self, node: int, anchors: _Anchors) -> int:
+        """How many anchors `node` is close to, on or in, or shares a surface with."""
+        if not anchors:
+            return 0
+        st = self.st
+        under = st.targets(node, ON) | st.targets(node, INSIDE)
+        return anchors.count(st.targets(node, CLOSE), under)
+
+    def _distance(self, node: int, boxes: _Points) -> float:
+        """Squared floor distance from `node` to the nearest bound object (0 without)."""
+        box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
+        if not boxes or box is None:
+            return 0.0
+        return boxes.nearest(box.center)
 
     # ------------------------------------------------------------------ standing
     def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:
