@@ -9,8 +9,9 @@ satisfies a formula when the segment ``[0, n]`` does:
 - a state or relation atom holds on ``[i, j]`` when it holds in ``s_j`` (where it ends);
 - an action atom holds when one of the steps ``i+1 .. j`` is that action on that object;
 - ``A then B`` holds when some ``k`` in ``[i, j]`` has A on ``[i, k]`` and B on ``[k, j]``;
-- ``exists``/``forall``/``forn`` range over the home's nodes (over the nodes the run acted
-  on when the variable appears only in action atoms: no other node can satisfy them).
+- ``exists``/``forall``/``forn`` range over the home's nodes (``exists`` and ``forn`` over
+  the nodes the run acted on when the variable appears only in action atoms: no other node
+  can satisfy them).
 
 A `GoalSet` is EAI's flat form of the same goals: node states and relations that must hold
 at the end, and actions that must have been done in the given order.
@@ -125,8 +126,8 @@ class _Judge:
 
     def _quantified(self, f: Quantified, i: int, j: int,
                     env: tuple[tuple[str, int], ...]) -> bool:
-        domain = (self.tr.acted_on() if _only_in_actions(f.body, f.var)
-                  else self.tr.node_ids())
+        narrow = f.quantifier != "forall" and _only_in_actions(f.body, f.var)
+        domain = self.tr.acted_on() if narrow else self.tr.node_ids()
         found = 0
         for node in domain:
             if self.holds(f.body, i, j, (*env, (f.var, node))):
@@ -135,10 +136,7 @@ class _Judge:
                     return True
             elif f.quantifier == "forall":
                 return False
-        if f.quantifier == "forall":
-            # Over the nodes acted on only, an unacted node never satisfies the body.
-            return len(domain) == len(self.tr.node_ids()) or not domain
-        return False
+        return f.quantifier == "forall"
 
     def _atom(self, a: Atom, i: int, j: int, env: dict[str, int]) -> bool:
         nodes = [_node(arg, env) for arg in a.args]
