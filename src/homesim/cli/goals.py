@@ -134,3 +134,40 @@ def _flat(values: dict, prefix: str = "") -> list[tuple[str, float]]:
         else:
             rows.append((prefix + k, v))
     return rows
+
+
+@eval_app.command("titles")
+def titles(
+    predictions: Annotated[Path | None, typer.Option(
+        help="JSON {program id: program text} answering the prompts; scored beside the "
+             "baselines.")] = None,
+    prompts_out: Annotated[Path | None, typer.Option(
+        "--prompts-out", help="Write the test prompts ({id, prompt} per line) here.")] = None,
+    baselines: Annotated[str, typer.Option(
+        help="Comma-separated baselines to score (random_sampling, random_retrieval, "
+             "nn_retrieval); '' for none.")] = "random_sampling,random_retrieval",
+    seed: Annotated[int, typer.Option(help="Seed of the split and the baselines.")] = 0,
+    force: Annotated[bool, typer.Option(help="Replace --prompts-out if it exists.")] = False,
+) -> None:
+    """Title -> program on the real data ("Task: Watch TV"): LCS and executability."""
+    from homesim.goals.titles import baseline, evaluate, prompts, read_predictions, title_splits
+
+    if prompts_out is not None:
+        check_target(prompts_out, force)
+    splits = title_splits(seed)
+    if prompts_out is not None:
+        lines = [json.dumps(p) for p in prompts(splits)]
+        prompts_out.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        console.print(f"{len(lines)} prompts: {escape(str(prompts_out))}")
+    rows = [(name, baseline(name, splits, seed)) for name in baselines.split(",") if name]
+    if predictions is not None:
+        rows.append((predictions.name, read_predictions(predictions, splits)))
+    table = Table(title=f"title -> program, {len(splits.test)} test programs (seed {seed})")
+    for col in ("planner", "LCS actions", "LCS objects", "LCS steps", "LCS mean",
+                "executable %"):
+        table.add_column(col, justify="left" if col == "planner" else "right")
+    for name, preds in rows:
+        s = evaluate(preds, splits)
+        table.add_row(escape(name), f"{s.action:.3f}", f"{s.objects:.3f}", f"{s.steps:.3f}",
+                      f"{s.mean:.3f}", f"{s.simulator:.1f}")
+    console.print(table)
