@@ -162,9 +162,9 @@ def titles(
     rows = [(name, baseline(name, splits, seed)) for name in baselines.split(",") if name]
     if predictions is not None:
         rows.append((predictions.name, read_predictions(predictions, splits)))
-    table = Table(title=f"title -> program, {len(splits.test)} test programs (seed {seed})")
-    for col in ("planner", "LCS actions", "LCS objects", "LCS steps", "LCS mean",
-                "executable %"):
+    table = Table(title=f"title -> program: LCS and executability, {len(splits.test)} test "
+                        f"programs (seed {seed})")
+    for col in ("planner", "actions", "objects", "steps", "mean", "exec %"):
         table.add_column(col, justify="left" if col == "planner" else "right")
     for name, preds in rows:
         s = evaluate(preds, splits)

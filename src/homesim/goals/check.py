@@ -81,6 +81,11 @@ class Trajectory:
             return False
         return node is None or (bool(step.nodes) and step.nodes[0] == node)
 
+    def name(self, node: int) -> str:
+        """``class.id`` of a node (``?.id`` when the home lacks it)."""
+        cls = self._start.class_name(node) if node in self._start else "?"
+        return f"{cls}.{node}"
+
     def node_ids(self) -> list[int]:
         """Every node of the home (and nodes the run added)."""
         added = [n for r in self.steps for n in r.changes.nodes]
@@ -225,7 +230,8 @@ def check_goals(goals: GoalSet, trajectory: Trajectory) -> GoalReport:
     done = 0
     for a, relation, b in goals.relations:
         ok = trajectory.has_edge(a, relation, b, end)
-        (met if ok else unmet).append(f"{relation}({a}, {b})")
+        (met if ok else unmet).append(
+            f"{relation}({trajectory.name(a)}, {trajectory.name(b)})")
         done += ok
     counts["relation"] = (done, len(goals.relations))
     done = _ordered_actions(goals.actions, trajectory.steps)
