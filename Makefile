@@ -32,6 +32,11 @@ test: setup
 	$(BIN)/ruff check src tests benchmarks tools
 	HOMESIM_REQUIRE_DATA=1 HOMESIM_REQUIRE_E2E=1 $(BIN)/python -m pytest
 
+lint: setup
+	$(BIN)/ruff check src tests benchmarks tools
+	@out="$$($(BIN)/radon cc -n D src)"; if [ -n "$$out" ]; then echo "$$out"; \
+		echo "radon: units of complexity D or worse; split them into named steps"; exit 1; fi
+
 bench: setup
 	$(BIN)/homesim data fetch
 	$(BIN)/python benchmarks/executor.py
