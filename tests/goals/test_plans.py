@@ -83,3 +83,11 @@ def test_task_objects_are_what_changed():
              "edges": [{"from_id": 3, "relation_type": "CLOSE", "to_id": 2}]}
     assert task_objects(init, final) == {("tv", 1), ("sofa", 2), ("character", 3),
                                          ("lamp", 4)}
+
+
+def test_grabbing_what_is_held_is_an_additional_step(context):
+    walk, grab = '"WALK": ["fridge", "11"]', '"OPEN": ["fridge", "11"]'
+    s = score_plan("1_1", plan(walk, grab, '"GRAB": ["cup", "12"]', '"GRAB": ["cup", "12"]',
+                               WALK_TV, ON_TV), context)
+    assert (s.error, s.additional, s.executable, s.success) == (
+        "additional_step", [4], True, True)

@@ -15,7 +15,7 @@ defines them), ``arity`` (wrong number of objects), then execution through
 classified with EAI's error kinds:
 
 - ``additional_step``: it would do what is already done (open the open, switch on the
-  on); the step is skipped and the plan goes on, as in EAI;
+  on, grab what is held); the step is skipped and the plan goes on, as in EAI;
 - ``affordance``: the object cannot take the action (not GRABBABLE, no switch, ...);
 - ``wrong_order``: it could have run in an earlier state of this run;
 - ``missing_step``: anything else (not close, not holding, inside a closed container).
@@ -218,6 +218,10 @@ def _execute(score: PlanScore, context: TaskContext) -> None:
     while True:
         run = run_program(program.with_steps([program.steps[i] for i in kept]),
                           context.home, trace=True)
+        again = _regrab(run)
+        if again is not None:
+            score.additional.append(kept.pop(again) + 1)
+            continue
         if run.executable or run.failed_step is None:
             break
         at = run.failed_step - 1
@@ -237,6 +241,30 @@ def _execute(score: PlanScore, context: TaskContext) -> None:
         score.reason = "skipped steps " + ", ".join(map(str, score.additional))
     records = run.result.trace if run.result is not None and run.result.trace else []
     score.goals = check_goals(context.goals.goals, Trajectory(run.graph, records))
+
+
+def _regrab(run: Any) -> int | None:
+    """Index of the first step that grabs what the character already holds, if any.
+
+    The simulator lets it run (the object is then held in both hands, as the reference
+    simulator does), but as a plan step it redoes what is done: an additional step.
+    """
+    records = run.result.trace if run.result is not None and run.result.trace else []
+    char = run.graph.character_id
+    held: set[int] = {n for r in ("HOLDS_RH", "HOLDS_LH")
+                      for n in run.graph.index.out.get(r, {}).get(char, ())}
+    for record in records:
+        if not record.ok:
+            break
+        if record.step.action.key == "GRAB" and record.nodes and record.nodes[0] in held:
+            return record.index
+        for a, relation, b in record.changes.added:
+            if a == char and relation in ("HOLDS_RH", "HOLDS_LH"):
+                held.add(b)
+        for a, relation, b in record.changes.removed:
+            if a == char and relation in ("HOLDS_RH", "HOLDS_LH"):
+                held.discard(b)
+    return None
 
 
 def _kind(action: str, reason: str) -> str:
