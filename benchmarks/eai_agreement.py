@@ -6,7 +6,9 @@ Plans: the gold program of every EAI-annotated program (342) and, for `--sample`
 six perturbations each (drop, swap, duplicate a step; wrong object; unknown object; wrong
 arity), seeded. Both evaluators score the same plans; the script prints per-plan agreement
 on task success and on the error kind, the disagreements by kind, and the time each took to
-score the gold plans of all tasks (ratio in the same run).
+score the gold plans of all tasks (ratio in the same run; EAI's verdicts and time are
+cached by the plans' hash under ``~/.cache/homesim/eai-reference``, ``--fresh`` measures
+again).
 
 EAI's evaluator runs in a side environment (``/tmp/eai``, or ``$EAI_VENV``) with PyPI
 ``eai-eval==1.0.5``; it is never a homesim dependency. Without it the script says so and
@@ -16,6 +18,7 @@ exits 0; ``--setup`` creates it (``python -m venv`` + ``pip install eai-eval==1.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import random
@@ -30,6 +33,7 @@ from homesim.goals.plans import TaskContext, load_contexts, score_plans
 
 HERE = Path(__file__).parent
 VENV = Path(os.environ.get("EAI_VENV", "/tmp/eai"))
+CACHE = Path.home() / ".cache" / "homesim" / "eai-reference"
 PERTURBATIONS = ("drop", "swap", "duplicate", "wrong_object", "unknown_object", "wrong_arity")
 
 
@@ -89,12 +93,19 @@ def build_plans(contexts: dict[str, TaskContext], sample: int, seed: int) -> lis
     return plans
 
 
-def run_eai(plans_path: Path, out_path: Path) -> dict:
-    """EAI's verdicts, from the side environment."""
+def run_eai(plans_path: Path, out_path: Path, fresh: bool = False) -> dict:
+    """EAI's verdicts, from the side environment (kept in `CACHE` by the plans' hash:
+    EAI takes minutes; `fresh` runs it again)."""
+    key = hashlib.sha256(plans_path.read_bytes()).hexdigest()[:16]
+    cached = CACHE / f"{key}.json"
+    if cached.exists() and not fresh:
+        return json.loads(cached.read_text())
     env = {**os.environ, "PYTHONHASHSEED": "0"}  # EAI orders action goals by set()
     env.pop("PYTHONPATH", None)
     subprocess.run([str(VENV / "bin" / "python"), str(HERE / "eai_reference.py"),
                     str(plans_path), str(out_path)], check=True, env=env)
+    CACHE.mkdir(parents=True, exist_ok=True)
+    cached.write_text(out_path.read_text())
     return json.loads(out_path.read_text())
 
 
@@ -104,6 +115,8 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--setup", action="store_true", help="create the side venv first")
     parser.add_argument("--report", type=Path, help="write per-plan disagreements here")
+    parser.add_argument("--fresh", action="store_true",
+                        help="run EAI again even when its verdicts on these plans are cached")
     args = parser.parse_args()
     if args.setup and not (VENV / "bin" / "python").exists():
         subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
@@ -125,9 +138,10 @@ def main() -> None:
 
     with tempfile.TemporaryDirectory() as tmp:
         (Path(tmp) / "gold.json").write_text(json.dumps(gold))
-        eai_gold = run_eai(Path(tmp) / "gold.json", Path(tmp) / "gold_out.json")
+        eai_gold = run_eai(Path(tmp) / "gold.json", Path(tmp) / "gold_out.json",
+                           args.fresh)
         (Path(tmp) / "plans.json").write_text(json.dumps(plans[len(gold):]))
-        eai_rest = run_eai(Path(tmp) / "plans.json", Path(tmp) / "out.json")
+        eai_rest = run_eai(Path(tmp) / "plans.json", Path(tmp) / "out.json", args.fresh)
     theirs = eai_gold["plans"] + eai_rest["plans"]
 
     print(f"plans: {len(plans)} ({len(gold)} gold, {len(plans) - len(gold)} perturbed on "

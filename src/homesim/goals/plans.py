@@ -29,6 +29,7 @@ import json
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import Any
 
 from homesim.errors import DataError, ProgramError
@@ -67,25 +68,29 @@ class TaskContext:
 
 
 def task_objects(init: dict, final: dict) -> frozenset[tuple[str, int]]:
-    """(class name, id) of the nodes whose dict or edges differ between two graph dicts."""
-    def key(node: dict) -> tuple:
-        # What a step can change: states (and, for added nodes, everything: new id).
-        return (node["id"], node.get("class_name"), frozenset(node.get("states", [])),
-                frozenset(node.get("properties", [])))
-
-    def edge(e: dict) -> tuple[int, str, int]:
-        return (e["from_id"], e["relation_type"], e["to_id"])
-
-    a = {key(n): n["id"] for n in init["nodes"]}
-    b = {key(n): n["id"] for n in final["nodes"]}
-    ids = {a[k] for k in a.keys() - b.keys()} | {b[k] for k in b.keys() - a.keys()}
-    ea = {edge(e) for e in init["edges"]}
-    eb = {edge(e) for e in final["edges"]}
-    for x, _, y in ea ^ eb:
+    """(class name, id) of the nodes whose dict or edges differ between two graph dicts
+    (state and property lists compared as sets, as EAI sorts them first)."""
+    edge = itemgetter("from_id", "relation_type", "to_id")
+    before = {n["id"]: n for n in init["nodes"]}
+    after = {n["id"]: n for n in final["nodes"]}
+    ids = before.keys() ^ after.keys()
+    for node_id, a in before.items():
+        b = after.get(node_id)
+        if b is not None and a != b and _differ(a, b):
+            ids.add(node_id)
+    for x, _, y in set(map(edge, init["edges"])) ^ set(map(edge, final["edges"])):
         ids |= {x, y}
-    names = {n["id"]: n["class_name"] for n in final["nodes"]}
-    names.update({n["id"]: n["class_name"] for n in init["nodes"]})
+    names = {i: n["class_name"] for i, n in after.items()}
+    names.update({i: n["class_name"] for i, n in before.items()})
     return frozenset((names[i], i) for i in ids if i in names)
+
+
+def _differ(a: dict, b: dict) -> bool:
+    lists = ("states", "properties")
+    if any(set(a.get(k, ())) != set(b.get(k, ())) for k in lists):
+        return True
+    return {k: v for k, v in a.items() if k not in lists} != {
+        k: v for k, v in b.items() if k not in lists}
 
 
 @dataclass
