@@ -91,3 +91,11 @@ def test_grabbing_what_is_held_is_an_additional_step(context):
                                WALK_TV, ON_TV), context)
     assert (s.error, s.additional, s.executable, s.success) == (
         "additional_step", [4], True, True)
+
+
+def test_a_repeated_step_that_now_fails_is_additional(context, tiny_home):
+    walk, open_ = '"WALK": ["fridge", "11"]', '"OPEN": ["fridge", "11"]'
+    grab, drop = '"GRAB": ["cup", "12"]', '"DROP": ["cup", "12"]'
+    s = score_plan("1_1", plan(walk, open_, grab, drop, drop, WALK_TV, ON_TV), context)
+    assert (s.error, s.additional, s.executable, s.success) == (
+        "additional_step", [5], True, True)

@@ -15,7 +15,8 @@ defines them), ``arity`` (wrong number of objects), then execution through
 classified with EAI's error kinds:
 
 - ``additional_step``: it would do what is already done (open the open, switch on the
-  on, grab what is held); the step is skipped and the plan goes on, as in EAI;
+  on, grab what is held, or repeat a step that already ran and now fails); the step is
+  skipped and the plan goes on, as in EAI;
 - ``affordance``: the object cannot take the action (not GRABBABLE, no switch, ...);
 - ``wrong_order``: it could have run in an earlier state of this run;
 - ``missing_step``: anything else (not close, not holding, inside a closed container).
@@ -233,6 +234,8 @@ def _execute(score: PlanScore, context: TaskContext) -> None:
         step = program.steps[kept[at]]
         reason = run.message.split(": ", 1)[-1]
         kind = _kind(step.action.key, reason)
+        if kind == "missing_step" and _repeats(run, at):
+            kind = "additional_step"  # the same step already ran: doing it again fails
         if kind == "additional_step":
             score.additional.append(kept.pop(at) + 1)
             continue
@@ -246,6 +249,18 @@ def _execute(score: PlanScore, context: TaskContext) -> None:
         score.reason = "skipped steps " + ", ".join(map(str, score.additional))
     records = run.result.trace if run.result is not None and run.result.trace else []
     score.goals = check_goals(context.goals.goals, Trajectory(run.graph, records))
+
+
+def _repeats(run: Any, at: int) -> bool:
+    """Whether the failed step at `at` is a step that already ran (same action, same
+    nodes), e.g. a second PutBack of what the first put back."""
+    records = run.result.trace if run.result is not None and run.result.trace else []
+    failed = run.grounding.program.steps[at] if run.grounding is not None else None
+    if failed is None or not records:
+        return False
+    nodes = tuple(r.node_id for r in failed.args)
+    return any(r.ok and r.step.action.key == failed.action.key and r.nodes == nodes
+               for r in records[:at])
 
 
 def _regrab(run: Any) -> int | None:
