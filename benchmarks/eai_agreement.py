@@ -148,8 +148,12 @@ def main() -> None:
         return
 
     t0 = time.perf_counter()
+    contexts = load_contexts(cache=False)  # parse and index the 342 homes
+    cold_s = time.perf_counter() - t0
+    load_contexts()  # writes the cache if it is missing
+    t0 = time.perf_counter()
     contexts = load_contexts()
-    load_s = time.perf_counter() - t0
+    load_s = time.perf_counter() - t0  # from the cache
     plans = build_plans(contexts, args.sample, args.seed)
     gold = [p for p in plans if p["kind"] == "gold"]
     t0 = time.perf_counter()
@@ -189,9 +193,12 @@ def main() -> None:
           "EAI success): count")
     for key, count in diff.most_common():
         print(f"  {key}: {count}")
-    print(f"homesim: load {load_s:.2f} s + score {gold_s:.2f} s = {load_s + gold_s:.2f} s for "
-          f"{len(gold)} gold plans; EAI: {eai_gold['seconds']:.2f} s; ratio EAI/homesim "
-          f"{eai_gold['seconds'] / (load_s + gold_s):.1f}x")
+    eai_s = eai_gold["seconds"]
+    for how, load in (("cached homes", load_s), ("homes parsed", cold_s)):
+        total = load + gold_s
+        print(f"homesim ({how}): load {load:.2f} s + score {gold_s:.2f} s = {total:.2f} s for "
+              f"{len(gold)} gold plans; EAI: {eai_s:.2f} s; ratio EAI/homesim "
+              f"{eai_s / total:.1f}x")
     if "cached" in eai_gold:
         print(f"  (EAI's time from its cached run {eai_gold['cached']}; --fresh measures again)")
     if args.report:

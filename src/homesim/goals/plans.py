@@ -26,11 +26,14 @@ Task success: every goal of the program (`homesim.goals.eai`) holds on the run's
 
 from __future__ import annotations
 
+import hashlib
 import json
+import pickle
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
+from pathlib import Path
 from typing import Any
 
 from homesim.errors import DataError, ProgramError
@@ -363,14 +366,41 @@ def score_plans(plans: Iterable[dict[str, Any]], contexts: dict[str, TaskContext
     return PlanReport(scores)
 
 
-def load_contexts(ids: Iterable[str] | None = None) -> dict[str, TaskContext]:
+def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
+                  ) -> dict[str, TaskContext]:
     """`TaskContext` of every annotated program of the real data set (or of `ids`, EAI
-    identifiers), keyed by EAI identifier."""
+    identifiers), keyed by EAI identifier.
+
+    Parsing and indexing 342 homes takes most of the time of scoring plans, so the full
+    set is kept as a pickle beside the data (`_cache_path`), keyed by the data's manifest,
+    the goal file and the source of the modules whose objects it holds: any change to
+    them builds it again. `cache` False neither reads nor writes it.
+    """
+    if ids is not None:
+        wanted = {f"file{i}" for i in ids}
+        return _build_contexts(wanted)
+    path = _cache_path() if cache else None
+    if path is not None and path.exists():
+        try:
+            with path.open("rb") as f:
+                return pickle.load(f)  # our own file, written below
+        except Exception:
+            pass
+    contexts = _build_contexts(None)
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(".tmp")
+        with tmp.open("wb") as f:
+            pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
+        tmp.replace(path)
+    return contexts
+
+
+def _build_contexts(wanted: set[str] | None) -> dict[str, TaskContext]:
     from homesim.goals.eai import eai_id, load_eai_goals
     from homesim.knowledge.realdata import real_programs
 
     goals = load_eai_goals()
-    wanted = None if ids is None else {f"file{i}" for i in ids}
     out = {}
     for item in real_programs():
         if item.id not in goals or (wanted is not None and item.id not in wanted):
@@ -379,6 +409,30 @@ def load_contexts(ids: Iterable[str] | None = None) -> dict[str, TaskContext]:
         home = EnvironmentGraph.from_dict(init, f"{item.graph_path}:init_graph")
         out[eai_id(item.id)] = TaskContext(goals[item.id], home, task_objects(init, final))
     return out
+
+
+def _cache_path() -> Path | None:
+    """``<data root>/eai-contexts/<key>.pickle``; None when the data is not fetched."""
+    import homesim.goals.check
+    import homesim.goals.eai
+    import homesim.goals.formula
+    import homesim.program.model
+    import homesim.world.graph
+    import homesim.world.index
+    from homesim.goals.eai import GOALS_FILE
+    from homesim.knowledge.fetch import data_root, dataset_dir
+
+    directory = dataset_dir()
+    inputs = [directory / "MANIFEST.json", directory / GOALS_FILE, Path(__file__)]
+    inputs += [Path(m.__file__) for m in (  # type: ignore[arg-type]
+        homesim.goals.check, homesim.goals.eai, homesim.goals.formula,
+        homesim.program.model, homesim.world.graph, homesim.world.index)]
+    digest = hashlib.sha256()
+    for source in inputs:
+        if not source.is_file():
+            return None
+        digest.update(source.read_bytes())
+    return data_root() / "eai-contexts" / f"{digest.hexdigest()[:16]}.pickle"
 
 
 def gold_plan(context_program: Any) -> str:
