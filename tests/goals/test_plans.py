@@ -99,3 +99,18 @@ def test_a_repeated_step_that_now_fails_is_additional(context, tiny_home):
     s = score_plan("1_1", plan(walk, open_, grab, drop, drop, WALK_TV, ON_TV), context)
     assert (s.error, s.additional, s.executable, s.success) == (
         "additional_step", [5], True, True)
+
+
+def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, context):
+    from homesim.goals import plans
+
+    builds = []
+    monkeypatch.setattr(plans, "_build_contexts",
+                        lambda wanted: builds.append(wanted) or {"1_1": context})
+    path = tmp_path / "c.pickle"
+    monkeypatch.setattr(plans, "_cache_path", lambda: path)
+    assert set(plans.load_contexts()) == {"1_1"} and path.exists()
+    assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 1
+    path.write_bytes(b"torn")
+    assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 2
+    assert plans.load_contexts(cache=False) and len(builds) == 3
