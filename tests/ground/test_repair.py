@@ -1,0 +1,92 @@
+"""Repair inserts the missing commonsense steps, says why, and keeps the program's own."""
+
+from __future__ import annotations
+
+import pytest
+
+from homesim.ground.repair import repair
+from homesim.program import parse_program
+
+
+def _own_steps(r) -> list[str]:
+    inserted = {i.index for i in r.insertions}
+    return [str(s) for i, s in enumerate(r.program.steps) if i not in inserted]
+
+
+def test_a_walk_is_inserted_before_a_grab_with_its_reason(tiny_home):
+    r = repair("[Grab] <plate> (1)", tiny_home)
+    assert not r.before.executable and r.executable
+    assert [str(s) for s in r.program.steps] == ["[Walk] <plate> (1)", "[Grab] <plate> (1)"]
+    (ins,) = r.insertions
+    assert (ins.index, ins.before) == (0, 0)
+    assert ins.reason == "walk to <plate> (1) before [Grab]: it needs the character close to it"
+
+
+def test_a_closed_container_is_opened_before_taking_from_it(tiny_home):
+    # Grounded: the cup in the fridge (ungrounded, preparation may add another cup).
+    r = repair("[Grab] <cup> (1.12)", tiny_home)
+    assert r.executable
+    assert [str(i.step) for i in r.insertions] == ["[Walk] <cup> (1.12)",
+                                                   "[Open] <fridge> (1.11)"]
+    assert "may be inside it" in r.insertions[1].reason
+
+
+def test_stand_up_before_walking_and_grab_before_put(tiny_home):
+    text = ("[Walk] <sofa> (1)\n[Sit] <sofa> (1)\n[Walk] <table> (1)\n"
+            "[PutBack] <plate> (1) <table> (1)")
+    r = repair(text, tiny_home)
+    assert r.executable, r.run.message
+    steps = [str(i.step) for i in r.insertions]
+    assert steps == ["[StandUp]", "[Grab] <plate> (1)"]
+    assert [i.before for i in r.insertions] == [2, 3]
+    assert r.insertions[1].reason.startswith("grab <plate> (1) before [PutBack]")
+
+
+def test_the_program_own_steps_are_never_changed(tiny_home):
+    for text in ("[Grab] <cup> (1)\n[PutBack] <cup> (1) <table> (1)",
+                 "[Sit] <sofa> (1)\n[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n[Watch] <tv> (1)",
+                 "[Open] <fridge> (1)\n[PutIn] <plate> (1) <fridge> (1)"):
+        program = parse_program(text)
+        r = repair(program, tiny_home)
+        assert _own_steps(r) == [str(s) for s in program.steps]
+        assert r.executable, r.run.message
+
+
+def test_an_executable_program_is_left_alone(tiny_home):
+    r = repair("[Walk] <plate> (1)\n[Grab] <plate> (1)", tiny_home)
+    assert r.executable and r.insertions == () and r.runs == 1
+    assert r.to_dict()["insertions"] == []
+
+
+def test_undoing_a_state_is_only_done_when_asked(tiny_home):
+    text = "[Walk] <tv> (1.14)\n[SwitchOn] <tv> (1.14)\n[SwitchOn] <tv> (1.14)"
+    assert not repair(text, tiny_home).executable
+    r = repair(text, tiny_home, undo_states=True)
+    assert r.executable
+    assert [str(i.step) for i in r.insertions] == ["[SwitchOff] <tv> (1.14)"]
+    assert r.insertions[0].reason.endswith("it must be OFF")
+
+
+def test_the_search_is_bounded(tiny_home):
+    assert repair("[Grab] <cup> (1.12)", tiny_home).runs > 2  # needs a walk and an open
+    r = repair("[Grab] <cup> (1.12)", tiny_home, max_runs=2)
+    assert not r.executable and r.runs == 2
+    assert _own_steps(r) == ["[Grab] <cup> (1.12)"]
+
+
+@pytest.mark.dataset
+def test_real_programs_without_walks_are_repaired(real_data):
+    from homesim.ground import unground
+    from homesim.knowledge import real_programs
+    from homesim.world import load_home
+
+    home = load_home("scene1_trimmed")
+    before = after = 0
+    programs = [unground(rp.program) for rp in real_programs(real_data)][:40]
+    for p in programs:
+        q = p.with_steps([s for s in p.steps if s.action.key not in ("WALK", "FIND", "RUN")])
+        r = repair(q, home)
+        before += r.before.executable
+        after += r.executable
+        assert _own_steps(r) == [str(s) for s in q.steps]
+    assert before < 20 and after >= 38
