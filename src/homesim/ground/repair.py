@@ -19,8 +19,8 @@ derived from that step's row of the action catalog (`homesim.program.actions`):
 - neither ``handles`` nor ``moves`` (LookAt, Watch): turn to, or walk to, the object.
 
 An insertion is kept when the program then runs further (a later original step fails, or
-none); an insertion whose own step fails may be repaired in turn (a Walk needs a StandUp),
-up to `depth` levels. The search is bounded (`max_runs` pipeline runs, `max_insertions`).
+none); an insertion after which the program still fails, at its own step (a Walk needs a
+StandUp) or at another, may be repaired in turn, up to `depth` levels. The search is bounded (`max_runs` pipeline runs, `max_insertions`).
 The program's own steps are never changed, dropped or reordered; every insertion is listed
 with its reason.
 
@@ -192,10 +192,14 @@ def _improve(items: list[_Item], run: Run, depth: int, search: _Search
         progress = _progress(inserted, trial)
         if progress > base:
             return inserted, trial
-        if progress == base and trial.failed_step is not None:
+        if trial.failed_step is not None:
+            # Preparation places added objects where the program first acts on them, so an
+            # insertion may move the failure earlier: worth repairing in turn, after those
+            # that leave it where it was.
             stuck.append((inserted, trial))
     if depth <= 1:
         return None
+    stuck.sort(key=lambda t: -_progress(*t))  # stable: candidate order among equals
     for inserted, trial in stuck:
         found = _improve(inserted, trial, depth - 1, search)
         if found is not None and _progress(*found) > base:
@@ -277,14 +281,14 @@ def _containers(obj: ObjectRef, items: list[_Item], search: _Search) -> list[Obj
     for step, _ in items:
         for ref in step.args:
             own.setdefault(ref.name, ref)
-    for b in boxes[:4]:  # bounded: a few container classes at most
+    for b in boxes:
         cls = home.node(b).class_name
         if obj.node_id is not None:
             ref = ObjectRef(cls, _free_instance(cls, items), b)
         else:
             ref = own.get(cls) or ObjectRef(cls, _free_instance(cls, items))
         refs.setdefault((cls, ref.node_id), ref)
-    return list(refs.values())
+    return list(refs.values())[:6]  # bounded: a few containers at most
 
 
 def _free_instance(name: str, items: list[_Item]) -> int:
