@@ -61,7 +61,7 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
         kb: the knowledge base for equivalent class names (default: `load_kb()`).
     """
 
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["ansi"]}
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["ansi"], "render_fps": 1}
 
     def __init__(self, home: EnvironmentGraph | str = "scene1_trimmed", goal: Goal | None = None,
                  *, max_steps: int = 50, failure_penalty: float = 0.0,

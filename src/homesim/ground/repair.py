@@ -20,9 +20,9 @@ derived from that step's row of the action catalog (`homesim.program.actions`):
 
 An insertion is kept when the program then runs further (a later original step fails, or
 none); an insertion after which the program still fails, at its own step (a Walk needs a
-StandUp) or at another, may be repaired in turn, up to `depth` levels. The search is bounded (`max_runs` pipeline runs, `max_insertions`).
-The program's own steps are never changed, dropped or reordered; every insertion is listed
-with its reason.
+StandUp) or at another, may be repaired in turn, up to `depth` levels. The search is
+bounded (`max_runs` pipeline runs, `max_insertions`). The program's own steps are never
+changed, dropped or reordered; every insertion is listed with its reason.
 
 >>> from homesim.program import parse_program
 >>> r = repair(parse_program("[Grab] <wine_glass> (1)"), "scene1_trimmed")
