@@ -181,7 +181,7 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
     adder = _Adder(st, program, context, kb, random.Random(seed), pins or {})
     for ref in missing:
         addition = adder.add(ref)
-        groups = required.get(_first_of_class(required, ref.name), {})
+        groups = _groups_of_class(required, ref.name)
         node = st.node(addition.node_id)
         new = _apply(node.states, node.properties, groups)
         if new != node.states:
@@ -434,8 +434,9 @@ def _start_posture(program: Program) -> str | None:
     return None
 
 
-def _first_of_class(required: dict[Key, dict[str, str]], name: str) -> Key | None:
-    return next((k for k in required if k[0] == name), None)
+def _groups_of_class(required: dict[Key, dict[str, str]], name: str) -> dict[str, str]:
+    """The groups the first program object of class `name` presupposes ({} if none)."""
+    return next((groups for key, groups in required.items() if key[0] == name), {})
 
 
 def _apply(states: frozenset[str], properties: frozenset[str],
@@ -647,8 +648,8 @@ class _Adder:
         visible = [o for o in options if not o[0][0]]
         hidden = [o for o in options if o[0][0]]
         floor_near = [(a, [a]) for a in anchors if st.room_of(a) not in (None, a)]
-        floor_any = [(r, []) for r in sorted(st.graph.room_ids,
-                                             key=lambda r: (rank(r), rng.random()))]
+        floor_any: list[tuple[int, list[int]]] = [
+            (r, []) for r in sorted(st.graph.room_ids, key=lambda r: (rank(r), rng.random()))]
         attempts: list[tuple[str, Any]] = [("dest", o) for o in visible if o[0][1] < 2]
         attempts += [("floor", f) for f in floor_near]
         attempts += [("dest", o) for o in visible if o[0][1] == 2]

@@ -340,7 +340,8 @@ def _flat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
 
 
 def _wall(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    for slab in _wall_slabs(box, home.tiles.get(home.graph.room_of(node.id), [])):
+    room = home.graph.room_of(node.id)
+    for slab in _wall_slabs(box, [] if room is None else home.tiles.get(room, [])):
         part.boxes.extend(_cut_doorways(slab, home.jambs))
     return True
 

@@ -38,7 +38,8 @@ class Props:
         self.held: dict[str, int] = {}  # side -> node id
         self.lit = {n for n, p in self.parts() if p.lamp and p.is_on}
         self.screens = {n for n, p in self.parts() if p.screen is not None and p.is_on}
-        self.switch_rooms = lights_on_by_switch(graph)
+        # Room id -> lit; None stands for "outside every room" (a switch there may be used).
+        self.switch_rooms: dict[int | None, bool] = dict(lights_on_by_switch(graph).items())
         self.hinge_angle = {n: (scene.hinge_open[n] if p.hinge.is_open else 0.0)
                             for n, p in self.parts() if p.hinge is not None}
 

@@ -18,7 +18,7 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 from pathlib import Path
-from typing import Any, cast
+from typing import Any, TypeGuard, cast
 
 from homesim.errors import GraphError
 from homesim.files import write_bytes, write_text
@@ -333,7 +333,7 @@ _NUMBER = (int, float)
 _FROM, _RELATION, _TO = itemgetter("from_id"), itemgetter("relation_type"), itemgetter("to_id")
 
 
-def _is_int(x: Any) -> bool:
+def _is_int(x: Any) -> TypeGuard[int]:
     return isinstance(x, int) and not isinstance(x, bool)
 
 
