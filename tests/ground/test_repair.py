@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from homesim.ground.repair import repair
@@ -90,3 +92,32 @@ def test_real_programs_without_walks_are_repaired(real_data):
         after += r.executable
         assert _own_steps(r) == [str(s) for s in q.steps]
     assert before < 20 and after >= 38
+
+
+def test_homesim_run_repair_lists_insertions_and_runs_the_repaired_program(tmp_path, capsys):
+    from homesim.cli.main import main
+
+    p = tmp_path / "p.txt"
+    p.write_text("[Grab] <wine_glass> (1)\n")
+    assert main(["run", str(p), "--home", "scene1_trimmed"]) == 1
+    capsys.readouterr()
+    assert main(["run", str(p), "--home", "scene1_trimmed", "--repair"]) == 0
+    out = capsys.readouterr().out
+    assert ("inserted step 1 [Walk] <wine_glass> (1): walk to <wine_glass> (1) before "
+            "[Grab]") in out
+    assert "executable: all 2 steps ran" in out
+    assert main(["run", str(p), "--home", "scene1_trimmed", "--repair", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["executable"] and len(data["steps"]) == 2
+    assert data["repair"]["executable_before"] is False
+    assert [i["step"] for i in data["repair"]["insertions"]] == ["[Walk] <wine_glass> (1)"]
+
+
+def test_repair_and_no_ground_do_not_mix(tmp_path, capsys):
+    from homesim.cli.main import main
+
+    p = tmp_path / "p.txt"
+    p.write_text("[Grab] <wine_glass> (1)\n")
+    assert main(["run", str(p), "--repair", "--no-ground"]) != 0
+    captured = capsys.readouterr()
+    assert "drop --no-ground" in captured.out + captured.err

@@ -72,7 +72,9 @@ def run(
     g, gname = read_graph(graph, home, DEMO_HOME)
     if not prog.steps:
         raise HomesimError(f"{program or 'demo'}: the program has no steps")
-    fixed = repair(prog, g, seed=seed) if with_repair and not no_ground else None
+    if with_repair and no_ground:
+        raise HomesimError("--repair runs through preparation and grounding; drop --no-ground")
+    fixed = repair(prog, g, seed=seed) if with_repair else None
     if fixed is not None:
         prog = fixed.program
     ran = run_program(prog, g, seed=seed, trace=True, reference=no_ground)
