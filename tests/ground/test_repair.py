@@ -121,3 +121,19 @@ def test_repair_and_no_ground_do_not_mix(tmp_path, capsys):
     assert main(["run", str(p), "--repair", "--no-ground"]) != 0
     captured = capsys.readouterr()
     assert "drop --no-ground" in captured.out + captured.err
+
+
+@pytest.mark.parametrize(("text", "walk"), [
+    # The table is not in the program: a new ref, bound to the node it must be.
+    ("[Walk] <plate> (1.16)\n[Grab] <plate> (1.16)\n[Walk] <sofa> (1.15)\n"
+     "[PutObjBack] <plate> (1.16)", "[Walk] <table> (1.13)"),
+    # It is: the program's own ref.
+    ("[Walk] <table> (2.13)\n[Grab] <plate> (1.16)\n[Walk] <sofa> (1.15)\n"
+     "[PutObjBack] <plate> (1.16)", "[Walk] <table> (2.13)"),
+])
+def test_put_obj_back_walks_back_to_where_the_object_was_taken_from(tiny_home, text, walk):
+    r = repair(text, tiny_home)
+    assert r.executable, r.run.message
+    (ins,) = r.insertions
+    assert (str(ins.step), ins.index) == (walk, 3)
+    assert ins.reason.startswith(f"walk back to {walk[7:]}, where <plate>")

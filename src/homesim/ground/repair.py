@@ -213,15 +213,17 @@ def _candidates(items: list[_Item], k: int, run: Run, search: _Search
     step = items[k][0]
     previous = items[k - 1][0] if k > 0 else None
     seen: set[Step] = set()
-    for new, reason in _fixes(step, items, search):
+    for new, reason in _fixes(step, k, items, search):
         if new == previous or new in seen:
             continue  # the same step twice in a row fixes nothing
         seen.add(new)
         yield [*items[:k], (new, reason), *items[k:]]
 
 
-def _fixes(step: Step, items: list[_Item], search: _Search) -> Iterator[tuple[Step, str]]:
-    """Steps that may make `step` runnable, each with its reason, from its catalog row."""
+def _fixes(step: Step, k: int, items: list[_Item], search: _Search
+           ) -> Iterator[tuple[Step, str]]:
+    """Steps that may make `step` (step `k` of `items`) runnable, each with its reason,
+    from its catalog row."""
     a = step.action
     name = f"[{a.name}]"
     if a.moves:
@@ -244,6 +246,13 @@ def _fixes(step: Step, items: list[_Item], search: _Search) -> Iterator[tuple[St
     if search.undo_states:
         for state in a.presupposes:
             yield from _setting(state, obj, name)
+    if a.hands == "let_go" and a.motion == "reach" and not a.reach:
+        # PutObjBack: it reaches back to where the object was taken from, a place the
+        # program does not name; a run of the steps before it tells which.
+        back = _origin(obj, k, items, search)
+        if back is not None:
+            yield (_step("WALK", back), f"walk back to {back}, where {obj} was taken from, "
+                   f"before {name}")
     if not a.handles and not a.moves:
         yield _step("TURNTO", obj), f"turn to {obj} before {name}: it needs the character facing it"
         yield _step("WALK", obj), f"walk to {obj} before {name}: it may be in another room"
@@ -289,6 +298,27 @@ def _containers(obj: ObjectRef, items: list[_Item], search: _Search) -> list[Obj
             ref = own.get(cls) or ObjectRef(cls, _free_instance(cls, items))
         refs.setdefault((cls, ref.node_id), ref)
     return list(refs.values())[:6]  # bounded: a few containers at most
+
+
+def _origin(obj: ObjectRef, k: int, items: list[_Item], search: _Search) -> ObjectRef | None:
+    """A ref for the node `obj` was taken from, found by running the steps before step `k`:
+    the program's own ref for that node, else a new ref of its class (grounding binds it;
+    bound to the node when the program is grounded)."""
+    if search.runs_left <= 0:
+        return None
+    prefix = search.run(items[:k])
+    if prefix.result is None or prefix.bindings is None:
+        return None
+    node = prefix.bindings.get(obj.key)
+    origin = None if node is None else prefix.result.state.memory.get(node)
+    if origin is None or origin[0] < 0:
+        return None
+    for ref, bound in prefix.bindings.items():
+        if bound == origin[0]:
+            return next(r for step, _ in items for r in step.args if r.key == ref)
+    cls = prefix.result.state.class_name(origin[0])
+    grounded = obj.node_id is not None
+    return ObjectRef(cls, _free_instance(cls, items), origin[0] if grounded else None)
 
 
 def _free_instance(name: str, items: list[_Item]) -> int:
