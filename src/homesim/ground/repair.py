@@ -17,6 +17,8 @@ derived from that step's row of the action catalog (`homesim.program.actions`):
   ``undo_states=True`` (switching off what is on before "switching it on" changes what the
   program means, so it is asked for).
 - neither ``handles`` nor ``moves`` (LookAt, Watch): turn to, or walk to, the object.
+- ``hands`` ``let_go`` with a ``reach`` motion but no ``reach`` (PutObjBack): walk back to
+  where the object was taken from (a run of the steps before it says where).
 
 An insertion is kept when the program then runs further (a later original step fails, or
 none); an insertion after which the program still fails, at its own step (a Walk needs a
