@@ -25,7 +25,7 @@ The episode is truncated after ``max_steps`` actions. ``info`` also holds ``ok``
 
 from __future__ import annotations
 
-from typing import Any, ClassVar
+from typing import Any
 
 import gymnasium as gym
 from gymnasium import spaces
@@ -61,7 +61,8 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
         kb: the knowledge base for equivalent class names (default: `load_kb()`).
     """
 
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["ansi"], "render_fps": 1}
+    # A class attribute: gymnasium.make reads the render modes from the class.
+    metadata: dict[str, Any] = {"render_modes": ["ansi"], "render_fps": 1}  # noqa: RUF012
 
     def __init__(self, home: EnvironmentGraph | str = "scene1_trimmed", goal: Goal | None = None,
                  *, max_steps: int = 50, failure_penalty: float = 0.0,

@@ -232,6 +232,19 @@ def _fixes(step: Step, k: int, items: list[_Item], search: _Search
         yield _step("STANDUP"), f"stand up before {name}: the character cannot walk seated"
     if not step.args:
         return
+    yield from _hand_fixes(step, name)
+    yield from _place_fixes(step, k, items, search, name)
+    obj = step.args[0]
+    for state in a.presupposes_if_able + (a.presupposes if search.undo_states else ()):
+        yield from _setting(state, obj, name)
+    if not a.handles and not a.moves:
+        yield _step("TURNTO", obj), f"turn to {obj} before {name}: it needs the character facing it"
+        yield _step("WALK", obj), f"walk to {obj} before {name}: it may be in another room"
+
+
+def _hand_fixes(step: Step, name: str) -> Iterator[tuple[Step, str]]:
+    """Get within reach, take the object in hand, open where it goes."""
+    a = step.action
     obj, last = step.args[0], step.args[-1]
     if a.reach:
         yield (_step("WALK", last),
@@ -240,14 +253,16 @@ def _fixes(step: Step, k: int, items: list[_Item], search: _Search
         yield _step("GRAB", obj), f"grab {obj} before {name}: it needs {obj} in hand"
     if a.hands == "put" and a.connector == "into":
         yield _step("OPEN", last), f"open {last} before {name}: it must be open to put into"
+
+
+def _place_fixes(step: Step, k: int, items: list[_Item], search: _Search, name: str
+                 ) -> Iterator[tuple[Step, str]]:
+    """Open the container the object is in; go back to where it was taken from."""
+    a = step.action
+    obj = step.args[0]
     if any(GRABBABLE in r for r in a.needs_of(0)):
         for box in _containers(obj, items, search):
             yield _step("OPEN", box), f"open {box} before {name}: {obj} may be inside it"
-    for state in a.presupposes_if_able:
-        yield from _setting(state, obj, name)
-    if search.undo_states:
-        for state in a.presupposes:
-            yield from _setting(state, obj, name)
     if a.hands == "let_go" and a.motion == "reach" and not a.reach:
         # PutObjBack: it reaches back to where the object was taken from, a place the
         # program does not name; a run of the steps before it tells which.
@@ -255,9 +270,6 @@ def _fixes(step: Step, k: int, items: list[_Item], search: _Search
         if back is not None:
             yield (_step("WALK", back), f"walk back to {back}, where {obj} was taken from, "
                    f"before {name}")
-    if not a.handles and not a.moves:
-        yield _step("TURNTO", obj), f"turn to {obj} before {name}: it needs the character facing it"
-        yield _step("WALK", obj), f"walk to {obj} before {name}: it may be in another room"
 
 
 def _step(key: str, *args: ObjectRef) -> Step:
@@ -288,7 +300,7 @@ def _containers(obj: ObjectRef, items: list[_Item], search: _Search) -> list[Obj
     boxes = sorted({b for n in nodes for b in home.targets(n, INSIDE)
                     if CAN_OPEN in home.node(b).properties})
     refs: dict[tuple[str, int | None], ObjectRef] = {}
-    own = {}
+    own: dict[str, ObjectRef] = {}
     for step, _ in items:
         for ref in step.args:
             own.setdefault(ref.name, ref)
