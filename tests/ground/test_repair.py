@@ -137,3 +137,10 @@ def test_put_obj_back_walks_back_to_where_the_object_was_taken_from(tiny_home, t
     (ins,) = r.insertions
     assert (str(ins.step), ins.index) == (walk, 3)
     assert ins.reason.startswith(f"walk back to {walk[7:]}, where <plate>")
+
+
+def test_same_seed_same_repair():
+    text = "[Grab] <remote_control> (1)\n[Sit] <sofa> (1)\n[Walk] <television> (1)"
+    a, b = (repair(text, "scene2_trimmed", seed=3).to_dict() for _ in range(2))
+    assert a == b and a["insertions"]
+    assert json.dumps(a)  # JSON-ready
