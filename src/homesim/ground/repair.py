@@ -37,7 +37,7 @@ changed, dropped or reordered; every insertion is listed with its reason.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
@@ -90,7 +90,7 @@ class Repair:
     insertions: tuple[Insertion, ...]
     run: Run
     before: Run
-    runs: int = field(default=0)
+    runs: int = 0
 
     @property
     def executable(self) -> bool:
