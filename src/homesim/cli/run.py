@@ -14,6 +14,7 @@ from homesim.errors import HomesimError
 from homesim.examples import DEMO_HOME, load_example
 from homesim.ground.pipeline import run_program
 from homesim.ground.prepare import Prepared
+from homesim.ground.repair import repair
 from homesim.ground.search import Grounding
 from homesim.world.graph import EnvironmentGraph
 
@@ -56,6 +57,9 @@ def run(
     no_ground: Annotated[bool, typer.Option(
         "--no-ground", help="Run an ungrounded program as is, reading (N) as node N, as "
                             "the reference simulator does.")] = False,
+    with_repair: Annotated[bool, typer.Option(
+        "--repair", help="Insert missing commonsense steps (walk to an object before "
+                         "grabbing it, ...) and list each with its reason.")] = False,
 ) -> None:
     """Execute a program step by step and show what each step did or why it failed.
 
@@ -68,15 +72,26 @@ def run(
     g, gname = read_graph(graph, home, DEMO_HOME)
     if not prog.steps:
         raise HomesimError(f"{program or 'demo'}: the program has no steps")
+    if with_repair and no_ground:
+        raise HomesimError("--repair runs through preparation and grounding; drop --no-ground")
+    fixed = repair(prog, g, seed=seed) if with_repair else None
+    if fixed is not None:
+        prog = fixed.program
     ran = run_program(prog, g, seed=seed, trace=True, reference=no_ground)
     if as_json:
-        console.print_json(json.dumps(ran.to_dict()))
+        data = ran.to_dict()
+        if fixed is not None:
+            data["repair"] = fixed.to_dict()
+        console.print_json(json.dumps(data))
         raise typer.Exit(0 if ran.executable else 1)
     result = ran.result
     if result is None:
         console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(ran.message)}")
         raise typer.Exit(1)
     g = ran.graph
+    for ins in fixed.insertions if fixed is not None else ():
+        console.print(f"[cyan]inserted[/] step {ins.index + 1} {escape(str(ins.step))}: "
+                      f"{escape(ins.reason)}")
     if ran.prepared is not None and ran.grounding is not None:
         _show_grounding(g, ran.prepared, ran.grounding)
     prog = result.program
