@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.markup import escape
@@ -13,6 +13,10 @@ from rich.table import Table
 from homesim.cli.common import console, read_graph, read_program
 from homesim.errors import DataError, HomesimError
 from homesim.files import check_target
+from homesim.world.graph import EnvironmentGraph
+
+if TYPE_CHECKING:
+    from homesim.goals.eai import TaskGoals
 
 app = typer.Typer(help="Goals (EAI format) checked on execution traces.",
                   no_args_is_help=True)
@@ -34,29 +38,16 @@ def check(
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON.")] = False,
 ) -> None:
     """Run a program and say which goals of a task (and which formula) its trace meets."""
-    from homesim.goals import Trajectory, check_goals, holds, load_eai_goals, parse_formula
+    from homesim.goals import Trajectory, check_goals, holds, parse_formula
     from homesim.ground.pipeline import run_program
 
     if task is None and formula is None:
         raise HomesimError("goals check: give --task ID, --formula TEXT or both")
     prog = read_program(program)
-    goals = None
-    if task is not None:
-        key = task if task.startswith("file") else f"file{task}"
-        all_goals = load_eai_goals()
-        if key not in all_goals:
-            raise DataError(f"--task {task}: no EAI goals for this program (ids look like "
-                            "27_2; see resources/task_state_LTL_formula_accurate.json)")
-        goals = all_goals[key]
+    goals = _task_goals(task) if task is not None else None
     extra = parse_formula(formula) if formula is not None else None
     if graph is None and home is None and task is not None:
-        from homesim.knowledge.realdata import real_programs
-
-        found = [p for p in real_programs() if p.id == key]
-        if not found:
-            raise DataError(f"--task {task}: the program is not in the fetched data set; "
-                            "run 'homesim data fetch' or give --graph/--home")
-        env = found[0].graph()
+        env = _task_home(task)
     else:
         env, _ = read_graph(graph, home, "scene1")
     run = run_program(prog, env, trace=True)
@@ -72,18 +63,51 @@ def check(
         out["given_formula_holds"] = holds(extra, tr)
     if as_json:
         console.print_json(json.dumps(out))
-        return
-    console.print(f"run: {escape(run.message)}")
-    if goals is not None:
-        console.print(f"task: {escape(goals.task)}")
+    else:
+        _print_report(out)
+
+
+def _task_key(task: str) -> str:
+    return task if task.startswith("file") else f"file{task}"
+
+
+def _task_goals(task: str) -> TaskGoals:
+    """The EAI goals of program `task` (``27_2`` or ``file27_2``)."""
+    from homesim.goals import load_eai_goals
+
+    all_goals = load_eai_goals()
+    key = _task_key(task)
+    if key not in all_goals:
+        raise DataError(f"--task {task}: no EAI goals for this program (ids look like "
+                        "27_2; see resources/task_state_LTL_formula_accurate.json)")
+    return all_goals[key]
+
+
+def _task_home(task: str) -> EnvironmentGraph:
+    """The stored initial graph of program `task`, the home its goals refer to."""
+    from homesim.knowledge.realdata import real_programs
+
+    key = _task_key(task)
+    found = [p for p in real_programs() if p.id == key]
+    if not found:
+        raise DataError(f"--task {task}: the program is not in the fetched data set; "
+                        "run 'homesim data fetch' or give --graph/--home")
+    return found[0].graph()
+
+
+def _print_report(out: dict) -> None:
+    console.print(f"run: {escape(out['run'])}")
+    if "task" in out:
+        console.print(f"task: {escape(out['task'])}")
         for g in out["goals"]["met"]:
             console.print(f"  [green]met[/]   {escape(g)}")
         for g in out["goals"]["unmet"]:
             console.print(f"  [red]unmet[/] {escape(g)}")
-        if goals.formula is not None:
-            console.print(f"formula {_verdict(out['formula_holds'])}: {escape(goals.text)}")
-    if extra is not None:
-        console.print(f"formula {_verdict(out['given_formula_holds'])}: {escape(str(extra))}")
+        if out["formula_holds"] is not None:
+            console.print(f"formula {_verdict(out['formula_holds'])}: {escape(out['formula'])}")
+    if "given_formula" in out:
+        console.print(f"formula {_verdict(out['given_formula_holds'])}: "
+                      f"{escape(out['given_formula'])}")
 
 
 def _verdict(ok: bool) -> str:

@@ -16,6 +16,7 @@ from homesim.ground.pipeline import run_program
 from homesim.ground.prepare import Prepared
 from homesim.ground.repair import repair
 from homesim.ground.search import Grounding
+from homesim.sim.execute import ExecutionResult
 from homesim.world.graph import EnvironmentGraph
 
 
@@ -88,17 +89,27 @@ def run(
     if result is None:
         console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(ran.message)}")
         raise typer.Exit(1)
-    g = ran.graph
     for ins in fixed.insertions if fixed is not None else ():
         console.print(f"[cyan]inserted[/] step {ins.index + 1} {escape(str(ins.step))}: "
                       f"{escape(ins.reason)}")
     if ran.prepared is not None and ran.grounding is not None:
-        _show_grounding(g, ran.prepared, ran.grounding)
+        _show_grounding(ran.graph, ran.prepared, ran.grounding)
+    title = result.program.title or (program or "demo")
+    console.print(_step_table(result, f"{title} — {gname} ({len(ran.graph)} nodes)",
+                              all_changes))
+    if result.executable:
+        console.print(f"[green]executable[/]: all {len(result.program.steps)} steps ran")
+    else:
+        console.print(f"[red]not executable[/]: {escape(result.message)}")
+        raise typer.Exit(1)
+
+
+def _step_table(result: ExecutionResult, title: str, all_changes: bool) -> Table:
+    """One row per step: ✓ and what it changed, ✗ and why, or · not run."""
     prog = result.program
     label = result.state.label
-    title = prog.title or (program or "demo")
-    table = Table(title=f"{title} — {gname} ({len(g)} nodes)", title_justify="left",
-                  show_header=False, box=None, pad_edge=False)
+    table = Table(title=title, title_justify="left", show_header=False, box=None,
+                  pad_edge=False)
     table.add_column(justify="right", style="dim")
     table.add_column()
     table.add_column()
@@ -111,9 +122,4 @@ def run(
     for index in range(result.steps_run + 1, len(prog.steps)):
         table.add_row(str(index + 1), "[dim]·[/]", f"[dim]{escape(str(prog.steps[index]))}[/]",
                       "[dim]not run[/]")
-    console.print(table)
-    if result.executable:
-        console.print(f"[green]executable[/]: all {len(prog.steps)} steps ran")
-    else:
-        console.print(f"[red]not executable[/]: {escape(result.message)}")
-        raise typer.Exit(1)
+    return table

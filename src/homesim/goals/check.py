@@ -241,12 +241,18 @@ def check_goals(goals: GoalSet, trajectory: Trajectory) -> GoalReport:
     return GoalReport(tuple(met), tuple(unmet), counts)
 
 
+def _action_key(name: str) -> str:
+    """The catalog key of an action name, or the name itself when the catalog lacks it."""
+    spec = lookup_action(name)
+    return name if spec is None else spec.key
+
+
 def _ordered_actions(goals: Sequence[tuple[str, ...]], steps: Sequence[StepRecord]) -> int:
     """How many action goals, in order, the steps meet (each by a later step than the last)."""
     done, t = 0, 0
     keys = [s.step.action.key for s in steps]
     for alts in goals:
-        wanted = {(lookup_action(a).key if lookup_action(a) else a) for a in alts}
+        wanted = {_action_key(a) for a in alts}
         while t < len(keys) and keys[t] not in wanted:
             t += 1
         if t == len(keys):

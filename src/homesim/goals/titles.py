@@ -72,11 +72,11 @@ def read_predictions(path: Path, splits: Splits) -> list[Program]:
     if not isinstance(data, dict):
         raise DataError(f"{path}: expected a JSON object {{program id: program text}}")
     out = []
-    for e in splits.test:
-        text = data.get(e.id, "")
+    for example in splits.test:
+        text = data.get(example.id, "")
         if not isinstance(text, str):
-            raise DataError(f"{path}: {e.id}: the program must be text")
-        out.append(parse_program(text, source=f"{path}:{e.id}") if text.strip()
+            raise DataError(f"{path}: {example.id}: the program must be text")
+        out.append(parse_program(text, source=f"{path}:{example.id}") if text.strip()
                    else Program(()))
     return out
 
