@@ -25,9 +25,25 @@ def home_names() -> list[str]:
     return sorted(names)
 
 
-@lru_cache(maxsize=16)
+GENERATED_PREFIX = "gen-"
+"""``gen-42`` names the home `homesim.world.procedural.generate_home` makes from seed 42."""
+
+
 def load_home(name: str) -> EnvironmentGraph:
-    """Load a built-in home by name (cached: graphs are read-only)."""
+    """Load a home by name: a built-in home, a generated one (``gen-SEED``), or a home
+    file (a name ending in ``.json`` or ``.json.gz``, read afresh each time)."""
+    if name.endswith((".json", ".json.gz")):
+        return EnvironmentGraph.load(name)
+    return _load_named(name)
+
+
+@lru_cache(maxsize=16)
+def _load_named(name: str) -> EnvironmentGraph:
+    """A built-in or generated home (cached: graphs are read-only)."""
+    if name.startswith(GENERATED_PREFIX) and name[len(GENERATED_PREFIX):].isdigit():
+        from homesim.world.procedural import generate_home
+
+        return generate_home(int(name[len(GENERATED_PREFIX):]))
     names = home_names()
     if name not in names:
         close = difflib.get_close_matches(name, names, n=1)

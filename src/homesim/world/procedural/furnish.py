@@ -229,9 +229,9 @@ class RoomFurnisher:
 
     def _wall_on(self, side: str, fp: Rect) -> int | None:
         for k, p in enumerate(self.parts):
-            if p.room == self.room and p.cls == "wall" and _side(p.normal) == side:
-                if overlaps(p.footprint, fp, -0.2) or _spans(p, side, fp):
-                    return k
+            if (p.room == self.room and p.cls == "wall" and _side(p.normal) == side
+                    and (overlaps(p.footprint, fp, -0.2) or _spans(p, side, fp))):
+                return k
         return None
 
     def place_ceiling(self, cls: str) -> bool:
