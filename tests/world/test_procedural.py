@@ -57,7 +57,7 @@ def test_broken_home_fails_checks(tmp_path, home):
         write_home(broken, tmp_path / "x.json")
     assert not (tmp_path / "x.json").exists()
     d = home.to_dict()
-    d["edges"] = [e for e in d["edges"] if not (e["relation_type"] == "BETWEEN")]
+    d["edges"] = [e for e in d["edges"] if e["relation_type"] != "BETWEEN"]
     assert any("no door path" in p for p in check_home(EnvironmentGraph.from_dict(d)))
 
 

@@ -15,7 +15,7 @@
 from __future__ import annotations
 
 from homesim.world.graph import EnvironmentGraph, Node
-from homesim.world.procedural.geometry import FreeFloor, Rect
+from homesim.world.procedural.geometry import FreeFloor, Rect, blocks
 from homesim.world.procedural.parts import Box3, gap3, overlap3
 
 STRUCTURAL = frozenset({"Walls", "Floor", "Floors", "Ceiling", "Doors", "Windows"})
@@ -109,7 +109,7 @@ def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
         area = (min(b[0] for b in floors), min(b[2] for b in floors),
                 max(b[3] for b in floors), max(b[5] for b in floors))
         mine = [n for n in fixtures if graph.room_of(n.id) == room]
-        obstacles = [_fp(_box(n)) for n in mine if _box(n)[1] < 1.5 and not _is_flat(n)]
+        obstacles = [_fp(_box(n)) for n in mine if blocks(_box(n)) and not _is_flat(n)]
         ways = [_fp(_box(d)) for d in doors if room in graph.targets(d.id, "BETWEEN")]
         floor = FreeFloor(area, obstacles)
         why = floor.walkable(ways, [_fp(_box(n)) for n in mine], reach=0.75)

@@ -8,7 +8,15 @@ import random
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from homesim.world.procedural.geometry import FreeFloor, Rect, inside, overlaps
+from homesim.world.procedural.geometry import (
+    DOOR_REACH,
+    SLACK,
+    FreeFloor,
+    Rect,
+    blocks,
+    inside,
+    overlaps,
+)
 from homesim.world.procedural.parts import Box3, Part, box3, overlap3
 from homesim.world.procedural.plan import HEIGHT, Plan
 from homesim.world.procedural.stats import class_info, kind_objects
@@ -135,17 +143,17 @@ class RoomFurnisher:
 
     def walkable(self, extra: Box3 | None = None) -> bool:
         boxes = [self.parts[k].box for k in self.fixtures] + ([extra] if extra else [])
-        obstacles = [(b[0], b[2], b[3], b[5]) for b in boxes if b[1] < 1.5 and b[4] > 0.1]
-        floor = FreeFloor(self.interior, obstacles)
+        obstacles = [(b[0], b[2], b[3], b[5]) for b in boxes if blocks(b)]
+        floor = FreeFloor(self.interior, obstacles, strict=True)
         return floor.walkable(self.doors, [o for o in obstacles]) is None
 
     def reachable(self, box: Box3) -> bool:
         """Whether the agent can walk from the doors to within reach of `box`."""
         obstacles = [p.footprint for p in (self.parts[k] for k in self.fixtures)
-                     if p.box[1] < 1.5 and p.box[4] > 0.1]
-        if box[1] < 1.5:
+                     if blocks(p.box)]
+        if blocks(box):
             obstacles.append((box[0], box[2], box[3], box[5]))
-        floor = FreeFloor(self.interior, obstacles)
+        floor = FreeFloor(self.interior, obstacles, strict=True)
         return floor.walkable(self.doors, [(box[0], box[2], box[3], box[5])]) is None
 
     def place_floor(self, cls: str) -> bool:
@@ -218,7 +226,8 @@ class RoomFurnisher:
                     continue
                 a = self.rng.uniform(lo, hi - w)
             box = side_box(self.interior, side, a, a + w, d, y0, y0 + h)
-            if self.free(box) and self.reachable(box):
+            if (self.free(box) and self.reachable(box)
+                    and (not blocks(box) or self.walkable(box))):
                 self.add(Part(cls, self.room, box, (k, "ON"), INWARD[side], kind="fixture"))
                 return True
         return False
@@ -246,6 +255,21 @@ class RoomFurnisher:
                 self.add(Part(cls, self.room, box, (tile, "ON"), kind="fixture"))
                 return True
         return False
+
+    def prune(self) -> None:
+        """Drop the fixtures the agent cannot walk to (a wall lamp behind a wardrobe);
+        dropping one only frees floor, so the others stay reachable."""
+        if not self.fixtures or not self.doors:
+            return
+        mine = [self.parts[k] for k in self.fixtures]
+        floor = FreeFloor(self.interior, [p.footprint for p in mine if blocks(p.box)],
+                          strict=True)
+        comp = floor.reach_from(floor.near(self.doors[0], DOOR_REACH - SLACK))
+        keep = [p for p in mine if (comp & floor.near(p.footprint, 0.7 - SLACK)).any()]
+        first = self.fixtures[0]
+        del self.parts[first:]
+        self.parts.extend(keep)
+        self.fixtures = list(range(first, len(self.parts)))
 
     def add(self, part: Part) -> None:
         part.states = tuple(class_info(part.cls)["states"])
@@ -288,4 +312,5 @@ def furnish_room(rng: random.Random, plan: Plan, parts: list[Part], room: int
                 f.place_wall(e.cls)
             elif e.mount == "ceiling":
                 f.place_ceiling(e.cls)
+    f.prune()
     return [e for e in entries if e.mount == "item"]

@@ -10,7 +10,7 @@ from homesim.ground.kbtypes import ObjectKnowledge, default_kb
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.procedural.checks import check_home
 from homesim.world.procedural.furnish import RoomFurnisher, furnish_room
-from homesim.world.procedural.geometry import DOOR_REACH, FreeFloor
+from homesim.world.procedural.geometry import DOOR_REACH, FreeFloor, blocks
 from homesim.world.procedural.items import place_items
 from homesim.world.procedural.parts import Part, box3
 from homesim.world.procedural.plan import make_plan, room_kinds
@@ -60,7 +60,7 @@ def _character(rng: random.Random, plan, parts: list[Part], kinds: list[str]) ->
     room = order.index("living_room") if "living_room" in order else 0
     f = RoomFurnisher(rng, plan, parts, room)
     obstacles = [p.footprint for p in parts if p.room == room and p.kind == "fixture"
-                 and p.box[1] < 1.5 and p.box[4] > 0.1]
+                 and blocks(p.box)]
     floor = FreeFloor(f.interior, obstacles)
     cells = sorted(floor.component(floor.cells_near(door_rects(plan, room)[0], DOOR_REACH)))
     i, j = rng.choice(cells)

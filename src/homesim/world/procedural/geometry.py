@@ -6,8 +6,9 @@ A `Rect` is a floor footprint ``(x0, z0, x1, z1)`` with ``x0 < x1`` and ``z0 < z
 
 from __future__ import annotations
 
-from collections import deque
 from collections.abc import Iterable
+
+import numpy as np
 
 Rect = tuple[float, float, float, float]
 
@@ -17,6 +18,15 @@ AGENT_HALF = 0.2
 """Half the agent's footprint (m), as `homesim.ground.standing.AGENT_SIZE` / 2."""
 DOOR_REACH = 0.45
 """Cells whose centre is this near (m) a doorway count as at the door."""
+SLACK = 0.03
+"""Extra margin (m) the generator keeps over the checks."""
+
+
+def blocks(box: tuple[float, float, float, float, float, float]) -> bool:
+    """Whether a box (x0, y0, z0, x1, y1, z1) is in the agent's way: it reaches into the
+    body's height (0.1-1.5 m, as in `homesim.ground.standing`) and is not a flat thing on
+    a wall (a light switch, a socket)."""
+    return box[1] < 1.5 and box[4] > 0.1 and min(box[3] - box[0], box[5] - box[2]) >= 0.1
 
 
 def overlaps(a: Rect, b: Rect, margin: float = 0.0) -> bool:
@@ -39,58 +49,69 @@ class FreeFloor:
     """Cells of a room's floor where the agent's square fits, and walks between them.
 
     A cell is free when the agent's square centred on it lies in the room and touches
-    no obstacle footprint."""
+    no obstacle footprint. Grids are numpy arrays (x index, z index): a room is ~40 x 40
+    cells and the furnisher asks thousands of times per home, so flood fills run as
+    whole-array dilations instead of cell-by-cell."""
 
-    def __init__(self, room: Rect, obstacles: Iterable[Rect]):
+    def __init__(self, room: Rect, obstacles: Iterable[Rect], strict: bool = False):
+        """`strict` (the generator) asks for a few centimetres more room than the checks
+        (`homesim.world.procedural.checks`), so rounding never makes a home it built fail
+        them."""
         self.room = room
+        self.slack = SLACK if strict else 0.0
         self.nx = max(1, int((room[2] - room[0]) / CELL))
         self.nz = max(1, int((room[3] - room[1]) / CELL))
-        self.free = [[True] * self.nz for _ in range(self.nx)]
+        self.xs = room[0] + (np.arange(self.nx) + 0.5) * CELL
+        self.zs = room[1] + (np.arange(self.nz) + 0.5) * CELL
         inner = grow(room, -AGENT_HALF)
-        for i in range(self.nx):
-            x = self.x(i)
-            if not inner[0] <= x <= inner[2]:
-                self.free[i] = [False] * self.nz
-        for j in range(self.nz):
-            z = self.z(j)
-            if not inner[1] <= z <= inner[3]:
-                for i in range(self.nx):
-                    self.free[i][j] = False
+        fx = (self.xs >= inner[0]) & (self.xs <= inner[2])
+        fz = (self.zs >= inner[1]) & (self.zs <= inner[3])
+        self.free = fx[:, None] & fz[None, :]
         for ob in obstacles:
             self.block(ob)
 
     def x(self, i: int) -> float:
-        return self.room[0] + (i + 0.5) * CELL
+        return float(self.xs[i])
 
     def z(self, j: int) -> float:
-        return self.room[1] + (j + 0.5) * CELL
+        return float(self.zs[j])
+
+    def near(self, r: Rect, reach: float) -> np.ndarray:
+        """Mask of the cells whose centre lies within `reach` of rectangle `r` (per axis)."""
+        g = grow(r, reach)
+        mx = (self.xs >= g[0]) & (self.xs <= g[2])
+        mz = (self.zs >= g[1]) & (self.zs <= g[3])
+        return mx[:, None] & mz[None, :]
 
     def cells_near(self, r: Rect, reach: float) -> list[tuple[int, int]]:
-        """Grid cells whose centre lies within `reach` of rectangle `r` (a box-distance)."""
-        g = grow(r, reach)
-        i0 = max(0, int((g[0] - self.room[0]) / CELL))
-        i1 = min(self.nx - 1, int((g[2] - self.room[0]) / CELL))
-        j0 = max(0, int((g[1] - self.room[1]) / CELL))
-        j1 = min(self.nz - 1, int((g[3] - self.room[1]) / CELL))
-        return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)
-                if g[0] <= self.x(i) <= g[2] and g[1] <= self.z(j) <= g[3]]
+        """The cells of `near` as (i, j) pairs, in order."""
+        return [(int(i), int(j)) for i, j in zip(*np.nonzero(self.near(r, reach)),
+                                                 strict=True)]
 
     def block(self, ob: Rect) -> None:
-        for i, j in self.cells_near(ob, AGENT_HALF):
-            self.free[i][j] = False
+        self.free &= ~self.near(ob, AGENT_HALF + self.slack)
+
+    def reach_from(self, start: np.ndarray) -> np.ndarray:
+        """Mask of the free cells reachable (4-connected) from the free cells of `start`."""
+        seen = start & self.free
+        while True:
+            grown = seen.copy()
+            grown[1:, :] |= seen[:-1, :]
+            grown[:-1, :] |= seen[1:, :]
+            grown[:, 1:] |= seen[:, :-1]
+            grown[:, :-1] |= seen[:, 1:]
+            grown &= self.free
+            if np.array_equal(grown, seen):
+                return seen
+            seen = grown
 
     def component(self, start: list[tuple[int, int]]) -> set[tuple[int, int]]:
-        """Free cells reachable from the free cells of `start` (4-connected)."""
-        seen = {c for c in start if self.free[c[0]][c[1]]}
-        todo = deque(seen)
-        while todo:
-            i, j = todo.popleft()
-            for a, b in ((i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)):
-                if (0 <= a < self.nx and 0 <= b < self.nz and self.free[a][b]
-                        and (a, b) not in seen):
-                    seen.add((a, b))
-                    todo.append((a, b))
-        return seen
+        """Free cells reachable from the free cells of `start`, as (i, j) pairs."""
+        mask = np.zeros_like(self.free)
+        for i, j in start:
+            mask[i, j] = True
+        return {(int(i), int(j)) for i, j in zip(*np.nonzero(self.reach_from(mask)),
+                                                 strict=True)}
 
     def walkable(self, doors: list[Rect], targets: list[Rect], reach: float = 0.7
                  ) -> str | None:
@@ -98,13 +119,13 @@ class FreeFloor:
         otherwise what is not (a short reason)."""
         if not doors:
             return None
-        comp = self.component(self.cells_near(doors[0], DOOR_REACH))
-        if not comp:
+        comp = self.reach_from(self.near(doors[0], DOOR_REACH - self.slack))
+        if not comp.any():
             return "no free floor at a door"
         for k, d in enumerate(doors[1:], 1):
-            if comp.isdisjoint(self.cells_near(d, DOOR_REACH)):
+            if not (comp & self.near(d, DOOR_REACH - self.slack)).any():
                 return f"door {k} cannot be reached from door 0"
         for k, t in enumerate(targets):
-            if comp.isdisjoint(self.cells_near(t, reach)):
+            if not (comp & self.near(t, reach - self.slack)).any():
                 return f"object {k} has no free floor within {reach} m"
         return None
