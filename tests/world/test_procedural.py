@@ -85,3 +85,18 @@ def test_cli_generate_and_show(tmp_path):
     assert res.exit_code == 0, res.output
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
     assert "scene1" in CliRunner().invoke(app, ["homes"]).output
+
+
+def test_edges_and_support_are_checked(home):
+    d = home.to_dict()
+    by_class = {}
+    for n in d["nodes"]:
+        by_class.setdefault(n["class_name"], n["id"])
+    d["edges"].append({"from_id": by_class["toilet"], "relation_type": "CLOSE",
+                       "to_id": by_class["fridge"]})
+    plate = by_class["plate"]
+    d["edges"] = [e for e in d["edges"] if not (e["from_id"] == plate
+                                                and e["relation_type"] == "ON")]
+    problems = check_home(EnvironmentGraph.from_dict(d))
+    assert any("CLOSE" in p and "disagrees" in p for p in problems)
+    assert f"plate {plate} is not ON or INSIDE anything" in problems
