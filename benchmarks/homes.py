@@ -24,7 +24,6 @@ def _measure(name: str, limit: int) -> dict:
     from homesim.ground import unground
     from homesim.knowledge import real_programs
     from homesim.world import load_home
-    from homesim.world.homes import _load_named
     from homesim.world.procedural import check_home, generate_home
 
     row: dict = {"home": name}
@@ -38,7 +37,7 @@ def _measure(name: str, limit: int) -> dict:
                              == gzip.compress(json.dumps(again.to_dict()).encode(), mtime=0))
         row["problems"] = len(check_home(graph))
     else:
-        _load_named.cache_clear()
+        load_home.cache_clear()
         t0 = time.perf_counter()
         graph = load_home(name)
         row["gen_s"] = time.perf_counter() - t0

@@ -8,6 +8,7 @@ from homesim import run_program
 from homesim.errors import GraphError
 from homesim.program import parse_program
 from homesim.world import EnvironmentGraph, load_home
+from homesim.world.homes import open_home
 from homesim.world.procedural import check_home, generate_home, write_home
 
 
@@ -68,7 +69,9 @@ def test_real_program_runs(home, tmp_path):
     run = run_program(p, home)
     assert run.executable, run.message
     home.save(tmp_path / "h.json.gz")
-    assert load_home(str(tmp_path / "h.json.gz")) == home
+    assert open_home(str(tmp_path / "h.json.gz")) == home
+    with pytest.raises(GraphError, match="unknown home"):
+        load_home(str(tmp_path / "h.json.gz"))  # names only: servers pass client names
     assert load_home("gen-2") == home
 
 

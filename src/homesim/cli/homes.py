@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from homesim.cli.common import console
-from homesim.world.homes import home_names, load_home
+from homesim.world.homes import home_names, open_home
 
 app = typer.Typer(help="List, generate and draw homes.", invoke_without_command=True,
                   no_args_is_help=False)
@@ -52,5 +52,5 @@ def show(
     """Draw a labelled top-down plan of a home (rooms, furniture, doors, windows)."""
     from homesim.world.show import draw_plan
 
-    draw_plan(load_home(home), out, title=home)
+    draw_plan(open_home(home), out, title=home)
     console.print(f"wrote {out}")
