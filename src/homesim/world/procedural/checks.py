@@ -17,8 +17,9 @@ from __future__ import annotations
 import numpy as np
 
 from homesim.world.graph import EnvironmentGraph, Node
-from homesim.world.procedural.geometry import FreeFloor, Rect, blocks
+from homesim.world.procedural.geometry import FreeFloor, Rect, blocks, grow
 from homesim.world.procedural.parts import Box3, gap3, overlap3
+from homesim.world.procedural.plan import WALL
 
 STRUCTURAL = frozenset({"Walls", "Floor", "Floors", "Ceiling", "Doors", "Windows"})
 MOUNTS = frozenset({"floor", "wall", "ceiling"})
@@ -104,12 +105,7 @@ def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
         out.append(f"{graph.node(lone).label()} has no door path from "
                    f"{graph.node(min(rooms)).label()}")
     for room in sorted(rooms):
-        floors = [_box(graph.node(t)) for t in graph.sources(room, "INSIDE")
-                  if graph.node(t).class_name == "floor"]
-        if not floors:
-            continue
-        area = (min(b[0] for b in floors), min(b[2] for b in floors),
-                max(b[3] for b in floors), max(b[5] for b in floors))
+        area = grow(_fp(_box(graph.node(room))), -WALL)  # the floor inside the walls
         mine = [n for n in fixtures if graph.room_of(n.id) == room]
         obstacles = [_fp(_box(n)) for n in mine if blocks(_box(n)) and not _is_flat(n)]
         ways = [_fp(_box(d)) for d in doors if room in graph.targets(d.id, "BETWEEN")]

@@ -54,7 +54,13 @@ def build_shell(plan: Plan) -> list[Part]:
                                   kind="structure"))
     for d in plan.doors:
         if d.other is not None and d.room < d.other:
-            parts.append(_door(plan, d))
+            door = _door(plan, d)
+            parts.append(door)
+            # A floor tile across the threshold: walking (and the renderer's grid) needs
+            # floor under the doorway, between the two rooms' tiles.
+            b = door.box
+            parts.append(Part("floor", d.room, box3(b[0], -0.001, b[2], b[3], 0.0, b[5]),
+                              kind="structure"))
     for w in plan.windows:
         box = side_box(plan.rooms[w.room].rect, w.side, w.lo, w.hi, WALL, 0.9, 2.0)
         parts.append(Part("window", w.room, box, normal=INWARD[w.side], kind="structure"))
