@@ -88,6 +88,9 @@ def test_cli_generate_and_show(tmp_path):
     assert res.exit_code == 0, res.output
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
     assert "scene1" in CliRunner().invoke(app, ["homes"]).output
+    again = CliRunner().invoke(app, ["homes", "generate", "--seed", "3", "--out", str(out)])
+    assert "already exists" in str(again.exception)
+    assert EnvironmentGraph.load(out) == generate_home(2)  # not overwritten
 
 
 def test_edges_and_support_are_checked(home):

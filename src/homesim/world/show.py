@@ -11,7 +11,9 @@ from homesim.errors import HomesimError
 from homesim.files import write_bytes
 from homesim.world.graph import EnvironmentGraph, Node
 
-_SKIP = frozenset({"Rooms", "Walls", "Floor", "Floors", "Ceiling", "Characters"})
+_SKIP = frozenset({"Rooms", "Walls", "Floor", "Floors", "Ceiling", "Characters", "Props",
+                   "Food"})
+"""Categories left out of the plan (small things would clutter it)."""
 _COLOURS = ["#fde2c8", "#d6ecd2", "#d4e4f7", "#f6d5e5", "#efe8c4", "#dcd3f0", "#cdeeea",
             "#f2d0c4"]
 
@@ -52,7 +54,8 @@ def draw_plan(graph: EnvironmentGraph, path: str | Path, title: str = "") -> Non
             ax.add_patch(Rectangle((x, z), w, d, facecolor="saddlebrown", zorder=3))
         elif n.category == "Windows":
             ax.add_patch(Rectangle((x, z), w, d, facecolor="deepskyblue", zorder=3))
-        elif w * d >= 0.12 and (n.bounding_box.center[1] - n.bounding_box.size[1] / 2) < 0.3:
+        elif (w * d >= 0.12 and n.bounding_box.center[1] - n.bounding_box.size[1] / 2 < 0.3
+              and (n.category != "Decor" or n.class_name == "rug")):
             flat = n.class_name == "rug"
             ax.add_patch(Rectangle((x, z), w, d, facecolor="none" if flat else "#8899aa",
                                    alpha=0.6, edgecolor="#334455",
