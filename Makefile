@@ -27,10 +27,16 @@ demo: setup
 	rm -rf out/demo
 	$(BIN)/homesim render --home scene1 --out out/demo --width 320 --height 240 --fps 12 --preview
 
-test: setup
+test: lint
 	$(BIN)/homesim data fetch
-	$(BIN)/ruff check src tests benchmarks tools
 	HOMESIM_REQUIRE_DATA=1 HOMESIM_REQUIRE_E2E=1 $(BIN)/python -m pytest
+
+# Static checks, also the first part of `make test`: ruff, mypy, and radon's complexity gate.
+lint: setup
+	$(BIN)/ruff check src tests benchmarks tools
+	$(BIN)/mypy
+	@out="$$($(BIN)/radon cc -n D src)"; if [ -n "$$out" ]; then echo "$$out"; \
+		echo "radon: units of complexity D or worse; split them into named steps"; exit 1; fi
 
 bench: setup
 	$(BIN)/homesim data fetch

@@ -1,7 +1,10 @@
 """Convert the VirtualHome apartments of ../shared/data into homesim's built-in homes.
 
 Each scene is validated by `EnvironmentGraph.from_dict` and written, canonically sorted
-and gzip-compressed, to src/homesim/world/builtin/<name>.json.gz. Run from the repo root:
+and gzip-compressed, to src/homesim/world/builtin/<name>.json.gz. Where the character's
+INSIDE edge names another room than the one its box is in (scene1: bathroom 1, with its
+box and CLOSE edges in bedroom 67), the edge is moved to the room of the box, and the fix
+is printed. Run from the repo root:
 
     python tools/convert_homes.py [../shared/data/virtualhome/scenes]
 """
@@ -12,6 +15,8 @@ import sys
 from pathlib import Path
 
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.homes import character_room_problem, rooms_holding_box
+from homesim.world.vocab import INSIDE
 
 OUT = Path(__file__).resolve().parents[1] / "src" / "homesim" / "world" / "builtin"
 
@@ -19,11 +24,25 @@ OUT = Path(__file__).resolve().parents[1] / "src" / "homesim" / "world" / "built
 def main(scenes: Path) -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     for path in sorted(scenes.glob("scene*.json")):
-        graph = EnvironmentGraph.load(path)
+        graph = fix_character_room(EnvironmentGraph.load(path), path.name)
         target = OUT / (path.stem + ".json.gz")
         graph.save(target)
         print(f"{path.name}: {len(graph)} nodes, {graph.num_edges()} edges -> {target.name} "
               f"({target.stat().st_size // 1024} KiB)")
+
+
+def fix_character_room(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:
+    """The graph with the character INSIDE the room its box is in, if its edge says other."""
+    problem = character_room_problem(graph)
+    if problem is None:
+        return graph
+    char = graph.character_id
+    assert char is not None
+    room = rooms_holding_box(graph, char)[0]
+    edges = [e for e in graph.edges() if not (e[0] == char and e[1] == INSIDE
+                                              and e[2] in graph.room_ids)]
+    print(f"{name}: fixed: {problem}; now INSIDE {graph.node(room).label()}")
+    return EnvironmentGraph(graph.nodes.values(), [*edges, (char, INSIDE, room)], graph.meta)
 
 
 if __name__ == "__main__":

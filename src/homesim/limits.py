@@ -83,6 +83,11 @@ PROGRAM_WORKERS = 1
 PROGRAM_QUEUE = 8
 """Large-program requests that may wait for a program worker; more are refused with 503."""
 
+LARGE_BODIES_AT_ONCE = 1
+"""Requests with bodies over `INLINE_PROGRAM_CHARS` bytes that the server reads and answers
+at the same time (1: small requests wait behind at most one); up to `PROGRAM_QUEUE` more
+wait unread, further ones get 503."""
+
 HEADER_TIMEOUT_S = 10.0
 """Seconds a client has to send a request's headers; slower connections are closed."""
 

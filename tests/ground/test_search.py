@@ -217,3 +217,20 @@ def test_prepare_never_mutates_and_ground_in_prepared_home():
     assert home.to_dict() == before
     assert g.bindings[("wine_glass", 1)] == prep.added[0].node_id
     assert execute(g.program, prep.graph).executable
+
+
+def test_eaten_food_is_eatable_in_full_homes(shared_data):
+    """Issue 12: scene2 and scene3 have food but none of it EATABLE, scene1 one piece; a
+    program eating six pieces gets eatable ones (added by preparation), as in the trimmed
+    homes."""
+    from homesim.ground.search import prepare_and_ground
+    from homesim.sim import execute
+
+    text = "[Walk] <kitchen> (1)\n" + "".join(
+        f"[Walk] <food_food> ({i})\n[Eat] <food_food> ({i})\n" for i in range(1, 7))
+    program = parse_program(text)
+    for home in ("scene1", "scene2", "scene3", "scene2_trimmed"):
+        prepared, grounding = prepare_and_ground(program, load_home(home), seed=0)
+        assert execute(grounding.program, prepared.graph).executable, home
+        eaten = {grounding.bindings[("food_food", i)] for i in range(1, 7)}
+        assert all("EATABLE" in prepared.graph.node(n).properties for n in eaten), home

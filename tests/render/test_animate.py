@@ -144,3 +144,26 @@ def test_lamp_lights_up_when_switched_on():
     _, tl = _run("[Walk] <tablelamp> (25)\n[SwitchOn] <tablelamp> (25)\n")
     a, b = tl.step_frames[1]
     assert 25 not in tl.lamps[a] and 25 in tl.lamps[b]
+
+
+def test_agent_stands_where_grounding_chose(box_home):
+    """One floor model: each interaction step ends with the agent on grounding's spot."""
+    from homesim.ground import prepare_and_ground
+
+    program = homesim.parse_program("[Walk] <cup> (1)\n[Grab] <cup> (1)\n[Walk] <tv> (1)\n"
+                                    "[SwitchOn] <tv> (1)\n[Walk] <fridge> (1)\n"
+                                    "[Open] <fridge> (1)\n")
+    prepared, grounding = prepare_and_ground(program, box_home, seed=0)
+    assert grounding.standing is not None
+    g = prepared.graph
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(grounding.program, g, trace=True)
+    plain = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10, standing=grounding.standing).run(result)
+    moved = 0
+    for i in (1, 3, 5):  # Grab, SwitchOn, Open
+        spot = np.array(grounding.standing[i])
+        end = tl.qpos[tl.step_frames[i][1]][:2]
+        assert np.linalg.norm(end - spot) < 0.06, (i, end, spot)
+        moved += np.linalg.norm(plain.qpos[plain.step_frames[i][1]][:2] - spot) > 0.06
+    assert moved  # without the spots render stands elsewhere: the test can fail

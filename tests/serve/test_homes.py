@@ -28,6 +28,17 @@ def test_actions_are_grouped_in_the_nine_categories(client):
     assert flat["SwitchOn"]["key"] == "SWITCHON" and flat["Walk"]["animated"] is True
 
 
+def test_actions_serve_the_catalog_rows(client):
+    from homesim.program import ACTIONS
+
+    data = client.get("/api/actions").json()
+    assert data["actions"] == [a.to_dict() for a in ACTIONS.values()]
+    rows = {a["key"]: a for a in data["actions"]}
+    assert rows["PUTBACK"]["connector"] == "on" and rows["PUTIN"]["connector"] == "into"
+    assert rows["POUR"]["connector"] == "into" and rows["WALK"]["connector"] is None
+    assert rows["PUTBACK"]["aliases"] == ["PUT"] and "LOOKAT_SHORT" in rows["LOOKAT"]["aliases"]
+
+
 def test_action_rows_carry_what_the_editor_draws_and_reads(client):
     flat = {a["key"]: a for c in client.get("/api/actions").json()["categories"]
             for a in c["actions"]}

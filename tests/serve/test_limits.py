@@ -130,3 +130,48 @@ def test_a_body_trickled_slower_than_its_deadline_gets_408_and_is_closed(tmp_pat
     finally:
         server.should_exit = True
         thread.join(timeout=10)
+
+
+def test_large_bodies_are_let_in_a_few_at_a_time_and_the_rest_refused():
+    import asyncio
+
+    from homesim.serve.limits import LargeBodyGate
+
+    inside = []
+
+    async def slow_app(scope, receive, send):
+        inside.append(scope["path"])
+        await asyncio.sleep(0.2)
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await send({"type": "http.response.body", "body": b"ok"})
+
+    gate = LargeBodyGate(slow_app, threshold=100, at_once=1, waiting=1)
+
+    async def call(path: str, length: int) -> tuple[int, dict, float]:
+        scope = {"type": "http", "method": "POST", "path": path,
+                 "headers": [(b"content-length", str(length).encode())]}
+        sent = []
+
+        async def receive():
+            return {"type": "http.request", "body": b" " * length, "more_body": False}
+
+        async def send(message):
+            sent.append(message)
+
+        t0 = asyncio.get_running_loop().time()
+        await gate(scope, receive, send)
+        headers = {k.decode(): v.decode() for k, v in sent[0].get("headers", [])}
+        return sent[0]["status"], headers, asyncio.get_running_loop().time() - t0
+
+    async def scenario():
+        large = [asyncio.create_task(call(f"/large{i}", 1000)) for i in range(3)]
+        await asyncio.sleep(0.05)
+        small = await call("/small", 10)
+        return small, await asyncio.gather(*large)
+
+    small, large = asyncio.run(scenario())
+    assert small[0] == 200 and small[2] < 0.3  # not queued behind the large ones
+    assert [status for status, _, _ in large] == [200, 200, 503]
+    assert large[2][1]["retry-after"] == "2" and large[2][2] < 0.1
+    assert large[1][2] > 0.35  # waited for the first
+    assert inside == ["/large0", "/small", "/large1"]

@@ -1,5 +1,6 @@
 import gzip
 import json
+import re
 
 import pytest
 
@@ -64,6 +65,23 @@ def broken(mutate):
         (broken(lambda d: d["nodes"][3].update(bounding_box={"center": [0, 0], "size": [1, 1, 1]})),
          r"bounding_box 'center' must be 3 finite numbers"),
         (broken(lambda d: d["edges"].append("12 ON 13")), r"an edge must be a JSON object"),
+        (broken(lambda d: d["edges"].append({"from_id": 12, "relation_type": ["ON"],
+                                             "to_id": 13})), r"edges\[14\]: unknown relation"),
+        (broken(lambda d: d["edges"].append({"from_id": True, "relation_type": "ON",
+                                             "to_id": 13})), r"edges\[14\]: 'from_id' and"),
+        (broken(lambda d: d["edges"].append({"from_id": 12, "to_id": 13})),
+         r"edges\[14\]: unknown relation None"),
+        (broken(lambda d: d["nodes"][3].update(
+            bounding_box={"center": [1e308, 0, 0], "size": [1, 1, 1]})),
+         r"^g.json: nodes\[3\] \(id 11\): bounding_box 'center' must be within ±10000 m"),
+        (broken(lambda d: d["nodes"][3].update(
+            bounding_box={"center": [0, 0, 0], "size": [1, -1, 1]})),
+         r"nodes\[3\] \(id 11\): bounding_box 'size' must be between 0 and 1000 m"),
+        (broken(lambda d: d["nodes"][3].update(
+            bounding_box={"center": [0, 0, 0], "size": [1, float("nan"), 1]})),
+         r"nodes\[3\] \(id 11\): bounding_box 'size' must be 3 finite numbers"),
+        (broken(lambda d: d["nodes"].append({"id": 99, "class_name": "character"})),
+         r"^g.json: character 99 is INSIDE no room"),
     ],
 )
 def test_broken_graphs_name_the_fault(data, pattern):
@@ -104,6 +122,47 @@ def test_loads_the_ten_shared_scenes(shared_data):
                                      for e in raw["edges"]})
         assert g.character_id is not None and g.room_of(g.character_id) in g.room_ids
         assert EnvironmentGraph.from_dict(g.to_dict()) == g
+
+
+def test_huge_coordinates_are_refused_at_load_not_in_grounding():
+    d = tiny_home_dict()
+    for n in d["nodes"]:
+        n["bounding_box"] = {"center": [0, 1, 0], "size": [1, 1, 1]}
+    d["nodes"][3]["bounding_box"] = {"center": [1e308, 1, 1e308], "size": [1e308, 1, 1]}
+    with pytest.raises(GraphError, match=r"nodes\[3\] \(id 11\): bounding_box 'center'"):
+        EnvironmentGraph.from_dict(d)
+    d["nodes"][3]["bounding_box"] = {"center": [1e4, 1, -1e4], "size": [1e3, 0, 1]}
+    assert EnvironmentGraph.from_dict(d).node(11).bounding_box.size == (1e3, 0.0, 1.0)
+
+
+@pytest.mark.parametrize(("text", "pattern"), [
+    ('{"nodes": [{"id": 1, "class_name": "kitch', r"invalid JSON at line 1 column 36: a string "
+     r"starting there never ends; the text ends early \(is the file truncated\?\)"),
+    ('{"nodes": [{"id": 1,', r"invalid JSON at line 1 column 21: expecting property name "
+     r"enclosed in double quotes; the text ends early \(is the file truncated\?\)"),
+    ("", r"the file is empty, not a JSON graph"),
+    ('{"nodes": [] "edges": []}', r"invalid JSON at line 1 column 14: expecting ',' delimiter"),
+])
+def test_json_errors_are_full_lines_naming_the_file(tmp_path, text, pattern):
+    bad = tmp_path / "bad.json"
+    bad.write_text(text)
+    with pytest.raises(GraphError, match=f"^{re.escape(str(bad))}: {pattern}$"):
+        EnvironmentGraph.load(bad)
+
+
+def test_truncated_gzip_and_a_home_without_character_name_the_file(tmp_path):
+    gz = tmp_path / "g.json.gz"
+    gz.write_bytes(gzip.compress(json.dumps(tiny_home_dict()).encode())[:-12])
+    with pytest.raises(GraphError, match=r"g.json.gz: the gzip data ends early"):
+        EnvironmentGraph.load(gz)
+    d = tiny_home_dict()
+    d["nodes"] = [n for n in d["nodes"] if n["class_name"] != "character"]
+    d["edges"] = [e for e in d["edges"] if 10 not in (e["from_id"], e["to_id"])]
+    path = tmp_path / "nochar.json"
+    path.write_text(json.dumps(d))
+    with pytest.raises(GraphError, match=r"nochar.json: the graph has no character node"):
+        EnvironmentGraph.load(path)
+    assert EnvironmentGraph.from_dict(d).character_id is None  # dicts may lack one
 
 
 def test_deeply_nested_json_is_a_graph_error(tmp_path):

@@ -2,7 +2,12 @@ import pytest
 
 from homesim.errors import GraphError
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.homes import home_names, load_home
+from homesim.world.homes import (
+    character_room_problem,
+    home_names,
+    load_home,
+    rooms_holding_box,
+)
 
 
 def test_ten_built_in_homes():
@@ -13,7 +18,21 @@ def test_ten_built_in_homes():
 
 def test_built_in_homes_equal_the_shared_scenes(shared_data):
     for name in home_names():
-        assert load_home(name) == EnvironmentGraph.load(shared_data / "scenes" / f"{name}.json")
+        shared = EnvironmentGraph.load(shared_data / "scenes" / f"{name}.json")
+        if name == "scene1":  # the one fix of tools/convert_homes.py
+            assert character_room_problem(shared) == (
+                "character 65 is INSIDE bathroom 1 but its box is in bedroom 67")
+            assert set(shared.edges()) ^ set(load_home(name).edges()) == {
+                (65, "INSIDE", 1), (65, "INSIDE", 67)}
+            continue
+        assert load_home(name) == shared
+
+
+def test_the_character_starts_in_the_room_of_its_box():
+    for name in home_names():
+        assert character_room_problem(load_home(name)) is None, name
+    home = load_home("scene1")
+    assert home.room_of(home.character_id) == 67 == rooms_holding_box(home, 65)[0]
 
 
 def test_full_homes_have_geometry_trimmed_do_not():

@@ -153,8 +153,17 @@ async function pickOption(page, id, field, label) {
 }
 
 /** The open bubble showing `text` (wrapped lines joined), and whether it lies inside the
- * block pane. */
+ * block pane; asked again for up to 2 s, as the editor places a bubble after it opens. */
 async function bubbleInPane(page, text) {
+  let seen = null;
+  for (let i = 0; i < 20 && !seen?.inside; i++) {
+    if (i) await page.waitForTimeout(100);
+    seen = await bubbleNow(page, text);
+  }
+  return seen;
+}
+
+async function bubbleNow(page, text) {
   return page.evaluate((text) => {
     const squash = (t) => t.replace(/\s+/g, "");
     const pane = document.querySelector("#blockly").getBoundingClientRect();
@@ -238,6 +247,10 @@ async function main() {
     const failRow = page.locator("#results li.fail");
     check(await failRow.count() === 1, "the failing step is not marked ✗");
     check((await failRow.textContent()).includes(GRAB_REASON), "the ✗ row lacks the reason");
+    // The bubble opens once Blockly has rendered the block (asynchronously).
+    await page.waitForFunction((id) => window.homesimEditor.workspace().getBlockById(id)
+      .getIcon(window.homesimEditor.Blockly.icons.IconType.WARNING)?.bubbleIsVisible(), grab,
+    { timeout: 3000 }).catch(() => {});
     const warning = await page.evaluate((id) => {
       const block = window.homesimEditor.workspace().getBlockById(id);
       const icon = block.getIcon(window.homesimEditor.Blockly.icons.IconType.WARNING);

@@ -7,7 +7,14 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TaskID,
+    TextColumn,
+    TimeElapsedColumn,
+)
 from rich.table import Table
 
 from homesim.cli.common import console
@@ -52,7 +59,8 @@ class _Reporter:
     """Progress callback that keeps one bar per stage."""
 
     def __init__(self, bar: Progress, prefix: str):
-        self.bar, self.prefix, self.tasks = bar, prefix, {}
+        self.bar, self.prefix = bar, prefix
+        self.tasks: dict[str, TaskID] = {}
 
     def __call__(self, stage: str, done: int, total: int, value: float) -> None:
         label = f"{self.prefix} {stage}"

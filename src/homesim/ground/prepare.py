@@ -41,10 +41,11 @@ from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.placement import place_box
 from homesim.ground.standing import FloorPlan, has_geometry, note_prepared
-from homesim.program.model import ObjectRef, Program
+from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.state import SimState
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.vocab import (
+    CAN_OPEN,
     CHARACTER_CLASS,
     CLOSE,
     CONTAINERS,
@@ -71,40 +72,17 @@ ROOM_NAMES = frozenset({
 DEFAULT_SIZE = (0.15, 0.15, 0.15)
 """Box size (m) for an added object whose class has no prefab dimensions."""
 
-# Action key -> (state group, the state the object must be in before the step).
-_PRESUPPOSES: dict[str, tuple[str, str]] = {
-    "SWITCHON": ("switch", S_OFF), "SWITCHOFF": ("switch", S_ON),
-    "OPEN": ("door", S_CLOSED), "CLOSE": ("door", S_OPEN),
-    "PLUGIN": ("plug", S_PLUGGED_OUT), "PLUGOUT": ("plug", S_PLUGGED_IN),
-}
+# Every per-action fact (presupposed states, posture, needed properties, reach, moves)
+# is a column of the action catalog (`homesim.program.actions`); here only the state
+# groups: a presupposed state replaces the other states of its group.
 _GROUPS = {"switch": (S_ON, S_OFF), "door": (S_OPEN, S_CLOSED),
            "plug": (S_PLUGGED_IN, S_PLUGGED_OUT)}
-# Character posture before a step that needs one: (state, set when first seen).
-_POSTURE_NEEDED = {"STANDUP": S_SITTING, "WAKEUP": S_LYING, "SLEEP": S_LYING}
-_POSTURE_SET = frozenset({"SIT", "LIE", "WALK", "RUN"})
-# (action key, argument position) -> properties of which the object needs one. Mirrors the
-# property checks of homesim.sim.effects, which has a few exceptions by class name (water
-# can be grabbed, a desk opened): grounding only orders candidates by it (those lacking a
-# needed property last) and never rejects one; the simulator stays the judge.
-NEEDS: dict[tuple[str, int], frozenset[str]] = {
-    (k, i): frozenset(v.split()) for k, i, v in (
-        ("GRAB", 0, "GRABBABLE"), ("SWITCHON", 0, "HAS_SWITCH"), ("SWITCHOFF", 0, "HAS_SWITCH"),
-        ("SIT", 0, "SITTABLE"), ("LIE", 0, "LIEABLE"), ("OPEN", 0, "CAN_OPEN"),
-        ("CLOSE", 0, "CAN_OPEN"), ("WATCH", 0, "LOOKABLE"), ("READ", 0, "READABLE"),
-        ("PLUGIN", 0, "HAS_PLUG"), ("PLUGOUT", 0, "HAS_PLUG"), ("PUTON", 0, "CLOTHES"),
-        ("PUTOFF", 0, "CLOTHES"), ("DRINK", 0, "DRINKABLE RECIPIENT"),
-        ("POUR", 0, "POURABLE DRINKABLE"), ("POUR", 1, "RECIPIENT"), ("GREET", 0, "PERSON"),
-        ("CUT", 0, "CUTTABLE"), ("PUTBACK", 0, "GRABBABLE"), ("PUTIN", 0, "GRABBABLE"))}
-
-
-_LOOKING = frozenset({"WALK", "RUN", "FIND", "TURNTO", "LOOKAT", "POINTAT", "WATCH"})
-MOVES = frozenset({"WALK", "RUN", "FIND"})
-"""Steps that take the agent to their object."""
-NEEDS_REACH = frozenset({
-    "GRAB", "TOUCH", "OPEN", "CLOSE", "SWITCHON", "SWITCHOFF", "PLUGIN", "PLUGOUT", "PUSH",
-    "PULL", "MOVE", "SQUEEZE", "PUTBACK", "PUTIN", "POUR", "TYPE", "SIT", "LIE", "WIPE",
-    "WASH", "RINSE", "SCRUB", "EAT", "CUT"})
-"""Steps whose (last) object must be within the agent's reach."""
+_GROUP_OF = {state: group for group, states in _GROUPS.items() for state in states}
+_ABLE = {"switch": HAS_SWITCH, "plug": HAS_PLUG, "door": CAN_OPEN}
+"""The property an object needs for a state of the group to be presupposed "if able"."""
+_SEATED = frozenset({S_SITTING, S_LYING})
+STANDING = "STANDING"
+"""`ActionSpec.posture_after` of steps that leave the character on its feet."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -189,7 +167,6 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
             or no destination and no free floor for it).
     """
     kb = kb or default_kb()
-    rng = random.Random(seed)
     context = _Context(program, graph, kb)
     missing = context.missing + [ref for refs in context.refs_by_name.values() for ref in refs
                                  if ref.key in extra and ref not in context.missing]
@@ -200,30 +177,34 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
     if not missing and not states:
         return Prepared(graph, [])
     st = SimState(graph)
+    changed = _set_states(st, states)
+    adder = _Adder(st, program, context, kb, random.Random(seed), pins or {})
+    for ref in missing:
+        addition = adder.add(ref)
+        groups = _groups_of_class(required, ref.name)
+        node = st.node(addition.node_id)
+        new = _apply(node.states, node.properties, groups)
+        if new != node.states:
+            st.set_states(addition.node_id, new)
+    prepared = st.to_graph()
+    if adder.plan is not None:
+        # Let standing spots of the prepared home reuse those of this one (see FloorPlan).
+        added = adder.added
+        floor_rooms = frozenset(a.room for a in added if a.destination_id == a.room)
+        note_prepared(prepared, graph, floor_rooms)
+    return Prepared(prepared, adder.added, changed)
+
+
+def _set_states(st: SimState, states: dict[int, frozenset[str]]
+                ) -> list[tuple[int, frozenset[str], frozenset[str]]]:
+    """Set the presupposed states; (node, before, after) for those that change."""
     changed = []
     for node_id, new in states.items():
         old = st.states(node_id)
         if new != old:
             st.set_states(node_id, new)
             changed.append((node_id, old, new))
-    plan = FloorPlan(graph) if has_geometry(graph) else None
-    added: list[Addition] = []
-    by_key: dict[Key, int] = {}
-    for ref in missing:
-        addition = _add(st, ref, program, context, kb, rng, plan, added, by_key, pins or {})
-        added.append(addition)
-        by_key[ref.key] = addition.node_id
-        groups = required.get(_first_of_class(required, ref.name), {})
-        node = st.node(addition.node_id)
-        new = _apply(node.states, node.properties, groups)
-        if new != node.states:
-            st.set_states(addition.node_id, new)
-    prepared = st.to_graph()
-    if plan is not None:
-        # Let standing spots of the prepared home reuse those of this one (see FloorPlan).
-        floor_rooms = frozenset(a.room for a in added if a.destination_id == a.room)
-        note_prepared(prepared, graph, floor_rooms)
-    return Prepared(prepared, added, changed)
+    return changed
 
 
 Key = tuple[str, int]
@@ -250,38 +231,12 @@ class _Context:
         classes = {c for names in self.names.values() for c in names}
         self.classes = classes
         self.rooms = [r.id for r in graph.rooms() if r.class_name in classes]
-        needs: dict[str, set[frozenset[str]]] = {}
-        for step in program.steps:
-            for pos, ref in enumerate(step.args):
-                need = NEEDS.get((step.action.key, pos))
-                if need is not None:
-                    needs.setdefault(ref.name, set()).add(need)
         # Objects on a seat take its place (the simulator counts them), so nothing is put
         # on what the program sits or lies on.
-        self.seats = {c for step in program.steps if step.action.key in ("SIT", "LIE")
+        self.seats = {c for step in program.steps if step.action.posture_after in _SEATED
                       for ref in step.args for c in self.names[ref.name]}
-        # Clothes the program takes off before doing anything else with them (but walk
-        # to them, look at them) are worn.
-        self.worn: set[Key] = set()
-        seen: set[Key] = set()
-        for step in program.steps:
-            if step.action.key in _LOOKING:
-                continue
-            for ref in step.args:
-                if ref.key not in seen and step.action.key == "PUTOFF":
-                    self.worn.add(ref.key)
-                seen.add(ref.key)
-        self.missing: list[ObjectRef] = []
-        for name, refs in self.refs_by_name.items():
-            ids = instances_of(graph, self.names[name])
-            wanted = needs.get(name, set())
-            if wanted and not any(all(not graph.nodes[i].properties.isdisjoint(w)
-                                      for w in wanted) for i in ids):
-                ids = []  # none can do what the program does with it (folded clothes)
-            self.missing += [r for r in refs[len(ids):] if r.key not in self.worn]
-        # A fresh instance of each, worn by the character (none of the home's is worn).
-        self.missing += [r for refs in self.refs_by_name.values() for r in refs
-                         if r.key in self.worn]
+        self.worn = _worn(program)
+        self.missing = self._missing(program, graph)
         room_classes = {r.class_name for r in graph.rooms()}
         self.is_room = {n: bool(room_classes.intersection(c)) for n, c in self.names.items()}
         self.used_before: dict[Key, set[str]] = {}
@@ -290,131 +245,208 @@ class _Context:
         self.room_before: dict[Key, list[str]] = {}
         self._program = program
 
+    def _missing(self, program: Program, graph: EnvironmentGraph) -> list[ObjectRef]:
+        """The program objects the home has no instance left for, worn clothes last."""
+        needs = _needs_by_name(program)
+        missing: list[ObjectRef] = []
+        for name, refs in self.refs_by_name.items():
+            ids = instances_of(graph, self.names[name])
+            wanted = needs.get(name, set())
+            if wanted:  # only those that can do what the program does with it (eat it)
+                ids = [i for i in ids if all(not graph.nodes[i].properties.isdisjoint(w)
+                                             for w in wanted)]
+            missing += [r for r in refs[len(ids):] if r.key not in self.worn]
+        # A fresh instance of each, worn by the character (none of the home's is worn).
+        missing += [r for refs in self.refs_by_name.values() for r in refs
+                    if r.key in self.worn]
+        return missing
+
     def find_anchors(self, free: set[Key]) -> None:
         """Anchor each object of `free` (to be added) where the program needs it.
 
         Places are the starting places of the program's objects; `parent` joins a place
         to the place it must be near. An object is at its starting place until the
         program puts it somewhere else."""
-        parent: dict[Key, Key] = {}
-        pos: dict[Key, Key] = {}  # object -> the starting place it is at now
-        held: set[Key] = set()
-        first_at: dict[Key, Key] = {}
-        used: set[str] = set()
-        opened: set[str] = set()
-        agent: Key | None = None  # the place the agent is at
-        sitting = False  # a seated agent's Find does not walk: it needs reach
-        room: list[str] = []  # classes of the room the agent last walked into
-
-        def place(k: Key) -> Key:
-            p = pos.get(k, k)
-            while p in parent:
-                p = parent[p]
-            return p
-
+        walk = _AnchorWalk(self, free)
         for step in self._program.steps:
-            key = step.action.key
-            for ref in step.args:
-                self.used_before.setdefault(ref.key, set(used))
-                self.opened_before.setdefault(ref.key, set(opened))
-                self.room_before.setdefault(ref.key, room)
-                if agent is not None and agent != ref.key:
-                    first_at.setdefault(ref.key, agent)
-            reach = key in NEEDS_REACH or (key == "FIND" and sitting)
-            if key in ("SIT", "LIE"):
-                sitting = True
-            elif key in ("STANDUP", "WALK", "RUN"):
-                sitting = False
-            if key in MOVES and step.args and not reach:
-                ref = step.args[0]
-                if self.is_room[ref.name]:
-                    agent, room = None, self.names[ref.name]
-                elif ref.key not in held:
-                    agent = place(ref.key)
-            if reach and step.args and agent is not None:
-                target = step.args[-1]
-                if target.key not in held and not self.is_room[target.name]:
-                    there = place(target.key)
-                    if there != agent:
-                        # Only a starting place of an object still to be added can move.
-                        # Prefer moving the place the agent went to (the detergent it
-                        # walked to goes near the washing machine it pours into).
-                        if agent in free and agent not in self.anchor:
-                            self.anchor[agent] = parent[agent] = there
-                            agent = there
-                        elif there in free and there not in self.anchor:
-                            self.anchor[there] = parent[there] = agent
-            for ref in step.args:
-                used.update(self.names[ref.name])
-                if key == "OPEN":
-                    opened.update(self.names[ref.name])
-                elif key == "CLOSE":  # open when the object is needed, not just once
-                    opened.difference_update(self.names[ref.name])
-            if key == "GRAB" and step.args:
-                if step.args[0].key not in pos:
-                    pos[step.args[0].key] = place(step.args[0].key)
-                held.add(step.args[0].key)
-            elif key in ("PUTBACK", "PUTIN") and len(step.args) == 2:
-                held.discard(step.args[0].key)
-                pos[step.args[0].key] = place(step.args[1].key)
-            elif key in ("DROP", "RELEASE", "PUTOBJBACK") and step.args:
-                held.discard(step.args[0].key)
-                if agent is not None:
-                    pos[step.args[0].key] = agent
-        # Otherwise: near what the agent was at when the program first names it.
-        for k, at in first_at.items():
-            if k in free and k not in self.anchor and k not in parent:
+            walk.step(step)
+        walk.anchor_where_first_named()
+
+
+def _needs_by_name(program: Program) -> dict[str, set[frozenset[str]]]:
+    """Program object name -> the property requirements its steps put on it."""
+    needs: dict[str, set[frozenset[str]]] = {}
+    for step in program.steps:
+        for pos, ref in enumerate(step.args):
+            for need in step.action.needs_of(pos):
+                needs.setdefault(ref.name, set()).add(need)
+    return needs
+
+
+def _worn(program: Program) -> set[Key]:
+    """Clothes the program takes off before doing anything else with them (but walk to
+    them, look at them): they are worn."""
+    worn: set[Key] = set()
+    seen: set[Key] = set()
+    for step in program.steps:
+        if not step.action.handles:
+            continue
+        for ref in step.args:
+            if ref.key not in seen and step.action.worn_before:
+                worn.add(ref.key)
+            seen.add(ref.key)
+    return worn
+
+
+class _AnchorWalk:
+    """Follows the agent and the program's objects through the steps (`find_anchors`)."""
+
+    def __init__(self, context: _Context, free: set[Key]):
+        self.context, self.free = context, free
+        self.parent: dict[Key, Key] = {}
+        self.pos: dict[Key, Key] = {}  # object -> the starting place it is at now
+        self.held: set[Key] = set()
+        self.first_at: dict[Key, Key] = {}
+        self.used: set[str] = set()
+        self.opened: set[str] = set()
+        self.agent: Key | None = None  # the place the agent is at
+        self.sitting = False
+        self.room: list[str] = []  # classes of the room the agent last walked into
+
+    def place(self, k: Key) -> Key:
+        p = self.pos.get(k, k)
+        while p in self.parent:
+            p = self.parent[p]
+        return p
+
+    def step(self, step: Step) -> None:
+        action = step.action
+        self.note_first_use(step)
+        # A seated agent's Find does not walk: it needs the object within reach.
+        reach = action.reach or (action.moves and action.posture_after != STANDING
+                                 and self.sitting)
+        if action.posture_after is not None:
+            self.sitting = action.posture_after in _SEATED
+        if action.moves and step.args and not reach:
+            self.move_agent(step.args[0])
+        if reach and step.args and self.agent is not None:
+            self.join_places(step.args[-1])
+        self.note_use(step)
+        self.move_held(step)
+
+    def note_first_use(self, step: Step) -> None:
+        """What was used and opened, and where the agent was, when an object first comes."""
+        c = self.context
+        for ref in step.args:
+            c.used_before.setdefault(ref.key, set(self.used))
+            c.opened_before.setdefault(ref.key, set(self.opened))
+            c.room_before.setdefault(ref.key, self.room)
+            if self.agent is not None and self.agent != ref.key:
+                self.first_at.setdefault(ref.key, self.agent)
+
+    def move_agent(self, ref: ObjectRef) -> None:
+        if self.context.is_room[ref.name]:
+            self.agent, self.room = None, self.context.names[ref.name]
+        elif ref.key not in self.held:
+            self.agent = self.place(ref.key)
+
+    def join_places(self, target: ObjectRef) -> None:
+        """The agent acts on `target` within reach: its place and the agent's are one."""
+        c = self.context
+        if target.key in self.held or c.is_room[target.name]:
+            return
+        there = self.place(target.key)
+        agent = self.agent
+        if there == agent or agent is None:
+            return
+        # Only a starting place of an object still to be added can move. Prefer moving
+        # the place the agent went to (the detergent it walked to goes near the washing
+        # machine it pours into).
+        if agent in self.free and agent not in c.anchor:
+            c.anchor[agent] = self.parent[agent] = there
+            self.agent = there
+        elif there in self.free and there not in c.anchor:
+            c.anchor[there] = self.parent[there] = agent
+
+    def note_use(self, step: Step) -> None:
+        sets = step.action.sets_states
+        for ref in step.args:
+            names = self.context.names[ref.name]
+            self.used.update(names)
+            if S_OPEN in sets:
+                self.opened.update(names)
+            elif S_CLOSED in sets:  # open when the object is needed, not just once
+                self.opened.difference_update(names)
+
+    def move_held(self, step: Step) -> None:
+        """Follow what the step takes, puts or lets go of."""
+        hands, args = step.action.hands, step.args
+        if hands == "take" and args:
+            if args[0].key not in self.pos:
+                self.pos[args[0].key] = self.place(args[0].key)
+            self.held.add(args[0].key)
+        elif hands == "put" and len(args) == 2:
+            self.held.discard(args[0].key)
+            self.pos[args[0].key] = self.place(args[1].key)
+        elif hands == "let_go" and args:
+            self.held.discard(args[0].key)
+            if self.agent is not None:
+                self.pos[args[0].key] = self.agent
+
+    def anchor_where_first_named(self) -> None:
+        """Otherwise: near what the agent was at when the program first names it."""
+        c = self.context
+        for k, at in self.first_at.items():
+            if k in self.free and k not in c.anchor and k not in self.parent:
                 p = at
-                while p in parent:
-                    p = parent[p]
+                while p in self.parent:
+                    p = self.parent[p]
                 if p != k:
-                    self.anchor[k] = p
+                    c.anchor[k] = p
 
 
 def _presupposed(program: Program) -> tuple[dict[Key, dict[str, str]], str | None]:
     """Per program object, the state of each group (switch, door, plug) its first steps
     presuppose; and the posture the character must start in, if any."""
     required: dict[Key, dict[str, str]] = {}
-    posture: str | None = None
-    posture_known = False
+    posture = _start_posture(program)
     for step in program.steps:
-        key = step.action.key
-        if not posture_known:
-            if key in _POSTURE_NEEDED:
-                posture, posture_known = _POSTURE_NEEDED[key], True
-            elif key in _POSTURE_SET:
-                posture_known = True
-        rule = _PRESUPPOSES.get(key)
-        if rule is None or not step.args:
+        action = step.action
+        if not step.args or not action.presupposes:
             continue
         groups = required.setdefault(step.args[0].key, {})
-        group, state = rule
-        groups.setdefault(group, state)
+        for state in action.presupposes:
+            groups.setdefault(_GROUP_OF[state], state)
         # Switching on needs power, opening needs the device off: presuppose those too
         # unless an earlier step already settled them.
-        if key == "SWITCHON":
-            groups.setdefault("plug?", S_PLUGGED_IN)
-        if key == "OPEN":
-            groups.setdefault("switch?", S_OFF)
+        for state in action.presupposes_if_able:
+            groups.setdefault(_GROUP_OF[state] + "?", state)
     return required, posture
 
 
-def _first_of_class(required: dict[Key, dict[str, str]], name: str) -> Key | None:
-    return next((k for k in required if k[0] == name), None)
+def _start_posture(program: Program) -> str | None:
+    """The posture the first step that needs or sets one needs (None: it sets one)."""
+    for step in program.steps:
+        if step.action.posture_needed is not None:
+            return step.action.posture_needed
+        if step.action.posture_after is not None:
+            return None
+    return None
+
+
+def _groups_of_class(required: dict[Key, dict[str, str]], name: str) -> dict[str, str]:
+    """The groups the first program object of class `name` presupposes ({} if none)."""
+    return next((groups for key, groups in required.items() if key[0] == name), {})
 
 
 def _apply(states: frozenset[str], properties: frozenset[str],
            groups: dict[str, str]) -> frozenset[str]:
     out = set(states)
     for group, state in groups.items():
-        if group == "plug?":
-            if HAS_PLUG not in properties or "plug" in groups:
+        if group.endswith("?"):  # only if able, and not set by the object's own steps
+            group = group[:-1]
+            if _ABLE[group] not in properties or group in groups:
                 continue
-            group = "plug"
-        elif group == "switch?":
-            if HAS_SWITCH not in properties or "switch" in groups:
-                continue
-            group = "switch"
         out.difference_update(_GROUPS[group])
         out.add(state)
     return frozenset(out)
@@ -465,143 +497,233 @@ def _instances(st: SimState, classes: list[str], added: list[Addition]) -> list[
     return ids
 
 
-def _add(st: SimState, ref: ObjectRef, program: Program, context: _Context,
-         kb: ObjectKnowledge, rng: random.Random, plan: FloorPlan | None,
-         added: list[Addition], by_key: dict[Key, int], pins: Mapping[Key, int]) -> Addition:
-    graph = st.graph
-    name = ref.name
-    step_no, step_text = first_use(program, ref.key)
-    where = f"step {step_no} {step_text}: " if step_no else ""
-    names = context.names[name]
-    lacks = (f"the home has {'too few' if _instances(st, names, added) else 'no'} "
-             f"{' or '.join(names)} for <{name}> ({ref.instance})")
-    if (name == CHARACTER_CLASS or ROOM_NAMES.intersection(names)
-            or any(n.is_room for c in names for n in graph.nodes_of_class(c))):
-        raise GroundingError(f"{where}{lacks}; rooms and characters cannot be added",
-                             step_no, str(ref), "rooms")
-    if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c) for c in names):
-        raise GroundingError(f"{where}{lacks}, and the knowledge base does not know "
-                             f"{name!r}, so none can be added", step_no, str(ref), "")
-    placements = []
-    for c in names:
-        placements = list(kb.placements(c))
-        if placements:
-            break
-    used = context.used_before.get(ref.key, set())
-    opened = context.opened_before.get(ref.key, set())
-    # Where the agent is when the program needs the object: put it within reach.
-    walked_into = context.room_before.get(ref.key, [])
+Option = tuple[tuple[bool, int, bool, int, float], int, str, int]
+"""(score, destination, relation, room) of one place to put an added object."""
 
-    def room_rank(room: int | None) -> int:
-        """0: the room the agent walked into before; 1: a room the program names; 2: other
-        rooms and no room (a node outside every room, e.g. a second character)."""
-        if room is None:
-            return 2
-        if graph.nodes[room].class_name in walked_into:
-            return 0
-        return 1 if room in context.rooms else 2
 
-    char = graph.character_id
-    if ref.key in context.worn and char is not None and st.room_of(char) is not None:
-        # Worn: ON the character, in the room the program takes it off in, and within
-        # reach of the other clothes it wears (finding one finds the others).
-        rooms = [r for r in graph.room_ids if room_rank(r) == 0]
+class _Adder:
+    """Adds the missing objects one by one (`prepare`): near their anchor, on or in a
+    destination the knowledge base allows, else on free floor."""
+
+    def __init__(self, st: SimState, program: Program, context: _Context,
+                 kb: ObjectKnowledge, rng: random.Random, pins: Mapping[Key, int]):
+        self.st, self.program, self.context, self.kb, self.rng = st, program, context, kb, rng
+        self.pins = pins
+        self.plan = FloorPlan(st.graph) if has_geometry(st.graph) else None
+        self.added: list[Addition] = []
+        self.by_key: dict[Key, int] = {}
+
+    def add(self, ref: ObjectRef) -> Addition:
+        """Add one instance for `ref`; GroundingError if it cannot be added."""
+        addition = self._add(ref)
+        self.added.append(addition)
+        self.by_key[ref.key] = addition.node_id
+        return addition
+
+    def _add(self, ref: ObjectRef) -> Addition:
+        st, context = self.st, self.context
+        names = context.names[ref.name]
+        self._check_addable(ref, names)
+        rank = _RoomRank(st.graph, context, ref.key)
+        char = st.graph.character_id
+        if ref.key in context.worn and char is not None and st.room_of(char) is not None:
+            return self._add_worn(ref, names, rank, char)
+        anchors = self._anchors(ref, rank)
+        options = self._kb_options(ref, names, anchors, rank)
+        options += self._evidence_options(ref, names, anchors, rank, options)
+        options.sort()
+        size = _size(names, self.kb) if self.plan is not None else None
+        for kind, attempt in self._attempts(options, anchors, rank):
+            if kind == "dest":
+                addition = self._try_dest(ref, names, attempt, size, anchors)
+            else:
+                addition = self._try_floor(ref, names, attempt, size)
+            if addition is not None:
+                return addition
+        tried = ", ".join(sorted({st.class_name(d) for _, d, _, _ in options}))
+        raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and there is no "
+                             f"free space for one on or in {tried or 'any destination'} or "
+                             "on the floor of any room", first_use(self.program, ref.key)[0],
+                             str(ref), tried)
+
+    def _where(self, ref: ObjectRef) -> str:
+        step_no, step_text = first_use(self.program, ref.key)
+        return f"step {step_no} {step_text}: " if step_no else ""
+
+    def _lacks(self, ref: ObjectRef, names: list[str]) -> str:
+        few = "too few" if _instances(self.st, names, self.added) else "no"
+        return f"the home has {few} {' or '.join(names)} for <{ref.name}> ({ref.instance})"
+
+    def _check_addable(self, ref: ObjectRef, names: list[str]) -> None:
+        """Rooms, the character and classes the knowledge base does not know cannot be
+        added."""
+        graph, kb = self.st.graph, self.kb
+        step_no = first_use(self.program, ref.key)[0]
+        if (ref.name == CHARACTER_CLASS or ROOM_NAMES.intersection(names)
+                or any(n.is_room for c in names for n in graph.nodes_of_class(c))):
+            raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}; rooms and "
+                                 "characters cannot be added", step_no, str(ref), "rooms")
+        if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c) for c in names):
+            raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and the "
+                                 f"knowledge base does not know {ref.name!r}, so none can be "
+                                 "added", step_no, str(ref), "")
+
+    def _add_worn(self, ref: ObjectRef, names: list[str], rank: _RoomRank,
+                  char: int) -> Addition:
+        """Worn: ON the character, in the room the program takes it off in, and within
+        reach of the other clothes it wears (finding one finds the others)."""
+        st = self.st
+        rooms = [r for r in st.graph.room_ids if rank(r) == 0]
         room = min(rooms) if rooms else st.room_of(char)
         assert room is not None
-        others = [by_key[k] for k in context.worn if k in by_key]
-        return _put(st, ref, names, kb, None, char, ON, room, others)
-    anchors: list[int] = []
-    anchor = context.anchor.get(ref.key)
-    if anchor is not None:
-        exact = by_key.get(anchor, pins.get(anchor))
+        others = [self.by_key[k] for k in self.context.worn if k in self.by_key]
+        return _put(st, ref, names, self.kb, None, char, ON, room, others)
+
+    def _anchors(self, ref: ObjectRef, rank: _RoomRank) -> list[int]:
+        """The node(s) the object should be near: its anchor's node when known."""
+        anchor = self.context.anchor.get(ref.key)
+        if anchor is None:
+            return []
+        exact = self.by_key.get(anchor, self.pins.get(anchor))
         if exact is not None:
-            anchors = [exact]
-        else:
-            anchors = _best_anchor(st, _instances(st, context.names[anchor[0]], added),
-                                   context, room_rank, rng)
-    options = []
-    for p in placements:
-        relation = INSIDE if p.relation.upper() in ("IN", INSIDE) else ON
-        room_classes = set(class_names_for(p.room, kb)) if p.room else None
-        for dest in _instances(st, class_names_for(p.destination, kb), added):
-            room = st.room_of(dest)
-            if room is None or dest == room:
+            return [exact]
+        candidates = _instances(self.st, self.context.names[anchor[0]], self.added)
+        return _best_anchor(self.st, candidates, self.context, rank, self.rng)
+
+    def _kb_options(self, ref: ObjectRef, names: list[str], anchors: list[int],
+                    rank: _RoomRank) -> list[Option]:
+        """Destinations the placement knowledge base allows, scored (lower is better)."""
+        st, context, kb = self.st, self.context, self.kb
+        used = context.used_before.get(ref.key, set())
+        opened = context.opened_before.get(ref.key, set())
+        options: list[Option] = []
+        for p in _placements(names, kb):
+            relation = INSIDE if p.relation.upper() in ("IN", INSIDE) else ON
+            room_classes = set(class_names_for(p.room, kb)) if p.room else None
+            for dest in _instances(st, class_names_for(p.destination, kb), self.added):
+                room = st.room_of(dest)
+                if room is None or dest == room:
+                    continue
+                if room_classes is not None and st.class_name(room) not in room_classes:
+                    continue
+                cls = st.class_name(dest)
+                if relation == ON and cls in context.seats:
+                    continue
+                hidden = relation == INSIDE and S_CLOSED in st.states(dest) and cls not in opened
+                near = 0 if dest in anchors else (
+                    1 if not st.targets(dest, CLOSE).isdisjoint(anchors) else 2)
+                score = (hidden, near, cls not in used, rank(room), self.rng.random())
+                options.append((score, dest, relation, room))
+        return options
+
+    def _evidence_options(self, ref: ObjectRef, names: list[str], anchors: list[int],
+                          rank: _RoomRank, listed_options: list[Option]) -> list[Option]:
+        """The program's own evidence beats the knowledge base: it walks to the coffee
+        table and grabs the novel there, so the novel may lie on the coffee table."""
+        st, kb = self.st, self.kb
+        if not any(GRABBABLE in kb.properties(c) for c in names):
+            return []
+        listed = {(o[1], o[2]) for o in listed_options}
+        opened = self.context.opened_before.get(ref.key, set())
+        options: list[Option] = []
+        for a in anchors:
+            room = st.room_of(a)
+            if room is None or a == room:
                 continue
-            if room_classes is not None and graph.nodes[room].class_name not in room_classes:
-                continue
-            cls = st.class_name(dest)
-            if relation == ON and cls in context.seats:
-                continue
-            hidden = relation == INSIDE and S_CLOSED in st.states(dest) and cls not in opened
-            near = 0 if dest in anchors else (
-                1 if not st.targets(dest, CLOSE).isdisjoint(anchors) else 2)
-            score = (hidden, near, cls not in used, room_rank(room), rng.random())
-            options.append((score, dest, relation, room))
-    # The program's own evidence beats the knowledge base: it walks to the coffee table
-    # and grabs the novel there, so the novel may lie on the coffee table.
-    listed = {(o[1], o[2]) for o in options}
-    small = any(GRABBABLE in kb.properties(c) for c in names)
-    for a in anchors if small else ():
-        room = st.room_of(a)
-        if room is None or a == room:
-            continue
-        props = st.properties(a)
-        hidden = S_CLOSED in st.states(a) and st.class_name(a) not in opened
-        seat = st.class_name(a) in context.seats
-        for relation, prop, blocked in ((ON, SURFACES, seat), (INSIDE, CONTAINERS, hidden)):
-            if prop in props and not blocked and (a, relation) not in listed:
-                options.append(((False, 0, False, room_rank(room), rng.random()),
-                                a, relation, room))
-    options.sort()
-    size = _size(names, kb) if plan is not None else None
-    visible = [o for o in options if not o[0][0]]
-    hidden = [o for o in options if o[0][0]]  # a last resort: grabbing it will fail
-    floor_near = [(a, [a]) for a in anchors if st.room_of(a) not in (None, a)]
-    floor_any = [(r, []) for r in sorted(graph.room_ids, key=lambda r: (room_rank(r),
-                                                                      rng.random()))]
-    # Within reach of the anchor beats a far shelf; a shelf beats the bare floor.
-    attempts: list[tuple[str, Any]] = [("dest", o) for o in visible if o[0][1] < 2]
-    attempts += [("floor", f) for f in floor_near]
-    attempts += [("dest", o) for o in visible if o[0][1] == 2]
-    attempts += [("floor", f) for f in floor_any]
-    attempts += [("dest", o) for o in hidden]
-    for kind, attempt in attempts:
+            props = st.properties(a)
+            hidden = S_CLOSED in st.states(a) and st.class_name(a) not in opened
+            seat = st.class_name(a) in self.context.seats
+            for relation, prop, blocked in ((ON, SURFACES, seat),
+                                            (INSIDE, CONTAINERS, hidden)):
+                if prop in props and not blocked and (a, relation) not in listed:
+                    options.append(((False, 0, False, rank(room), self.rng.random()),
+                                    a, relation, room))
+        return options
+
+    def _attempts(self, options: list[Option], anchors: list[int],
+                  rank: _RoomRank) -> list[tuple[str, Any]]:
+        """Places to try, in order: within reach of the anchor beats a far shelf; a shelf
+        beats the bare floor; a hidden place is a last resort (grabbing it will fail)."""
+        st, rng = self.st, self.rng
+        visible = [o for o in options if not o[0][0]]
+        hidden = [o for o in options if o[0][0]]
+        floor_near = [(a, [a]) for a in anchors if st.room_of(a) not in (None, a)]
+        floor_any: list[tuple[int, list[int]]] = [
+            (r, []) for r in sorted(st.graph.room_ids, key=lambda r: (rank(r), rng.random()))]
+        attempts: list[tuple[str, Any]] = [("dest", o) for o in visible if o[0][1] < 2]
+        attempts += [("floor", f) for f in floor_near]
+        attempts += [("dest", o) for o in visible if o[0][1] == 2]
+        attempts += [("floor", f) for f in floor_any]
+        attempts += [("dest", o) for o in hidden]
+        return attempts
+
+    def _try_dest(self, ref: ObjectRef, names: list[str], option: Option,
+                  size: tuple[float, float, float] | None,
+                  anchors: list[int]) -> Addition | None:
+        """Put the object on or in a destination, if there is room for its box."""
+        st = self.st
+        _, dest, relation, room = option
         box = None
-        if kind == "dest":
-            _, dest, relation, room = attempt
-            if size is not None:
-                dest_box = st.node(dest).bounding_box
-                if dest_box is None:
-                    continue
-                others = [b for b in (st.node(x).bounding_box
-                                      for x in st.sources(dest, relation)) if b is not None]
-                box = place_box(size, dest_box, relation, others, rng)
-                if box is None:
-                    continue
-            near = [a for a in anchors if a == dest or a in st.targets(dest, CLOSE)]
-            return _put(st, ref, names, kb, box, dest, relation, room, near)
+        if size is not None:
+            dest_box = st.node(dest).bounding_box
+            if dest_box is None:
+                return None
+            others = [b for b in (st.node(x).bounding_box
+                                  for x in st.sources(dest, relation)) if b is not None]
+            box = place_box(size, dest_box, relation, others, self.rng)
+            if box is None:
+                return None
+        near = [a for a in anchors if a == dest or a in st.targets(dest, CLOSE)]
+        return _put(st, ref, names, self.kb, box, dest, relation, room, near)
+
+    def _try_floor(self, ref: ObjectRef, names: list[str], attempt: tuple[int, list[int]],
+                   size: tuple[float, float, float] | None) -> Addition | None:
+        """Stand the object on free floor next to `target` (or anywhere in its room)."""
+        st, plan = self.st, self.plan
         target, near = attempt
         room = st.room_of(target)
         assert room is not None
+        box = None
         if plan is not None and size is not None:
             target_box = st.node(target).bounding_box
             if near and target_box is not None:
                 spot = plan.free_floor_near(room, target_box, size[0], size[2])
             else:
-                spot = plan.free_floor(room, size[0], size[2], rng)
+                spot = plan.free_floor(room, size[0], size[2], self.rng)
             if spot is None:
-                continue
+                return None
             box = BoundingBox((spot[0], size[1] / 2, spot[1]), size)
             plan.add_obstacle(room, box)
-        return _put(st, ref, names, kb, box, room, INSIDE, room, near)
-    tried = ", ".join(sorted({st.class_name(d) for _, d, _, _ in options}))
-    raise GroundingError(f"{where}{lacks}, and there is no free space for one on or in "
-                         f"{tried or 'any destination'} or on the floor of any room",
-                         step_no, str(ref), tried)
+        return _put(st, ref, names, self.kb, box, room, INSIDE, room, near)
+
+
+class _RoomRank:
+    """Where the agent is when the program needs an object: 0 for the room it walked into
+    before, 1 for a room the program names, 2 for any other (and for no room)."""
+
+    def __init__(self, graph: EnvironmentGraph, context: _Context, key: Key):
+        self.graph, self.rooms = graph, context.rooms
+        self.walked_into = context.room_before.get(key, [])
+
+    def __call__(self, room: int | None) -> int:
+        if room is None or room not in self.graph.nodes:
+            return 2
+        if self.graph.nodes[room].class_name in self.walked_into:
+            return 0
+        return 1 if room in self.rooms else 2
+
+
+def _placements(names: list[str], kb: ObjectKnowledge) -> list[Any]:
+    """The knowledge base's placements of the first of `names` that has any."""
+    for c in names:
+        placements = list(kb.placements(c))
+        if placements:
+            return placements
+    return []
 
 
 def _best_anchor(st: SimState, candidates: list[int], context: _Context,
-                 room_rank: Any, rng: random.Random) -> list[int]:
+                 room_rank: _RoomRank, rng: random.Random) -> list[int]:
     """The one instance of the anchor's class grounding is likely to choose: in the room
     the agent walked into, close to most objects of the program's classes (the chair at
     the computer)."""

@@ -31,18 +31,19 @@ from __future__ import annotations
 
 import difflib
 import random
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
-from homesim.ground.prepare import NEEDS, Prepared, first_use, instances_of, prepare
+from homesim.ground.prepare import Prepared, first_use, instances_of, prepare
 from homesim.ground.standing import FloorPlan, Spot, has_geometry, square_distance
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
-from homesim.world.graph import EnvironmentGraph
+from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 Key = tuple[str, int]
@@ -126,9 +127,7 @@ class _Search:
         self.needs: dict[Key, list[frozenset[str]]] = {}
         for step in program.steps:
             for pos, ref in enumerate(step.args):
-                need = NEEDS.get((step.action.key, pos))
-                if need is not None:
-                    self.needs.setdefault(ref.key, []).append(need)
+                self.needs.setdefault(ref.key, []).extend(step.action.needs_of(pos))
         self.spots: list[Spot | None] = [None] * len(self.steps)
         for ref in program.object_refs():
             classes = class_names_for(ref.name, kb)
@@ -251,36 +250,47 @@ class _Search:
         """Candidates for `key`, best first (see the module docstring); those lacking a
         property the program's steps need come last."""
         st = self.st
-        char_room = st.room_of(st.char)
         bound = [n for n in self.assign.values() if n not in st.rooms]
         anchors = bound + [n for n in self.fixed if n not in self.owner and n not in st.rooms]
-        used_rooms = {st.room_of(n) for n in self.assign.values()}
+        rooms = (st.room_of(st.char), {st.room_of(n) for n in self.assign.values()})
         boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
                              if n in self.graph.nodes) if b is not None]
-        scored = []
         needs = self.needs.get(key, ())
-        for node in self.domains[key]:
-            props = st.properties(node)
-            lacking = sum(1 for need in needs if props.isdisjoint(need))
-            related = 0
-            if anchors:
-                near = st.targets(node, CLOSE)
-                under = st.targets(node, ON) | st.targets(node, INSIDE)
-                for b in anchors:
-                    if b in near or b in under or not under.isdisjoint(st.targets(b, ON)):
-                        related += 1
-            room = st.room_of(node)
-            room_rank = 0 if room == char_room else (1 if room in used_rooms else 2)
-            dist = 0.0
-            box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
-            if boxes and box is not None:
-                dist = min(square_distance(box.center, b.center) for b in boxes)
-            tie = self.tie.get(node)
-            if tie is None:
-                tie = self.tie[node] = self.rng.random()
-            scored.append((lacking, -related, room_rank, dist, tie, node))
+        scored = [self._score(node, needs, anchors, rooms, boxes) for node in self.domains[key]]
         scored.sort()
         return [s[-1] for s in scored]
+
+    def _score(self, node: int, needs: Sequence[frozenset[str]], anchors: list[int],
+               rooms: tuple[int | None, set[int | None]], boxes: list[BoundingBox]
+               ) -> tuple[int, int, int, float, float, int]:
+        """The sort key of one candidate (lower is better)."""
+        st = self.st
+        props = st.properties(node)
+        lacking = sum(1 for need in needs if props.isdisjoint(need))
+        room = st.room_of(node)
+        room_rank = 0 if room == rooms[0] else (1 if room in rooms[1] else 2)
+        tie = self.tie.get(node)
+        if tie is None:
+            tie = self.tie[node] = self.rng.random()
+        return (lacking, -self._related(node, anchors), room_rank,
+                self._distance(node, boxes), tie, node)
+
+    def _related(self, node: int, anchors: list[int]) -> int:
+        """How many anchors `node` is close to, on or in, or shares a surface with."""
+        if not anchors:
+            return 0
+        st = self.st
+        near = st.targets(node, CLOSE)
+        under = st.targets(node, ON) | st.targets(node, INSIDE)
+        return sum(1 for b in anchors
+                   if b in near or b in under or not under.isdisjoint(st.targets(b, ON)))
+
+    def _distance(self, node: int, boxes: list[BoundingBox]) -> float:
+        """Squared floor distance from `node` to the nearest bound object (0 without)."""
+        box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
+        if not boxes or box is None:
+            return 0.0
+        return min(square_distance(box.center, b.center) for b in boxes)
 
     # ------------------------------------------------------------------ standing
     def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:

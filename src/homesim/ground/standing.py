@@ -13,6 +13,7 @@ and overlaps no obstacle. Spots are (x, z) in metres (Unity frame, y up).
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 import threading
@@ -250,7 +251,7 @@ class _PlanCache:
         key = id(graph)
         entry = self._entries.get(key)
         if entry is None or entry[0]() is not graph:
-            ref = weakref.ref(graph, lambda r, key=key: self._forget(key, r))
+            ref = weakref.ref(graph, functools.partial(self._forget, key))
             entry = self._entries[key] = (ref, {}, [])
         return entry[1], entry[2]
 

@@ -25,6 +25,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path
+from typing import Any, overload
 
 from homesim.errors import DataError, HomesimError
 from homesim.files import atomic_write
@@ -201,7 +202,12 @@ class ActivityDataset(Sequence[ActivityProgram]):
     def __len__(self) -> int:
         return len(self._items)
 
-    def __getitem__(self, index):  # type: ignore[override]
+    @overload
+    def __getitem__(self, index: int) -> ActivityProgram: ...
+    @overload
+    def __getitem__(self, index: slice) -> ActivityDataset: ...
+
+    def __getitem__(self, index: int | slice) -> ActivityProgram | ActivityDataset:
         if isinstance(index, slice):
             return ActivityDataset(self._items[index], self.name)
         return self._items[index]
@@ -406,13 +412,16 @@ def _from_record(record: object, where: str, base: Path) -> ActivityProgram:
                            graph_path, home or None, _bindings(record.get("bindings"), where))
 
 
-def _bindings(value: object, where: str) -> dict[tuple[str, int], int]:
-    """``[[class name, instance, node id], ...]`` as a dict; `DataError` if malformed."""
+def _bindings(value: Any, where: str) -> dict[tuple[str, int], int]:
+    """``[[class name, instance, node id], ...]`` as a dict; `DataError` if malformed.
+
+    `value` is raw JSON (hence `Any`); every item is checked here.
+    """
     if value is None:
         return {}
     try:
-        out = {}
-        for name, instance, node in value:  # type: ignore[union-attr]
+        out: dict[tuple[str, int], int] = {}
+        for name, instance, node in value:
             if not isinstance(name, str) or type(instance) is not int or type(node) is not int:
                 raise TypeError
             out[(name, instance)] = node

@@ -82,7 +82,7 @@ def constrained(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, vocab: 
             if choice[b].item() == END:
                 alive[b] = False
             else:
-                out[b].append(choice[b].item())
+                out[b].append(int(choice[b].item()))
         if not any(alive):
             break
         prev = choice

@@ -65,6 +65,16 @@ class RunConfig:
         if self.pg_lr is None:
             self.pg_lr = PG_LR.get(self.dataset, 5e-4)
 
+    def mle_config(self) -> TrainConfig:
+        """How the MLE model trains (defaults already filled in by `__post_init__`)."""
+        assert self.mle_epochs is not None
+        return TrainConfig(self.mle_epochs, self.batch_size, self.mle_lr, self.seed)
+
+    def pg_config(self) -> TrainConfig:
+        """How the policy-gradient models train from the MLE one."""
+        assert self.pg_epochs is not None and self.pg_lr is not None
+        return TrainConfig(self.pg_epochs, self.batch_size, self.pg_lr, self.seed)
+
 
 def load_splits(dataset: str, seed: int, synth_n: int = 5000) -> Splits:
     """The data set's train/dev/test splits (synthetic programs are generated with `seed`)."""
@@ -88,9 +98,7 @@ def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None
     start = time.perf_counter()
     mle = Text2Prog.create(splits.train, config.seed, embeddings=config.embeddings)
     best = BestOnDev(mle, splits.dev)
-    history = train_mle(mle, splits.train, TrainConfig(config.mle_epochs, config.batch_size,
-                                                       config.mle_lr, config.seed),
-                        progress("MLE"), best)
+    history = train_mle(mle, splits.train, config.mle_config(), progress("MLE"), best)
     best.restore()
     mle.meta.update(meta, model="mle", history=history, dev=best.scores,
                     best_epoch=best.epoch, seconds=time.perf_counter() - start)
@@ -99,7 +107,7 @@ def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None
     for name, use_sim in (("pg_lcs", False), ("pg_lcs_sim", True)):
         start = time.perf_counter()
         model = copy.deepcopy(mle)
-        pg = TrainConfig(config.pg_epochs, config.batch_size, config.pg_lr, config.seed)
+        pg = config.pg_config()
         best = BestOnDev(model, splits.dev, use_sim)
         history = train_pg(model, splits.train, pg, use_sim, progress(MODELS[name]), best)
         best.restore()

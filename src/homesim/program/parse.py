@@ -121,7 +121,7 @@ def parse_program(text: str, source: str | None = None) -> Program:
             desc_lines.append(lines[i].strip())
             i += 1
         description = " ".join(desc_lines)
-    steps = []
+    steps: list[Step] = []
     for lineno in range(i + 1, len(lines) + 1):
         line = lines[lineno - 1]
         if _is_skippable(line):

@@ -2,23 +2,28 @@
 
 The symbolic simulator's trace drives everything: which node each step targets, what it
 grabs (HOLDS_RH / HOLDS_LH added), where it puts it (ON / INSIDE added when a hold is
-removed), what opens or switches on (state changes). Each action has a motion:
-walking along an A* path with a gait, reaching with IK, sitting, lying, turning.
+removed), what opens or switches on (state changes). Each action plays the animation its
+catalog row names (`ActionSpec.motion`); animations are registered here by name with
+`@animation(...)`, as effects are in `homesim.sim.effects`: walking along an A* path with
+a gait, reaching with IK, sitting, lying, turning. Where grounding chose a standing spot
+for a step (`Grounding.standing`), the agent walks to that spot.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from homesim.errors import ExecutionError
+from homesim.program.actions import ACTIONS
 from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK
-from homesim.render.layout import SEAT_HEIGHT, Box, lights_on_by_switch, to_mujoco
+from homesim.render.layout import SEAT_HEIGHT, Box
 from homesim.render.navigation import build_grid, plan_path
 from homesim.render.poses import (
     Pose,
@@ -30,28 +35,22 @@ from homesim.render.poses import (
     walk_cycle,
     write_qpos,
 )
+from homesim.render.props import Props
 from homesim.render.scene import SceneModel
 from homesim.sim.execute import ExecutionResult, StepRecord
+from homesim.sim.state import Changes
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.vocab import (
-    HOLDS_LH,
-    HOLDS_RH,
-    INSIDE,
-    ON,
-    S_CLOSED,
-    S_OFF,
-    S_ON,
-    S_OPEN,
-)
+from homesim.world.vocab import HOLDS_LH, HOLDS_RH, INSIDE, ON, S_CLOSED, S_OPEN
 
 WALK_SPEED = 1.2  # m/s
 RUN_SPEED = 2.6  # m/s
 STRIDE = 1.3  # metres per gait cycle (two steps)
 TURN_SPEED = 3.0  # rad/s
-MOVE_KEYS = frozenset({"WALK", "RUN", "FIND"})
-REACH_KEYS = frozenset({"GRAB", "SWITCHON", "SWITCHOFF", "OPEN", "CLOSE", "TOUCH", "PUSH",
-                        "PULL", "MOVE", "SQUEEZE", "PLUGIN", "PLUGOUT", "TYPE", "WIPE", "WASH",
-                        "RINSE", "SCRUB", "CUT", "PUTBACK", "PUTIN", "POUR", "PUTOBJBACK"})
+AT_SPOT = 0.05
+"""An agent this close (m) to its step's standing spot does not walk to it."""
+
+Standing = Mapping[int, tuple[float, float]]
+"""Step index -> (x, z) standing spot chosen by grounding (Unity frame = MuJoCo x, y)."""
 
 
 @dataclass
@@ -70,73 +69,56 @@ class Timeline:
 
 
 class Animator:
-    """Builds a `Timeline` for one program on one scene."""
+    """Builds a `Timeline` for one program on one scene: the agent's motions and frames.
+
+    `standing` (step index -> (x, z)) holds grounding's standing spots: a step that walks
+    goes to its spot, so render and grounding share one floor model.
+    """
 
     def __init__(self, scene: SceneModel, graph: EnvironmentGraph, shape: AgentShape,
-                 fps: int = 30, seed: int = 0):
+                 fps: int = 30, seed: int = 0, standing: Standing | None = None):
         self.scene, self.graph, self.shape, self.fps = scene, graph, shape, fps
         self.rng = np.random.default_rng(seed)
         self.ik = ArmIK(scene)
         self.grid = build_grid(scene.layout)
-        m = scene.model
-        self.data = mujoco.MjData(m)
-        self.qpos = m.qpos0.copy()
-        self.mocap = np.array(m.body_pos[m.body_mocapid >= 0])[np.argsort(
-            m.body_mocapid[m.body_mocapid >= 0])]
-        self.boxes: dict[int, Box] = {}
-        for node in graph:
-            if (b := to_mujoco(node)) is not None:
-                self.boxes[node.id] = b
-        self.held: dict[str, int] = {}  # side -> node id
-        self.lit = {n for n, p in self._parts() if p.lamp and p.is_on}
-        self.screens = {n for n, p in self._parts() if p.screen is not None and p.is_on}
-        self.switch_rooms = lights_on_by_switch(graph)
-        self.hinge_angle = {n: (scene.hinge_open[n] if p.hinge.is_open else 0.0)
-                            for n, p in self._parts() if p.hinge is not None}
+        self.data = mujoco.MjData(scene.model)
+        self.qpos = scene.model.qpos0.copy()
+        self.props = Props(scene, graph, self.grid, self.rng)
+        self.standing = dict(standing or {})
+        self.spot: np.ndarray | None = None  # the current step's standing spot (x, y)
         start = scene.layout.start
-        cell = self.grid.cell(start)
-        if not self.grid.free[cell]:
+        if not self.grid.free[self.grid.cell(start)]:
             start = self.grid.point(self.grid.nearest_free(start))
-        self.pose = standing(shape, start, 0.0)
+        self.pose = standing_pose(shape, start)
         self.posture = "stand"
+        self.reaching: frozenset[str] = frozenset()
         self.timeline = Timeline()
 
-    def _parts(self):
-        return ((p.node_id, p) for p in self.scene.layout.parts)
-
     # -- frame output ---------------------------------------------------------------
-    def _lit_lamps(self) -> frozenset[int]:
-        on = set(self.lit)
-        for n, p in self._parts():
-            if p.lamp and p.class_name in ("ceilinglamp", "walllamp"):
-                room = self.graph.room_of(n)
-                if self.switch_rooms.get(room, True):
-                    on.add(n)
-        return frozenset(on)
-
     def emit(self, pose: Pose) -> None:
         """Append one frame with the agent in `pose` and held objects in its hands."""
         self.pose = pose
-        for side in self.held:
-            pose = carrying(pose, side) if pose.tilt == 0.0 and side not in self._reaching \
-                else pose
+        props = self.props
+        for side in props.held:
+            if pose.tilt == 0.0 and side not in self.reaching:
+                pose = carrying(pose, side)
         write_qpos(self.qpos, pose, self.scene.joint_qpos)
-        for n, angle in self.hinge_angle.items():
+        for n, angle in props.hinge_angle.items():
             self.qpos[self.scene.hinge_qpos[n]] = angle
-        if self.held:
-            self.data.qpos[:] = self.qpos
-            mujoco.mj_kinematics(self.scene.model, self.data)
-            for side, n in self.held.items():
-                if n in self.scene.mocap:
-                    hand = self.data.site_xpos[self.scene.hand_sites[side]]
-                    self.mocap[self.scene.mocap[n]] = hand
+        if props.held:
+            self._carry()
         tl = self.timeline
         tl.qpos.append(self.qpos.copy())
-        tl.mocap.append(self.mocap.copy())
-        tl.lamps.append(self._lit_lamps())
-        tl.screens.append(frozenset(self.screens))
+        tl.mocap.append(props.mocap.copy())
+        tl.lamps.append(props.lit_lamps())
+        tl.screens.append(frozenset(props.screens))
 
-    _reaching: frozenset[str] = frozenset()
+    def _carry(self) -> None:
+        """Move held objects to the hands of the pose just written."""
+        self.data.qpos[:] = self.qpos
+        mujoco.mj_kinematics(self.scene.model, self.data)
+        for side, n in self.props.held.items():
+            self.props.move(n, self.data.site_xpos[self.scene.hand_sites[side]])
 
     def hold(self, seconds: float, pose: Pose | None = None) -> None:
         for _ in range(max(1, round(seconds * self.fps))):
@@ -173,8 +155,21 @@ class Animator:
         self.move_to(target, max(0.2, diff / TURN_SPEED))
 
     def walk(self, target: Box, run: bool = False, reach: float = 0.7) -> None:
+        """Walk to the step's standing spot if it has one, else within `reach` of
+        `target`; then face the target."""
         self.stand_up()
-        path = plan_path(self.grid, self.pose.xy, target, reach)
+        if self.spot is not None:
+            path = plan_path(self.grid, self.pose.xy, Box(np.r_[self.spot, 0.0],
+                                                          np.zeros(3)), 0.0)
+            path.append(self.spot.copy())  # the spot itself, even off render's grid
+        else:
+            path = plan_path(self.grid, self.pose.xy, target, reach)
+        self.follow(path, run)
+        self.move_to(standing(self.shape, self.pose.xy, self.pose.yaw), 0.25)
+        self.turn_to(target.center)
+
+    def follow(self, path: list[np.ndarray], run: bool) -> None:
+        """Walk (or run) along way points with a gait."""
         speed = RUN_SPEED if run else WALK_SPEED
         base = standing(self.shape, self.pose.xy, self.pose.yaw)
         phase = 0.0
@@ -190,15 +185,13 @@ class Animator:
                 phase += 2 * math.pi * (length / n) / STRIDE
                 pose = Pose(float(p[0]), float(p[1]), base.z, yaw, 0.0, base.joints)
                 self.emit(walk_cycle(pose, phase, run))
-        self.move_to(standing(self.shape, self.pose.xy, self.pose.yaw), 0.25)
-        self.turn_to(target.center)
 
     def reach(self, side: str, point: np.ndarray, seconds: float = 0.6,
               at_peak=None, during=None, back: bool = True) -> None:
         """Reach `point` with a hand, call `at_peak()`, and come back."""
         self.turn_to(point)
         rest = self.pose
-        self._reaching = frozenset({side})
+        self.reaching = frozenset({side})
         reached, _ = self.ik.reach(rest, side, point)
         self.move_to(reached, seconds, during)
         if at_peak is not None:
@@ -206,7 +199,7 @@ class Animator:
         self.hold(0.15, reached)
         if back:
             self.move_to(rest, seconds * 0.8)
-        self._reaching = frozenset()
+        self.reaching = frozenset()
 
     def sit(self, seat: Box) -> None:
         self.walk(seat, reach=0.5)
@@ -227,77 +220,6 @@ class Animator:
         self.move_to(lying(self.shape, bed.center[:2], yaw, bed.hi[2]), 1.4)
         self.posture = "lie"
 
-    # -- the program ----------------------------------------------------------------
-    def box_of(self, node_id: int) -> Box:
-        if node_id in self.scene.mocap:  # a movable object: where it is now
-            c = self.mocap[self.scene.mocap[node_id]]
-            return Box(c.copy(), self.boxes[node_id].half)
-        if node_id in self.scene.layout.room_floors:  # a room: its middle's free spot
-            middle = self.scene.layout.room_floors[node_id].center
-            spot = self.grid.point(self.grid.nearest_free(middle[:2]))
-            return Box(np.r_[spot, 0.0], np.full(3, 0.05))
-        if node_id not in self.boxes:
-            raise ExecutionError(f"node {node_id} has no 3D box to walk to")
-        return self.boxes[node_id]
-
-    def free_side(self) -> str:
-        return "r" if "r" not in self.held else "l"
-
-    def handle_point(self, node_id: int) -> np.ndarray:
-        """Where a hand goes to open, close or switch something."""
-        box = self.box_of(node_id)
-        p = box.center.copy()
-        part = self.scene.layout.part(node_id)
-        if part is not None and part.hinge is not None:
-            h = part.hinge
-            p = h.pivot + 1.8 * h.panel.center
-            p[2] = min(max(h.pivot[2], 0.5), 1.3)
-        if p[2] > 1.7:
-            p[2] = 1.7
-        near = np.clip(self.pose.xy, box.lo[:2], box.hi[:2])  # the side facing the agent
-        p[:2] = 0.5 * p[:2] + 0.5 * near
-        return p
-
-    def placement(self, obj: int, rel: str, dest: int) -> np.ndarray:
-        """Where an object ends up when put ON or INSIDE a destination."""
-        box = self.box_of(dest)
-        half = self.boxes[obj].half if obj in self.boxes else np.full(3, 0.05)
-        room = np.maximum(box.half[:2] - half[:2] - 0.05, 0.0)
-        jitter = self.rng.uniform(-1.0, 1.0, 2) * np.minimum(room, 0.2)
-        near = np.clip(self.pose.xy, box.lo[:2] + half[:2], box.hi[:2] - half[:2])
-        xy = 0.5 * (box.center[:2] + jitter) + 0.5 * near
-        z = box.hi[2] + half[2] if rel == ON else box.lo[2] + 0.05 + half[2]
-        return np.r_[xy, z]
-
-    def step(self, rec: StepRecord) -> None:
-        key = rec.step.action.key
-        nodes = rec.nodes
-        ch = rec.changes
-        target = nodes[0] if nodes else None
-        if key == "FIND" and target is not None and self.within_reach(target, 1.0):
-            self.look(self.box_of(target).center)  # already there: just look for it
-        elif key in MOVE_KEYS and target is not None:
-            self.walk(self.box_of(target), run=key == "RUN")
-        elif key in ("TURNTO", "LOOKAT", "WATCH", "POINTAT", "GREET") and target is not None:
-            self.look(self.box_of(target).center, point=key in ("POINTAT", "GREET"))
-        elif key == "SIT" and target is not None:
-            self.sit(self.box_of(target))
-        elif key in ("LIE", "SLEEP") and target is not None:
-            self.lie(self.box_of(target))
-        elif key in ("LIE", "SLEEP"):
-            self.hold(1.0)
-        elif key in ("STANDUP", "WAKEUP"):
-            self.stand_up()
-            self.hold(0.3)
-        elif key in ("DROP", "RELEASE") and target is not None:
-            self.release_held(ch, target, floor=True)
-        elif key in ("DRINK", "EAT", "READ") and target is not None:
-            self.use_held(target)
-        elif key in REACH_KEYS and target is not None:
-            self.manipulate(key, nodes, ch)
-        else:  # wearing, plugging, anything without a motion of its own
-            self.hold(0.8)
-
     def look(self, target: np.ndarray, point: bool = False) -> None:
         """Turn (when standing) and tilt the head toward a point; point at it if asked."""
         if self.posture == "stand":
@@ -311,7 +233,7 @@ class Animator:
         rest = self.pose
         self.move_to(looking, 0.4)
         if point and self.posture == "stand":
-            side = self.free_side()
+            side = self.props.free_side()
             hand = self.ik.hand(looking, side)
             aim = hand + 0.6 * (target - hand) / max(np.linalg.norm(target - hand), 1e-3)
             self.reach(side, aim, 0.5)
@@ -319,101 +241,29 @@ class Animator:
             self.hold(1.0)
         self.move_to(rest.with_joints(neck_yaw=0.0, neck_pitch=0.0), 0.3)
 
-    def use_held(self, obj: int) -> None:
-        """Drink, eat or read: bring the object (held, or at hand) up to the face."""
-        side = next((s for s, n in self.held.items() if n == obj), self.free_side())
-        face = self.ik.hand(self.pose, side)
-        head = np.r_[self.pose.xy, self.pose.z + 0.62 * self.shape.height]
-        fwd = np.array([math.cos(self.pose.yaw), math.sin(self.pose.yaw), 0.0])
-        face = head + 0.25 * fwd - np.array([0, 0, 0.1])
-        self.reach(side, face, 0.6)
-
-    def release_held(self, ch, obj: int, floor: bool) -> None:
-        side = next((s for s, n in self.held.items() if n == obj), None)
-        if side is None:
-            self.hold(0.5)
-            return
-        spot = np.r_[self.pose.xy + 0.4 * np.array([math.cos(self.pose.yaw),
-                                                   math.sin(self.pose.yaw)]), 0.0]
-        half = self.boxes[obj].half if obj in self.boxes else np.full(3, 0.05)
-
-        def let_go():
-            del self.held[side]
-            if obj in self.scene.mocap:
-                self.mocap[self.scene.mocap[obj]] = spot + np.r_[0, 0, half[2]]
-        self.reach(side, spot + np.r_[0, 0, 0.5], 0.5, at_peak=let_go)
-
-    def manipulate(self, key: str, nodes: tuple[int, ...], ch) -> None:
-        target = nodes[0]
-        grabbed = {rel: b for a, rel, b in ch.added if rel in (HOLDS_RH, HOLDS_LH)}
-        released = {b for a, rel, b in ch.removed if rel in (HOLDS_RH, HOLDS_LH)}
-        states = {n: (before, after) for n, before, after in ch.states}
-        if key in ("PUTBACK", "PUTIN", "POUR") and len(nodes) > 1:
-            self.walk_if_far(nodes[1])
-        elif target not in self.held.values():
-            self.walk_if_far(target)
-        if grabbed:
-            rel, obj = next(iter(grabbed.items()))
-            side = "r" if rel == HOLDS_RH else "l"
-            point = self.box_of(obj).center
-
-            def attach():
-                self.held[side] = obj
-            self.reach(side, point, 0.6, at_peak=attach)
-            return
-        if released:
-            obj = next(iter(released))
-            side = next((s for s, n in self.held.items() if n == obj), self.free_side())
-            dest = [(rel, b) for a, rel, b in ch.added if a == obj and rel in (ON, INSIDE)]
-            rel, where = dest[0] if dest else (ON, nodes[-1])
-            final = self.placement(obj, rel, where)
-
-            def put():
-                self.held.pop(side, None)
-                if obj in self.scene.mocap:
-                    self.mocap[self.scene.mocap[obj]] = final
-            self.reach(side, final + np.r_[0, 0, 0.05], 0.6, at_peak=put)
-            return
-        side = self.free_side()
-        if target in self.hinge_angle and target in states:
-            after = states[target][1]
-            start = self.hinge_angle[target]
-            goal = self.scene.hinge_open[target] if S_OPEN in after else 0.0 \
-                if S_CLOSED in after else start
-
-            def swing(t):
-                self.hinge_angle[target] = start + (goal - start) * t
-            point = self.handle_point(target)
-            self.reach(side, point, 0.4)
-            self.reach(side, point, 0.6, during=swing)
-            return
-        point = self.handle_point(target)
-        self.reach(side, point, 0.6, at_peak=lambda: self.apply_states(states))
-
     def within_reach(self, node_id: int, reach: float) -> bool:
-        box = self.box_of(node_id)
+        box = self.props.box_of(node_id)
         d = np.maximum(np.abs(self.pose.xy - box.center[:2]) - box.half[:2], 0.0)
         return bool(np.hypot(*d) <= reach)
 
     def walk_if_far(self, node_id: int, reach: float = 0.8) -> None:
-        if not self.within_reach(node_id, reach + 0.3) and self.posture == "stand":
-            self.walk(self.box_of(node_id), reach=reach)
+        """Walk to the step's spot (else near the node) unless already there; standing
+        only."""
+        if self.posture != "stand":
+            return
+        if self.spot is not None:
+            far = float(np.linalg.norm(self.pose.xy - self.spot)) > AT_SPOT
+        else:
+            far = not self.within_reach(node_id, reach + 0.3)
+        if far:
+            self.walk(self.props.box_of(node_id), reach=reach)
 
-    def apply_states(self, states: dict[int, tuple[frozenset[str], frozenset[str]]]) -> None:
-        for n, (_before, after) in states.items():
-            if S_ON in after or S_OFF in after:
-                on = S_ON in after
-                cls = self.graph.node(n).class_name if n in self.graph.nodes else ""
-                if cls == "lightswitch":
-                    room = self.graph.room_of(n)
-                    self.switch_rooms[room] = on
-                for target in (self.lit, self.screens):
-                    if on and ((n in self.scene.lamp_mat and target is self.lit)
-                               or (n in self.scene.screen_geom and target is self.screens)):
-                        target.add(n)
-                    elif not on:
-                        target.discard(n)
+    def forward(self, distance: float) -> np.ndarray:
+        """The floor point `distance` metres ahead of the agent, (x, y, 0)."""
+        return np.r_[self.pose.xy + distance * np.array([math.cos(self.pose.yaw),
+                                                        math.sin(self.pose.yaw)]), 0.0]
 
+    # -- the program ----------------------------------------------------------------
     def run(self, result: ExecutionResult) -> Timeline:
         """Animate every step of an executed program (it must be executable)."""
         if not result.executable:
@@ -422,13 +272,211 @@ class Animator:
         if result.trace is None:
             raise ExecutionError("render needs the execution trace (execute(..., trace=True))")
         self.hold(0.3)
-        for rec in result.trace:
+        for i, rec in enumerate(result.trace):
             first = len(self.timeline)
-            self.step(rec)
+            spot = self.standing.get(i)
+            self.spot = None if spot is None else np.array(spot, float)
+            animation_for(rec.step.action.key)(self, rec)
             self.timeline.step_frames.append((first, len(self.timeline) - 1))
             self.timeline.focus.append(rec.nodes[-1] if rec.nodes else -1)
+        self.spot = None
         self.hold(0.3)
         last = self.timeline.step_frames[-1] if self.timeline.step_frames else (0, 0)
         if self.timeline.step_frames:
             self.timeline.step_frames[-1] = (last[0], len(self.timeline) - 1)
         return self.timeline
+
+
+def standing_pose(shape: AgentShape, xy: np.ndarray) -> Pose:
+    return standing(shape, xy, 0.0)
+
+
+# ------------------------------------------------------------------- the registry
+Animation = Callable[[Animator, StepRecord], None]
+MOTIONS: dict[str, Animation] = {}
+"""Motion name (`ActionSpec.motion`) -> animation; every name the catalog uses has one."""
+
+
+def animation(*names: str) -> Callable[[Animation], Animation]:
+    """Register a function as the animation of the given motion names."""
+
+    def register(fn: Animation) -> Animation:
+        for name in names:
+            MOTIONS[name] = fn
+        return fn
+
+    return register
+
+
+def animation_for(key: str) -> Animation:
+    """The animation of the catalog action `key` (through its `motion` column)."""
+    return MOTIONS[ACTIONS[key].motion]
+
+
+def _target(rec: StepRecord) -> int | None:
+    return rec.nodes[0] if rec.nodes else None
+
+
+@animation("idle")
+def idle(anim: Animator, rec: StepRecord) -> None:
+    """Wearing and anything else without a motion of its own: a short pause."""
+    anim.hold(0.8)
+
+
+@animation("walk", "run")
+def walk(anim: Animator, rec: StepRecord) -> None:
+    target = _target(rec)
+    if target is None:
+        return idle(anim, rec)
+    anim.walk(anim.props.box_of(target), run=rec.step.action.motion == "run")
+
+
+@animation("find")
+def find(anim: Animator, rec: StepRecord) -> None:
+    """Walk to the object, or only look for it when it is already at hand."""
+    target = _target(rec)
+    if target is not None and anim.within_reach(target, 1.0):
+        anim.look(anim.props.box_of(target).center)
+    else:
+        walk(anim, rec)
+
+
+@animation("look", "point")
+def look(anim: Animator, rec: StepRecord) -> None:
+    target = _target(rec)
+    if target is None:
+        return idle(anim, rec)
+    anim.look(anim.props.box_of(target).center, point=rec.step.action.motion == "point")
+
+
+@animation("sit")
+def sit(anim: Animator, rec: StepRecord) -> None:
+    target = _target(rec)
+    if target is None:
+        return idle(anim, rec)
+    anim.sit(anim.props.box_of(target))
+
+
+@animation("lie")
+def lie(anim: Animator, rec: StepRecord) -> None:
+    target = _target(rec)
+    if target is None:
+        return rest(anim, rec)
+    anim.lie(anim.props.box_of(target))
+
+
+@animation("rest")
+def rest(anim: Animator, rec: StepRecord) -> None:
+    """Sleeping: stay as one is."""
+    anim.hold(1.0)
+
+
+@animation("stand_up")
+def stand_up(anim: Animator, rec: StepRecord) -> None:
+    anim.stand_up()
+    anim.hold(0.3)
+
+
+@animation("use_held")
+def use_held(anim: Animator, rec: StepRecord) -> None:
+    """Drink, eat or read: bring the object (held, or at hand) up to the face."""
+    target = _target(rec)
+    if target is None:
+        return idle(anim, rec)
+    props, pose = anim.props, anim.pose
+    side = props.side_holding(target) or props.free_side()
+    head = np.r_[pose.xy, pose.z + 0.62 * anim.shape.height]
+    fwd = np.array([math.cos(pose.yaw), math.sin(pose.yaw), 0.0])
+    anim.reach(side, head + 0.25 * fwd - np.array([0, 0, 0.1]), 0.6)
+
+
+@animation("let_go")
+def let_go(anim: Animator, rec: StepRecord) -> None:
+    """Drop a held object on the floor in front of the agent."""
+    obj = _target(rec)
+    props = anim.props
+    side = None if obj is None else props.side_holding(obj)
+    if obj is None or side is None:
+        anim.hold(0.5)
+        return
+    spot = anim.forward(0.4)
+    half = props.half_of(obj)
+
+    def drop() -> None:
+        del props.held[side]
+        props.move(obj, spot + np.r_[0, 0, half[2]])
+    anim.reach(side, spot + np.r_[0, 0, 0.5], 0.5, at_peak=drop)
+
+
+@animation("reach")
+def reach(anim: Animator, rec: StepRecord) -> None:
+    """Hands on an object: grab it, put what is held, swing a door, or press and touch."""
+    nodes, ch = rec.nodes, rec.changes
+    if not nodes:
+        return idle(anim, rec)
+    if len(nodes) > 1:  # put or pour: go to the destination
+        anim.walk_if_far(nodes[1])
+    elif nodes[0] not in anim.props.held.values():
+        anim.walk_if_far(nodes[0])
+    if _grab(anim, ch) or _put(anim, ch, nodes):
+        return
+    states = {n: (before, after) for n, before, after in ch.states}
+    if nodes[0] in anim.props.hinge_angle and nodes[0] in states:
+        _swing(anim, nodes[0], states[nodes[0]][1])
+        return
+    point = anim.props.handle_point(nodes[0], anim.pose.xy)
+    anim.reach(anim.props.free_side(), point, 0.6,
+               at_peak=lambda: anim.props.apply_states(states))
+
+
+def _grab(anim: Animator, ch: Changes) -> bool:
+    """Reach for what the step put in a hand, if anything; True if it did."""
+    grabbed = {rel: b for a, rel, b in ch.added if rel in (HOLDS_RH, HOLDS_LH)}
+    if not grabbed:
+        return False
+    rel, obj = next(iter(grabbed.items()))
+    side = "r" if rel == HOLDS_RH else "l"
+
+    def attach() -> None:
+        anim.props.held[side] = obj
+    anim.reach(side, anim.props.box_of(obj).center, 0.6, at_peak=attach)
+    return True
+
+
+def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
+    """Put down what the step took out of a hand, if anything; True if it did."""
+    released = {b for a, rel, b in ch.removed if rel in (HOLDS_RH, HOLDS_LH)}
+    if not released:
+        return False
+    props = anim.props
+    obj = next(iter(released))
+    side = props.side_holding(obj) or props.free_side()
+    dest = [(rel, b) for a, rel, b in ch.added if a == obj and rel in (ON, INSIDE)]
+    rel, where = dest[0] if dest else (ON, nodes[-1])
+    final = props.placement(obj, rel, where, anim.pose.xy)
+
+    def put() -> None:
+        props.held.pop(side, None)
+        props.move(obj, final)
+    anim.reach(side, final + np.r_[0, 0, 0.05], 0.6, at_peak=put)
+    return True
+
+
+def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
+    """Take the handle and swing a door open or closed."""
+    props = anim.props
+    start = props.hinge_angle[target]
+    goal = props.scene.hinge_open[target] if S_OPEN in after else 0.0 \
+        if S_CLOSED in after else start
+
+    def swing(t: float) -> None:
+        props.hinge_angle[target] = start + (goal - start) * t
+    point = props.handle_point(target, anim.pose.xy)
+    side = props.free_side()
+    anim.reach(side, point, 0.4)
+    anim.reach(side, point, 0.6, during=swing)
+
+
+ANIMATIONS: dict[str, Animation] = {key: MOTIONS[a.motion] for key, a in ACTIONS.items()
+                                    if a.motion in MOTIONS}
+"""Action key -> its animation, derived from the catalog's `motion` column."""

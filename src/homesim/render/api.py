@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -54,7 +54,8 @@ def _check_size(width: int, height: int, fps: int) -> None:
 
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
-            seed: int, bindings: Bindings | None, agent: str | None
+            seed: int, bindings: Bindings | None, agent: str | None,
+            standing: Mapping[int, tuple[float, float]] | None = None
             ) -> tuple[SceneModel, Timeline, str]:
     """Execute, build the scene and animate: everything before drawing."""
     if not program.steps:
@@ -66,19 +67,23 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     reference = bindings is None and not program.is_grounded
     result = execute(program, graph, trace=True, bindings=bindings, reference=reference)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
-    timeline = Animator(scene, graph, shape, fps=fps, seed=seed).run(result)
+    timeline = Animator(scene, graph, shape, fps=fps, seed=seed,
+                        standing=standing).run(result)
     return scene, timeline, name
 
 
 def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Path, *,
                    width: int = 640, height: int = 480, fps: int = 30, seed: int = 0,
                    bindings: Bindings | None = None, progress: Progress | None = None,
-                   agent: str | None = None, home: str | None = None) -> RenderResult:
+                   agent: str | None = None, home: str | None = None,
+                   standing: Mapping[int, tuple[float, float]] | None = None) -> RenderResult:
     """Animate a grounded program in a home with geometry and record it with ground truth.
 
     The program's objects name nodes of `graph` (``<tv> (1.410)``, or plain ``(410)``), or
     `bindings` maps (class, instance) to node ids. `home` names the home in ``meta.json``
-    (a built-in home's name or the graph file). Writes the folder layout described in
+    (a built-in home's name or the graph file). `standing` (step index -> (x, z), as
+    `Grounding.standing`) gives where the agent stands for each step; without it render
+    picks spots next to the objects on its own. Writes the folder layout described in
     `homesim.render.groundtruth`; read it back with `load_recording`.
     """
     t0 = time.perf_counter()
@@ -87,7 +92,8 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
     if (out / "meta.json").exists() or (out / "video.mp4").exists():
         raise HomesimError(f"{out}: already holds a recording; choose another folder")
     scene, timeline, name = prepare(program, graph, width=width, height=height, fps=fps,
-                                    seed=seed, bindings=bindings, agent=agent)
+                                    seed=seed, bindings=bindings, agent=agent,
+                                    standing=standing)
     total = len(timeline)
     writer = RecordingWriter(out, width, height, fps)
     try:
@@ -142,19 +148,25 @@ def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed
 
 def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
                      height: int = 240, seed: int = 0, bindings: Bindings | None = None,
-                     agent: str | None = None) -> list[tuple[int, np.ndarray]]:
-    """(step index, RGB frame at the end of that step) for each step; nothing is written."""
+                     agent: str | None = None,
+                     standing: Mapping[int, tuple[float, float]] | None = None
+                     ) -> list[tuple[int, np.ndarray]]:
+    """(step index, RGB frame at the end of that step) for each step; nothing is written.
+
+    `standing`: as for `render_program`."""
     return list(iter_keyframes(program, graph, width=width, height=height, seed=seed,
-                               bindings=bindings, agent=agent))
+                               bindings=bindings, agent=agent, standing=standing))
 
 
 def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 320,
                    height: int = 240, seed: int = 0, bindings: Bindings | None = None,
-                   agent: str | None = None) -> Iterator[tuple[int, np.ndarray]]:
+                   agent: str | None = None,
+                   standing: Mapping[int, tuple[float, float]] | None = None
+                   ) -> Iterator[tuple[int, np.ndarray]]:
     """`render_keyframes` one frame at a time: memory holds one frame, not all of them."""
     _check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
-                                 seed=seed, bindings=bindings, agent=agent)
+                                 seed=seed, bindings=bindings, agent=agent, standing=standing)
     ends = [end for _, end in timeline.step_frames]
     with Renderer(scene, width, height) as renderer:
         for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, ends)):

@@ -9,7 +9,9 @@ This module is pure geometry (no mujoco), so navigation and tests can use it alo
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -250,11 +252,25 @@ def _door(box: Box, jambs: list[Box]) -> Hinge | None:
     return Hinge(pivot, Box(offset, half), np.pi / 2, False)
 
 
+@dataclass
+class _Home:
+    """What shaping one part needs to know about the rest of the home."""
+
+    graph: EnvironmentGraph
+    rooms: dict[int, Box]
+    tiles: dict[int, list[Box]]
+    jambs: list[Box]
+
+    def toward(self, room: int | None, fallback: Any) -> Any:
+        """A point inside the room (its centre), to tell an object's front from its back."""
+        return self.rooms[room].center if room in self.rooms else fallback
+
+
 def build_layout(graph: EnvironmentGraph) -> Layout:
     """All parts of a home with geometry. Raises nothing: nodes without boxes are skipped."""
-    rooms = {r.id: b for r in graph.rooms() if (b := to_mujoco(r)) is not None}
-    tiles = _room_floor_tiles(graph)
-    jambs = [b for n in graph.nodes_of_class("doorjamb") if (b := to_mujoco(n)) is not None]
+    home = _Home(graph, {r.id: b for r in graph.rooms() if (b := to_mujoco(r)) is not None},
+                 _room_floor_tiles(graph),
+                 [b for n in graph.nodes_of_class("doorjamb") if (b := to_mujoco(n)) is not None])
     parts: list[Part] = []
     floors: list[Box] = []
     seen: set[tuple] = set()
@@ -267,71 +283,137 @@ def build_layout(graph: EnvironmentGraph) -> Layout:
             continue
         seen.add(key)
         part = Part(node.id, node.class_name, class_color(node.class_name))
-        cls = node.class_name
-        room = graph.room_of(node.id)
-        if cls == "floor":
+        if not _SHAPERS[_kind(node, box)](part, node, box, home):
+            continue
+        if node.class_name == "floor":
             floors.append(box)
-            part.boxes.append(_flat(box))
-        elif cls == "ceiling":
-            part.boxes.append(_flat(box))
-        elif node.category == "Walls" or cls == "wall":
-            for slab in _wall_slabs(box, tiles.get(room, [])):
-                part.boxes.extend(_cut_doorways(slab, jambs))
-        elif cls == "doorjamb":
-            along = 0 if box.half[0] >= box.half[1] else 1
-            for s in (-1.0, 1.0):  # two posts; the opening between them stays free
-                lo, hi = box.lo.copy(), box.hi.copy()
-                if s < 0:
-                    hi[along] = lo[along] + 0.06
-                else:
-                    lo[along] = hi[along] - 0.06
-                part.boxes.append(Box.from_bounds(lo, hi))
-        elif cls == "door":
-            part.hinge = _door(box, jambs)
-            if part.hinge is None:
-                continue
-        elif cls in HINGED_CLASSES and CAN_OPEN in node.properties:
-            toward = rooms[room].center if room in rooms else [*box.center, 0, 1, 0]
-            axis, sign = _front_axis(box, toward)
-            part.boxes, part.hinge = _hollow(box, axis, sign)
-        elif cls in ENCLOSURES:
-            toward = rooms[room].center if room in rooms else box.center + np.array([0.0, 1.0, 0.0])
-            axis, sign = _front_axis(box, toward)
-            slabs, _ = _hollow(box, axis, sign)
-            part.boxes = [b for b in slabs if b.hi[2] < box.hi[2] - 1e-6 or b.half[2] > 0.1]
-        elif SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
-            toward = rooms[room].center if room in rooms else box.center + np.array([0.0, 1.0, 0.0])
-            part.boxes = _seat(box, *_front_axis(box, toward))
-        elif GRABBABLE in node.properties:
-            part.movable = _flat(box, 0.01)
-        else:
-            part.boxes.append(_flat(box))
-            if cls in SCREEN_CLASSES:
-                toward = rooms[room].center if room in rooms else [*box.center, 0, 1, 0]
-                thin = 0 if box.half[0] < box.half[1] else 1
-                sign = 1.0 if toward[thin] >= box.center[thin] else -1.0
-                c = box.center.copy()
-                c[thin] += sign * (box.half[thin] + 0.006)
-                half = box.half * 0.9
-                half[thin] = 0.005
-                part.screen = Box(c, half)
-            if cls in LAMP_CLASSES or node.category == "Lamps":
-                part.lamp = True
         if part.hinge is not None:
             part.hinge.is_open = S_OPEN in node.states
         part.is_on = S_ON in node.states
         parts.append(part)
+    return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
+                  _room_floors(home.tiles), _start(graph))
+
+
+def _start(graph: EnvironmentGraph) -> np.ndarray:
+    """The character's position on the floor (the origin without one)."""
     char = graph.character_id
-    start = np.zeros(2)
     if char is not None and (cb := to_mujoco(graph.node(char))) is not None:
-        start = cb.center[:2].copy()
-    names = {r.id: r.class_name for r in graph.rooms()}
-    room_floors = {}
-    for rid, ts in tiles.items():
-        lo = np.min([t.lo for t in ts], axis=0)
-        hi = np.max([t.hi for t in ts], axis=0)
-        room_floors[rid] = Box.from_bounds(lo, hi)
-    return Layout(parts, rooms, names, floors, room_floors, start)
+        return cb.center[:2].copy()
+    return np.zeros(2)
+
+
+def _room_floors(tiles: dict[int, list[Box]]) -> dict[int, Box]:
+    """Room id -> the box around its floor tiles."""
+    return {rid: Box.from_bounds(np.min([t.lo for t in ts], axis=0),
+                                 np.max([t.hi for t in ts], axis=0))
+            for rid, ts in tiles.items()}
+
+
+def _kind(node: Node, box: Box) -> str:
+    """Which shaping a node's part gets (see `_SHAPERS`)."""
+    cls = node.class_name
+    if cls in ("floor", "ceiling"):
+        return cls
+    if node.category == "Walls" or cls == "wall":
+        return "wall"
+    if cls in ("doorjamb", "door"):
+        return cls
+    if cls in HINGED_CLASSES and CAN_OPEN in node.properties:
+        return "hinged"
+    if cls in ENCLOSURES:
+        return "enclosure"
+    if SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
+        return "seat"
+    if GRABBABLE in node.properties:
+        return "movable"
+    return "solid"
+
+
+Shaper = Callable[[Part, Node, Box, _Home], bool]
+"""Fills a part's boxes (hinge, screen, lamp); False drops the part."""
+
+
+def _flat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    part.boxes.append(_flat(box))
+    return True
+
+
+def _wall(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    room = home.graph.room_of(node.id)
+    for slab in _wall_slabs(box, [] if room is None else home.tiles.get(room, [])):
+        part.boxes.extend(_cut_doorways(slab, home.jambs))
+    return True
+
+
+def _doorjamb(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    along = 0 if box.half[0] >= box.half[1] else 1
+    for s in (-1.0, 1.0):  # two posts; the opening between them stays free
+        lo, hi = box.lo.copy(), box.hi.copy()
+        if s < 0:
+            hi[along] = lo[along] + 0.06
+        else:
+            lo[along] = hi[along] - 0.06
+        part.boxes.append(Box.from_bounds(lo, hi))
+    return True
+
+
+def _door_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    part.hinge = _door(box, home.jambs)
+    return part.hinge is not None
+
+
+def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    toward = home.toward(home.graph.room_of(node.id), [*box.center, 0, 1, 0])
+    part.boxes, part.hinge = _hollow(box, *_front_axis(box, toward))
+    return True
+
+
+def _enclosure(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    toward = home.toward(home.graph.room_of(node.id), box.center + np.array([0.0, 1.0, 0.0]))
+    slabs, _ = _hollow(box, *_front_axis(box, toward))
+    part.boxes = [b for b in slabs if b.hi[2] < box.hi[2] - 1e-6 or b.half[2] > 0.1]
+    return True
+
+
+def _seat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    toward = home.toward(home.graph.room_of(node.id), box.center + np.array([0.0, 1.0, 0.0]))
+    part.boxes = _seat(box, *_front_axis(box, toward))
+    return True
+
+
+def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    part.movable = _flat(box, 0.01)
+    return True
+
+
+def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    """A plain box; screens get a thin panel on the side facing the room, lamps light."""
+    part.boxes.append(_flat(box))
+    cls = node.class_name
+    if cls in SCREEN_CLASSES:
+        part.screen = _screen(box, home.toward(home.graph.room_of(node.id),
+                                               [*box.center, 0, 1, 0]))
+    if cls in LAMP_CLASSES or node.category == "Lamps":
+        part.lamp = True
+    return True
+
+
+def _screen(box: Box, toward: Any) -> Box:
+    thin = 0 if box.half[0] < box.half[1] else 1
+    sign = 1.0 if toward[thin] >= box.center[thin] else -1.0
+    c = box.center.copy()
+    c[thin] += sign * (box.half[thin] + 0.006)
+    half = box.half * 0.9
+    half[thin] = 0.005
+    return Box(c, half)
+
+
+_SHAPERS: dict[str, Shaper] = {
+    "floor": _flat_part, "ceiling": _flat_part, "wall": _wall, "doorjamb": _doorjamb,
+    "door": _door_part, "hinged": _hinged, "enclosure": _enclosure, "seat": _seat_part,
+    "movable": _movable, "solid": _solid,
+}
 
 
 def lights_on_by_switch(graph: EnvironmentGraph) -> dict[int, bool]:

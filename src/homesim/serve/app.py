@@ -13,7 +13,7 @@ from homesim.limits import BODY_TIMEOUT_S
 from homesim.serve import homes, programs, renders
 from homesim.serve.errors import CatchBugs, SafeJSONResponse, install_error_handlers
 from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
-from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit
+from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit, LargeBodyGate
 from homesim.serve.static import default_static_dir, mount_editor
 from homesim.serve.workers import ProgramPool, warm_up
 
@@ -52,6 +52,7 @@ def create_app(static_dir: Path | None = None,
     app.include_router(programs.router)
     app.include_router(renders.router)
     app.add_middleware(BodySizeLimit, max_bytes=max_body_bytes, timeout=body_timeout)
+    app.add_middleware(LargeBodyGate)  # outside BodySizeLimit: waiting bodies stay unread
     app.add_middleware(HostCheck, allowed=allowed_hosts)
     app.add_middleware(CatchBugs)  # last: outermost, so a bug anywhere answers 500
     mount_editor(app, static_dir or default_static_dir())  # last: "/" catches the rest

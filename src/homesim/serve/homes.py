@@ -51,12 +51,14 @@ def list_homes() -> dict[str, Any]:
 
 @router.get("/actions")
 def list_actions() -> dict[str, Any]:
-    """The action catalog by editor category: every row as `ActionSpec.to_dict()`."""
+    """The action catalog: every row (`ActionSpec.to_dict`, with ``connector`` and
+    ``aliases``) in ``actions``, and the same rows by editor category."""
     categories = []
     for category, label in CATEGORY_LABELS.items():
         actions = [a.to_dict() for a in actions_in(category)]
         categories.append({"id": category.value, "label": label, "actions": actions})
-    return {"count": len(ACTIONS), "categories": categories}
+    return {"count": len(ACTIONS), "actions": [a.to_dict() for a in ACTIONS.values()],
+            "categories": categories}
 
 
 @lru_cache(maxsize=16)

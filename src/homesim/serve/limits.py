@@ -10,7 +10,14 @@ import time
 from collections.abc import Awaitable, Callable, MutableMapping
 from typing import Any
 
-from homesim.limits import BODY_TIMEOUT_S, MAX_JSON_DEPTH, MAX_REQUEST_BYTES
+from homesim.limits import (
+    BODY_TIMEOUT_S,
+    INLINE_PROGRAM_CHARS,
+    LARGE_BODIES_AT_ONCE,
+    MAX_JSON_DEPTH,
+    MAX_REQUEST_BYTES,
+    PROGRAM_QUEUE,
+)
 
 MAX_BODY_BYTES = MAX_REQUEST_BYTES
 """Largest request body the API accepts (see `homesim.limits`)."""
@@ -23,6 +30,8 @@ ASGIApp = Callable[[Scope, Receive, Send], Awaitable[None]]
 
 
 _STRING = re.compile(rb'"[^"]*"')  # after escaped backslashes and quotes are dropped
+STOPPING = "the server is stopping; retry in a moment"
+
 _BRACKETS = bytes.maketrans(b"[{]}", b"(())")
 _NOT_BRACKETS = bytes(b for b in range(256) if b not in b"[]{}")
 
@@ -94,6 +103,9 @@ class BodySizeLimit:
                 await _refuse(send, 408, f"request body not received within {self.timeout:g} s "
                               f"({received} bytes arrived)", close=True)
                 return
+            except asyncio.CancelledError:  # the server is stopping: answer, no traceback
+                await _refuse(send, 503, STOPPING, close=True, kind="busy")
+                return
             if message["type"] != "http.request":  # the client went away
                 return
             chunk = message.get("body", b"")
@@ -126,13 +138,92 @@ class BodySizeLimit:
                 "limit of this server")
 
 
-async def _refuse(send: Send, status: int, message: str, close: bool = False) -> None:
+class LargeBodyGate:
+    """ASGI middleware letting `at_once` requests with large bodies in at a time.
+
+    A large body (over `threshold` bytes, or of unknown length) costs the server's event
+    loop milliseconds to receive, check and decode even when a worker process handles
+    the program; many at once would make every small request wait behind them. Here at
+    most `at_once` are read and answered at a time; up to `waiting` more wait unread
+    (costing nothing); further ones are read to their end unparsed and get 503.
+    """
+
+    def __init__(self, app: ASGIApp, threshold: int = INLINE_PROGRAM_CHARS,
+                 at_once: int = LARGE_BODIES_AT_ONCE, waiting: int = PROGRAM_QUEUE,
+                 retry_after: int = 2):
+        self.app = app
+        self.threshold = threshold
+        self.at_once = at_once
+        self.waiting = waiting
+        self.retry_after = retry_after
+        self._waiters = 0
+        self._gate: tuple[asyncio.AbstractEventLoop, asyncio.Semaphore] | None = None
+
+    def _is_large(self, scope: Scope) -> bool:
+        if scope["type"] != "http" or scope["method"] not in ("POST", "PUT", "PATCH"):
+            return False
+        length = next((v for k, v in scope.get("headers", ()) if k == b"content-length"), None)
+        return length is None or not length.isdigit() or int(length) > self.threshold
+
+    def _semaphore(self) -> asyncio.Semaphore:
+        loop = asyncio.get_running_loop()
+        if self._gate is None or self._gate[0] is not loop:  # one per event loop (tests)
+            self._gate = (loop, asyncio.Semaphore(self.at_once))
+        return self._gate[1]
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if not self._is_large(scope):
+            await self.app(scope, receive, send)
+            return
+        gate = self._semaphore()
+        if gate.locked() and self._waiters >= self.waiting:
+            drained = await _drain(receive, MAX_REQUEST_BYTES)
+            await _refuse(send, 503, f"the server is busy: {self.at_once + self._waiters} large "
+                          f"requests are being handled or waiting; retry in {self.retry_after} s",
+                          close=not drained, kind="busy", retry_after=self.retry_after)
+            return
+        self._waiters += 1
+        try:
+            await gate.acquire()
+        except asyncio.CancelledError:  # the server is stopping: answer, no traceback
+            await _refuse(send, 503, STOPPING, close=True, kind="busy")
+            return
+        finally:
+            self._waiters -= 1
+        try:
+            await self.app(scope, receive, send)
+        finally:
+            gate.release()
+
+
+async def _drain(receive: Receive, limit: int, timeout: float = BODY_TIMEOUT_S) -> bool:
+    """Read a request body to its end without keeping it; False when it did not end
+    within `limit` bytes and `timeout` seconds (or the client went away)."""
+    received = 0
+    deadline = time.monotonic() + timeout
+    while received <= limit:
+        try:
+            message = await asyncio.wait_for(receive(), max(deadline - time.monotonic(), 0))
+        except asyncio.TimeoutError:
+            return False
+        if message["type"] != "http.request":
+            return False
+        received += len(message.get("body", b""))
+        if not message.get("more_body", False):
+            return True
+    return False
+
+
+async def _refuse(send: Send, status: int, message: str, close: bool = False,
+                  kind: str = "request", retry_after: int | None = None) -> None:
     """Answer `status` with a one-line error; `close` when the body was not read to its
     end (the connection cannot carry another request then)."""
-    body = json.dumps({"error": {"kind": "request", "message": message}}).encode()
+    body = json.dumps({"error": {"kind": kind, "message": message}}).encode()
     headers = [(b"content-type", b"application/json"),
                (b"content-length", str(len(body)).encode())]
     if close:
         headers.append((b"connection", b"close"))
+    if retry_after is not None:
+        headers.append((b"retry-after", str(retry_after).encode()))
     await send({"type": "http.response.start", "status": status, "headers": headers})
     await send({"type": "http.response.body", "body": body})

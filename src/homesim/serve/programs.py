@@ -120,8 +120,8 @@ def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
     ran = run_request(program, graph, None, request.seed, trace=False)
     if ran.grounding is None:
         index = None if ran.failed_step is None else ran.failed_step - 1
-        raise ApiError(422, "grounding", ran.message,
-                       **({} if index is None else {"line": lines[index], "index": index}))
+        where: dict[str, Any] = {} if index is None else {"line": lines[index], "index": index}
+        raise ApiError(422, "grounding", ran.message, None, **where)
     extra = {}
     # Where grounding stood the agent for each step, once the renderer walks there.
     if ran.grounding.standing and "standing" in inspect.signature(function).parameters:

@@ -25,7 +25,6 @@ import tempfile
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from multiprocessing.context import BaseContext
 from pathlib import Path
 from typing import Any
 
@@ -45,7 +44,7 @@ from homesim.serve.errors import ApiError, SafeJSONResponse, error_of
 from homesim.serve.images import encode_png
 from homesim.serve.programs import is_large, render_frames, render_plan
 from homesim.serve.schemas import RenderRequest
-from homesim.serve.workers import busy, lower_priority, worker_context
+from homesim.serve.workers import ProcessContext, busy, lower_priority, worker_context
 
 router = APIRouter(prefix="/api", tags=["programs"])
 
@@ -131,7 +130,7 @@ class RenderJobs:
     def __init__(self, source: FrameSource = render_frames, workers: int = RENDER_WORKERS,
                  queue: int = RENDER_QUEUE, timeout: float = RENDER_TIMEOUT_S,
                  keep_jobs: int = RENDER_KEEP_JOBS, keep_s: float = RENDER_KEEP_S,
-                 context: BaseContext | None = None):
+                 context: ProcessContext | None = None):
         self.source = source
         self.context = context
         self.workers = workers

@@ -31,7 +31,7 @@ class HeaderTimeoutProtocol(H11Protocol):
     header_timeout: float = HEADER_TIMEOUT_S
     _head_timer: asyncio.TimerHandle | None = None
 
-    def connection_made(self, transport: Any) -> None:  # type: ignore[override]
+    def connection_made(self, transport: Any) -> None:  # Any: uvicorn narrows the base type
         super().connection_made(transport)
         self._start_head_timer()
 

@@ -16,8 +16,9 @@ import os
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from multiprocessing.context import BaseContext
-from typing import Any
+from multiprocessing.context import ForkServerContext, SpawnContext
+from multiprocessing.process import BaseProcess
+from typing import Any, Protocol
 
 from fastapi.responses import Response
 
@@ -31,7 +32,14 @@ RETRY_AFTER_S = 2
 """What a 503 answer's ``Retry-After`` asks a client to wait, in seconds."""
 
 
-def worker_context() -> BaseContext:
+class ProcessContext(Protocol):
+    """What starts a worker process: a multiprocessing context (fork server, spawn, fork)."""
+
+    @property
+    def Process(self) -> type[BaseProcess]: ...  # multiprocessing's name
+
+
+def worker_context() -> ForkServerContext | SpawnContext:
     """A fork server when the platform has one (Linux, macOS), else spawn."""
     if "forkserver" in multiprocessing.get_all_start_methods():
         context = multiprocessing.get_context("forkserver")

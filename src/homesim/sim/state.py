@@ -162,7 +162,7 @@ class SimState:
         rooms = self.rooms
         if node_id in rooms:
             return node_id
-        inside = self._out[INSIDE].get(node_id)
+        inside: set[int] | frozenset[int] | None = self._out[INSIDE].get(node_id)
         if inside is None:
             inside = self._base_out[INSIDE].get(node_id, _EMPTY)
         if len(inside) == 1:  # fast path: directly inside one room
@@ -224,7 +224,7 @@ class SimState:
         journal = self.journal
         for r in relations:
             out, inn = self._out[r], self._in[r]
-            mine = out.get(node_id)
+            mine: set[int] | frozenset[int] | None = out.get(node_id)
             if mine is None:
                 mine = self._base_out[r].get(node_id)
             if mine:
@@ -242,7 +242,7 @@ class SimState:
                         ids = tuple(x for x in ids if x != node_id)
                     journal.append((DEL_IN, node_id, r, ids))
                     continue
-            theirs = inn.get(node_id)
+            theirs: set[int] | frozenset[int] | None = inn.get(node_id)
             if theirs is None:
                 theirs = self._base_in[r].get(node_id)
             if theirs:

@@ -18,7 +18,7 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from operator import itemgetter
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard, cast
 
 from homesim.errors import GraphError
 from homesim.files import write_bytes, write_text
@@ -330,10 +330,10 @@ def room_of(node_id: int, rooms: frozenset[int], inside: Any) -> int | None:
 # fails are they walked one by one to name the faulty edge.
 
 _NUMBER = (int, float)
-_EDGE_KEYS = itemgetter("from_id", "relation_type", "to_id")
+_FROM, _RELATION, _TO = itemgetter("from_id"), itemgetter("relation_type"), itemgetter("to_id")
 
 
-def _is_int(x: Any) -> bool:
+def _is_int(x: Any) -> TypeGuard[int]:
     return isinstance(x, int) and not isinstance(x, bool)
 
 
@@ -385,9 +385,10 @@ def _node_from_dict(raw: Any, where: str, i: int) -> Node:
     if not isinstance(raw, Mapping):
         raise GraphError(f"{_node_where(where, i)}: a node must be a JSON object, "
                          f"got {raw!r:.60}")
-    node_id = raw.get("id")
-    if type(node_id) is not int and not _is_int(node_id):
-        raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {node_id!r:.60}")
+    raw_id = raw.get("id")
+    if type(raw_id) is not int and not _is_int(raw_id):
+        raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {raw_id!r:.60}")
+    node_id = cast(int, raw_id)
     class_name = raw.get("class_name")
     if not isinstance(class_name, str) or not class_name.strip():
         raise GraphError(f"{_node_where(where, i, node_id)}: 'class_name' must be a non-empty "
@@ -417,11 +418,11 @@ def _edge_columns(raw_edges: list[Any], nodes: Mapping[int, Node]
                   ) -> tuple[Sequence[int], Sequence[str], Sequence[int]] | None:
     """The edges as (from ids, relations, to ids) if every one is valid and its relation
     is spelled in upper case; None otherwise (then `_edge_from_dict` says which is not)."""
-    if not raw_edges:
-        return ((), (), ())
     try:
-        froms, rels, tos = zip(*map(_EDGE_KEYS, raw_edges), strict=True)
-    except (TypeError, KeyError, ValueError):
+        froms = list(map(_FROM, raw_edges))
+        rels = list(map(_RELATION, raw_edges))
+        tos = list(map(_TO, raw_edges))
+    except (TypeError, KeyError):  # not an object, or a key is missing
         return None
     ids = nodes.keys()
     try:
@@ -445,7 +446,7 @@ def _edge_from_dict(raw: Any, nodes: Mapping[int, Node], where: str) -> Edge:
     for end, value in (("from_id", a), ("to_id", b)):
         if value not in nodes:
             raise GraphError(f"{where} ({a} {r} {b}): {end} {value} is not a node of the graph")
-    return (a, r.upper(), b)
+    return (cast(int, a), r.upper(), cast(int, b))
 
 
 def _check_characters(index: HomeIndex, where: str) -> None:

@@ -3,7 +3,10 @@
 ``scene1`` .. ``scene5`` are the full apartments with 3D boxes (for rendering);
 ``scene1_trimmed`` .. ``scene5_trimmed`` are the graphs the symbolic simulator was built
 on, with room names as programs use them (``dining_room``, ``home_office``). They were
-converted from the VirtualHome release by ``tools/convert_homes.py``.
+converted from the VirtualHome release by ``tools/convert_homes.py``, which fixes one
+fault of the release: in scene1 the character's INSIDE edge named bathroom 1 while its box
+(and its CLOSE edges) are in bedroom 67; the edge now follows the box, so ``homesim run``
+and the rendered video agree (`character_room_problem` checks every built-in home).
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ from importlib import resources
 
 from homesim.errors import GraphError
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.vocab import INSIDE
 
 _PACKAGE = "homesim.world.builtin"
 
@@ -59,3 +63,28 @@ def load_home(name: str) -> EnvironmentGraph:
         raise GraphError(f"unknown home {name!r}{hint}; built-in homes: {', '.join(names)}")
     with resources.as_file(resources.files(_PACKAGE) / f"{name}.json.gz") as path:
         return EnvironmentGraph.load(path)
+
+
+def rooms_holding_box(graph: EnvironmentGraph, node_id: int) -> list[int]:
+    """Rooms whose box holds the centre of the node's box on the floor (x, z), by id."""
+    box = graph.node(node_id).bounding_box
+    if box is None:
+        return []
+    x, _, z = box.center
+    return [r.id for r in graph.rooms() if r.bounding_box is not None
+            and abs(x - r.bounding_box.center[0]) <= r.bounding_box.size[0] / 2
+            and abs(z - r.bounding_box.center[2]) <= r.bounding_box.size[2] / 2]
+
+
+def character_room_problem(graph: EnvironmentGraph) -> str | None:
+    """One line if the character's room edge and its box disagree (both given), else None."""
+    char = graph.character_id
+    if char is None or graph.node(char).bounding_box is None:
+        return None
+    by_box = rooms_holding_box(graph, char)
+    by_edge = sorted(graph.targets(char, INSIDE) & graph.room_ids)
+    if by_box and by_edge and not set(by_box) & set(by_edge):
+        edge = ", ".join(graph.node(r).label() for r in by_edge)
+        box = ", ".join(graph.node(r).label() for r in by_box)
+        return f"character {char} is INSIDE {edge} but its box is in {box}"
+    return None

@@ -1,0 +1,129 @@
+"""The objects of an animated scene: where each is, what the agent holds, what is lit.
+
+`Props` follows the state the animation changes (held objects ride in a hand, doors swing,
+lamps and screens light up) and answers geometric questions the motions ask (where a
+hand goes to open something, where a put object lands). Positions are MuJoCo frame
+(metres, z up).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+
+from homesim.errors import ExecutionError
+from homesim.render.layout import Box, Part, lights_on_by_switch, to_mujoco
+from homesim.render.navigation import Grid
+from homesim.render.scene import SceneModel
+from homesim.world.graph import EnvironmentGraph
+from homesim.world.vocab import ON, S_OFF, S_ON
+
+_CEILING_LAMPS = ("ceilinglamp", "walllamp")
+
+
+class Props:
+    """Object state of one animation (see the module docstring)."""
+
+    def __init__(self, scene: SceneModel, graph: EnvironmentGraph, grid: Grid,
+                 rng: np.random.Generator):
+        self.scene, self.graph, self.grid, self.rng = scene, graph, grid, rng
+        m = scene.model
+        self.mocap = np.array(m.body_pos[m.body_mocapid >= 0])[np.argsort(
+            m.body_mocapid[m.body_mocapid >= 0])]
+        self.boxes: dict[int, Box] = {}
+        for node in graph:
+            if (b := to_mujoco(node)) is not None:
+                self.boxes[node.id] = b
+        self.held: dict[str, int] = {}  # side -> node id
+        self.lit = {n for n, p in self.parts() if p.lamp and p.is_on}
+        self.screens = {n for n, p in self.parts() if p.screen is not None and p.is_on}
+        # Room id -> lit; None stands for "outside every room" (a switch there may be used).
+        self.switch_rooms: dict[int | None, bool] = dict(lights_on_by_switch(graph).items())
+        self.hinge_angle = {n: (scene.hinge_open[n] if p.hinge.is_open else 0.0)
+                            for n, p in self.parts() if p.hinge is not None}
+
+    def parts(self) -> Iterator[tuple[int, Part]]:
+        return ((p.node_id, p) for p in self.scene.layout.parts)
+
+    def lit_lamps(self) -> frozenset[int]:
+        """Lamps lit now: those switched on, and ceiling and wall lamps of rooms whose
+        light switch is on."""
+        on = set(self.lit)
+        for n, p in self.parts():
+            if p.lamp and p.class_name in _CEILING_LAMPS:
+                room = self.graph.room_of(n)
+                if self.switch_rooms.get(room, True):
+                    on.add(n)
+        return frozenset(on)
+
+    def box_of(self, node_id: int) -> Box:
+        """Where a node is now: a movable object where it was put, a room as a small box
+        at its middle's free floor."""
+        if node_id in self.scene.mocap:
+            c = self.mocap[self.scene.mocap[node_id]]
+            return Box(c.copy(), self.boxes[node_id].half)
+        if node_id in self.scene.layout.room_floors:
+            middle = self.scene.layout.room_floors[node_id].center
+            spot = self.grid.point(self.grid.nearest_free(middle[:2]))
+            return Box(np.r_[spot, 0.0], np.full(3, 0.05))
+        if node_id not in self.boxes:
+            raise ExecutionError(f"node {node_id} has no 3D box to walk to")
+        return self.boxes[node_id]
+
+    def half_of(self, node_id: int) -> np.ndarray:
+        return self.boxes[node_id].half if node_id in self.boxes else np.full(3, 0.05)
+
+    def side_holding(self, node_id: int) -> str | None:
+        return next((s for s, n in self.held.items() if n == node_id), None)
+
+    def free_side(self) -> str:
+        return "r" if "r" not in self.held else "l"
+
+    def handle_point(self, node_id: int, agent_xy: np.ndarray) -> np.ndarray:
+        """Where a hand goes to open, close or switch something."""
+        box = self.box_of(node_id)
+        p = box.center.copy()
+        part = self.scene.layout.part(node_id)
+        if part is not None and part.hinge is not None:
+            h = part.hinge
+            p = h.pivot + 1.8 * h.panel.center
+            p[2] = min(max(h.pivot[2], 0.5), 1.3)
+        if p[2] > 1.7:
+            p[2] = 1.7
+        near = np.clip(agent_xy, box.lo[:2], box.hi[:2])  # the side facing the agent
+        p[:2] = 0.5 * p[:2] + 0.5 * near
+        return p
+
+    def placement(self, obj: int, rel: str, dest: int, agent_xy: np.ndarray) -> np.ndarray:
+        """Where an object ends up when put ON or INSIDE a destination."""
+        box = self.box_of(dest)
+        half = self.half_of(obj)
+        room = np.maximum(box.half[:2] - half[:2] - 0.05, 0.0)
+        jitter = self.rng.uniform(-1.0, 1.0, 2) * np.minimum(room, 0.2)
+        near = np.clip(agent_xy, box.lo[:2] + half[:2], box.hi[:2] - half[:2])
+        xy = 0.5 * (box.center[:2] + jitter) + 0.5 * near
+        z = box.hi[2] + half[2] if rel == ON else box.lo[2] + 0.05 + half[2]
+        return np.r_[xy, z]
+
+    def move(self, obj: int, position: np.ndarray) -> None:
+        """Set a movable object's position (others stay where they are)."""
+        if obj in self.scene.mocap:
+            self.mocap[self.scene.mocap[obj]] = position
+
+    def apply_states(self, states: dict[int, tuple[frozenset[str], frozenset[str]]]) -> None:
+        """Light lamps and screens switched on, darken those switched off."""
+        for n, (_before, after) in states.items():
+            if S_ON in after or S_OFF in after:
+                self._switch(n, S_ON in after)
+
+    def _switch(self, n: int, on: bool) -> None:
+        cls = self.graph.node(n).class_name if n in self.graph.nodes else ""
+        if cls == "lightswitch":
+            self.switch_rooms[self.graph.room_of(n)] = on
+        for target, shown in ((self.lit, self.scene.lamp_mat),
+                              (self.screens, self.scene.screen_geom)):
+            if on and n in shown:
+                target.add(n)
+            elif not on:
+                target.discard(n)
