@@ -36,15 +36,23 @@ def _candidates(parts: list[Part], room: int, e: Entry, kb: ObjectKnowledge, fin
     here = [(k, p) for k, p in enumerate(parts) if p.room == room
             and p.kind in ("fixture", "item") and p.cls != e.cls]
     out = [(k, rel, n) for key, n in e.parents.items() for rel in [key.split("|")[1]]
-           for k, p in here if p.cls == key.split("|")[0]]
+           for k, p in here if p.cls == key.split("|")[0] and _may_hold(p.cls, rel)]
     if out or not final:
         return out
     for pl in kb.placements(e.cls):
         names = set(class_names_for(pl.destination, kb))
-        out += [(k, pl.relation, 1) for k, p in here if p.cls in names]
+        out += [(k, pl.relation, 1) for k, p in here
+                if p.cls in names and _may_hold(p.cls, pl.relation)]
     if out:
         return out
     return [(k, "ON", 1) for k, p in here if p.cls in SURFACE_CLASSES]
+
+
+def _may_hold(parent: str, relation: str) -> bool:
+    """Nothing goes ON what people sit or lie on: the simulator counts what is ON a
+    sofa against its seats, so a sofa under five shirts could not be sat on."""
+    props = class_info(parent)["properties"]
+    return relation != "ON" or not ("SITTABLE" in props or "LIEABLE" in props)
 
 
 def _place(rng: random.Random, parts: list[Part], room: int, e: Entry,
