@@ -14,9 +14,11 @@ Rect = tuple[float, float, float, float]
 
 CELL = 0.2
 """Side (m) of a cell of the walkability grid."""
-AGENT_HALF = 0.2
-"""Half the agent's footprint (m), as `homesim.ground.standing.AGENT_SIZE` / 2."""
-DOOR_REACH = 0.45
+AGENT_HALF = 0.3
+"""Clearance (m) kept around obstacles: the renderer's walking agent has a 0.25 m radius
+(`homesim.render.navigation.AGENT_RADIUS`, on a 0.1 m grid), wider than grounding's
+0.4 m square (`homesim.ground.standing.AGENT_SIZE`)."""
+DOOR_REACH = 0.6
 """Cells whose centre is this near (m) a doorway count as at the door."""
 SLACK = 0.03
 """Extra margin (m) the generator keeps over the checks."""
@@ -24,9 +26,9 @@ SLACK = 0.03
 
 def blocks(box: tuple[float, float, float, float, float, float]) -> bool:
     """Whether a box (x0, y0, z0, x1, y1, z1) is in the agent's way: it reaches into the
-    body's height (0.1-1.5 m, as in `homesim.ground.standing`) and is not a flat thing on
-    a wall (a light switch, a socket)."""
-    return box[1] < 1.5 and box[4] > 0.1 and min(box[3] - box[0], box[5] - box[2]) >= 0.1
+    body's height (0.08-1.5 m: grounding's 0.1-1.5 m, `homesim.ground.standing`, and the
+    renderer's legs from 0.08 m, `homesim.render.navigation.LEG_LEVEL`); sockets too."""
+    return box[1] < 1.5 and box[4] > 0.08
 
 
 def overlaps(a: Rect, b: Rect, margin: float = 0.0) -> bool:

@@ -58,9 +58,11 @@ def build_shell(plan: Plan) -> list[Part]:
             parts.append(door)
             # A floor tile across the threshold: walking (and the renderer's grid) needs
             # floor under the doorway, between the two rooms' tiles.
+            # It reaches 0.3 m into both rooms so it overlaps their tiles on any grid.
             b = door.box
-            parts.append(Part("floor", d.room, box3(b[0], -0.001, b[2], b[3], 0.0, b[5]),
-                              kind="structure"))
+            dx, dz = (0.3, 0.0) if d.side[0] == "x" else (0.0, 0.3)
+            parts.append(Part("floor", d.room, box3(b[0] - dx, -0.001, b[2] - dz, b[3] + dx,
+                                                    0.0, b[5] + dz), kind="structure"))
     for w in plan.windows:
         box = side_box(plan.rooms[w.room].rect, w.side, w.lo, w.hi, WALL, 0.9, 2.0)
         parts.append(Part("window", w.room, box, normal=INWARD[w.side], kind="structure"))
