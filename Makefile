@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,stats,render,serve,learn
+EXTRAS ?= dev,stats,render,serve,learn,agents
 
 .PHONY: setup demo test lint bench clean
 WEB_BUILD := src/homesim/serve/static/index.html
@@ -45,6 +45,7 @@ bench: setup
 	$(BIN)/python benchmarks/render.py
 	$(BIN)/python benchmarks/serve.py
 	$(BIN)/python benchmarks/learn.py
+	$(BIN)/python benchmarks/repair.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache

@@ -106,3 +106,15 @@ class GroundingError(HomesimError):
         self.bindings: dict[tuple[str, int], int] = {}
         """The search's choices when it failed (program object -> node id), if any."""
         super().__init__(message)
+
+
+class GoalError(HomesimError):
+    """A goal or goal formula that is malformed (bad syntax, unknown predicate, arity).
+
+    Attributes:
+        column: 1-based column of the formula text where the problem is (0 when unknown).
+    """
+
+    def __init__(self, message: str, column: int = 0):
+        self.column = column
+        super().__init__(message)

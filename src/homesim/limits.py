@@ -73,7 +73,7 @@ RENDER_KEEP_JOBS = 16
 RENDER_KEEP_S = 600.0
 """Seconds a finished render job's frames stay available."""
 
-INLINE_PROGRAM_CHARS = 16 * 1024
+INLINE_PROGRAM_CHARS = 4 * 1024
 """Programs up to this many characters are checked and run in the server process; larger
 ones go to a program worker process, so their parsing never holds up other requests."""
 
@@ -97,7 +97,7 @@ BODY_TIMEOUT_S = 10.0
 KEEP_ALIVE_S = 5
 """Seconds an idle keep-alive connection stays open."""
 
-SHUTDOWN_GRACE_S = 3
+SHUTDOWN_GRACE_S = 2
 """Seconds a stopping server waits for requests in flight before cancelling them."""
 
 MAX_MESSAGE_CHARS = 500

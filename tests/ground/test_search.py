@@ -219,6 +219,35 @@ def test_prepare_never_mutates_and_ground_in_prepared_home():
     assert execute(g.program, prep.graph).executable
 
 
+def test_nearest_point_is_the_exact_minimum_of_square_distance():
+    import random
+
+    from homesim.ground.search import _Points
+    from homesim.ground.standing import square_distance
+
+    rng = random.Random(0)
+    for _ in range(2000):
+        scale = rng.choice([1.0, 30.0, 1e300])
+
+        def coord(scale=scale):
+            return rng.uniform(-scale, scale) if rng.random() < 0.7 else rng.choice(
+                [0.0, 0.5, 1e308, -1e308])
+
+        centers = [(coord(), 0.0, coord()) for _ in range(rng.randint(1, 20))]
+        query = (coord(), 0.0, coord())
+        assert _Points(centers).nearest(query) == min(square_distance(query, c)
+                                                      for c in centers)
+
+
+def test_a_program_with_many_objects_grounds_each_to_its_own_instance():
+    # Many chosen objects on one surface: the surface index and the nearest-point sweep of
+    # order() (benchmarks/grounding_many.py times them against comparing every pair).
+    p = parse_program("".join(f"[Walk] <cup> ({i})\n" for i in range(1, 61)))
+    for home in ("scene1_trimmed", "scene1"):
+        _, g = prepare_and_ground(p, load_home(home))
+        assert len(set(g.bindings.values())) == 60
+
+
 def test_eaten_food_is_eatable_in_full_homes(shared_data):
     """Issue 12: scene2 and scene3 have food but none of it EATABLE, scene1 one piece; a
     program eating six pieces gets eatable ones (added by preparation), as in the trimmed

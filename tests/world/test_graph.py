@@ -176,3 +176,14 @@ def test_deeply_nested_json_is_a_graph_error(tmp_path):
     d["nodes"][0]["note"] = json.loads("[" * 40 + "]" * 40)
     with pytest.raises(GraphError, match=r"nodes\[0\] \(id 1\): JSON nested deeper"):
         EnvironmentGraph.from_dict(d)
+
+
+def test_a_gzip_bomb_or_a_huge_number_is_a_graph_error(tmp_path):
+    bomb = tmp_path / "bomb.json.gz"
+    bomb.write_bytes(gzip.compress(b" " * 5_000_000))  # 5 KB that unpack to 5 MB
+    with pytest.raises(GraphError, match=r"unpacks to over the 1 MiB limit .*MAX_GRAPH_BYTES"):
+        EnvironmentGraph.load(bomb, max_bytes=2**20)
+    huge = tmp_path / "huge.json"
+    huge.write_text('{"nodes": [{"id": ' + "9" * 5000 + "}]}")  # was a ValueError
+    with pytest.raises(GraphError, match=r"huge.json: invalid JSON \(Exceeds the limit"):
+        EnvironmentGraph.load(huge)

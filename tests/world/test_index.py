@@ -3,6 +3,7 @@
 import gc
 import sys
 import threading
+import weakref
 from importlib import resources
 
 import pytest
@@ -84,12 +85,16 @@ def test_eight_threads_share_one_cached_home(programs):
 
 def test_floor_plans_go_away_with_their_homes():
     home = load_home("scene1")
-    before = len(standing._PLANS._entries)
     graphs = [EnvironmentGraph.from_dict(home.to_dict()) for _ in range(3)]
     for g in graphs:
         standing.FloorPlan.for_graph(g).spot_near(g.character_id)
         standing.note_prepared(EnvironmentGraph.from_dict(g.to_dict()), g, frozenset())
-    assert len(standing._PLANS._entries) >= before + 3
+    refs = [weakref.ref(g) for g in graphs]
+    keys = {id(g) for g in graphs}
+    # Checked by key, not by count: other tests' homes may be freed meanwhile.
+    assert keys <= set(standing._PLANS._entries)
     del graphs, g
     gc.collect()
-    assert len(standing._PLANS._entries) <= before
+    assert all(r() is None for r in refs)  # the cache kept none of them alive
+    entries = standing._PLANS._entries
+    assert all(entries.get(k) is None or entries[k][0]() is not None for k in keys)

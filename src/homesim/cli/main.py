@@ -16,7 +16,7 @@ import typer
 from rich.markup import escape
 
 from homesim import __version__
-from homesim.cli import data, homes, learn, render, run, serve, synth
+from homesim.cli import data, goals, homes, learn, render, run, serve, synth
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
 
@@ -33,6 +33,8 @@ app.add_typer(data.app, name="data")
 app.command("render")(render.render)
 app.command("synth")(synth.synth)
 app.add_typer(learn.app, name="learn")
+app.add_typer(goals.app, name="goals")
+app.add_typer(goals.eval_app, name="eval")
 app.add_typer(homes.app, name="homes")
 
 

@@ -14,7 +14,9 @@ from homesim.errors import HomesimError
 from homesim.examples import DEMO_HOME, load_example
 from homesim.ground.pipeline import run_program
 from homesim.ground.prepare import Prepared
+from homesim.ground.repair import repair
 from homesim.ground.search import Grounding
+from homesim.sim.execute import ExecutionResult
 from homesim.world.graph import EnvironmentGraph
 
 
@@ -56,6 +58,9 @@ def run(
     no_ground: Annotated[bool, typer.Option(
         "--no-ground", help="Run an ungrounded program as is, reading (N) as node N, as "
                             "the reference simulator does.")] = False,
+    with_repair: Annotated[bool, typer.Option(
+        "--repair", help="Insert missing commonsense steps (walk to an object before "
+                         "grabbing it, ...) and list each with its reason.")] = False,
 ) -> None:
     """Execute a program step by step and show what each step did or why it failed.
 
@@ -68,22 +73,43 @@ def run(
     g, gname = read_graph(graph, home, DEMO_HOME)
     if not prog.steps:
         raise HomesimError(f"{program or 'demo'}: the program has no steps")
+    if with_repair and no_ground:
+        raise HomesimError("--repair runs through preparation and grounding; drop --no-ground")
+    fixed = repair(prog, g, seed=seed) if with_repair else None
+    if fixed is not None:
+        prog = fixed.program
     ran = run_program(prog, g, seed=seed, trace=True, reference=no_ground)
     if as_json:
-        console.print_json(json.dumps(ran.to_dict()))
+        data = ran.to_dict()
+        if fixed is not None:
+            data["repair"] = fixed.to_dict()
+        console.print_json(json.dumps(data))
         raise typer.Exit(0 if ran.executable else 1)
     result = ran.result
     if result is None:
         console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(ran.message)}")
         raise typer.Exit(1)
-    g = ran.graph
+    for ins in fixed.insertions if fixed is not None else ():
+        console.print(f"[cyan]inserted[/] step {ins.index + 1} {escape(str(ins.step))}: "
+                      f"{escape(ins.reason)}")
     if ran.prepared is not None and ran.grounding is not None:
-        _show_grounding(g, ran.prepared, ran.grounding)
+        _show_grounding(ran.graph, ran.prepared, ran.grounding)
+    title = result.program.title or (program or "demo")
+    console.print(_step_table(result, f"{title} — {gname} ({len(ran.graph)} nodes)",
+                              all_changes))
+    if result.executable:
+        console.print(f"[green]executable[/]: all {len(result.program.steps)} steps ran")
+    else:
+        console.print(f"[red]not executable[/]: {escape(result.message)}")
+        raise typer.Exit(1)
+
+
+def _step_table(result: ExecutionResult, title: str, all_changes: bool) -> Table:
+    """One row per step: ✓ and what it changed, ✗ and why, or · not run."""
     prog = result.program
     label = result.state.label
-    title = prog.title or (program or "demo")
-    table = Table(title=f"{title} — {gname} ({len(g)} nodes)", title_justify="left",
-                  show_header=False, box=None, pad_edge=False)
+    table = Table(title=title, title_justify="left", show_header=False, box=None,
+                  pad_edge=False)
     table.add_column(justify="right", style="dim")
     table.add_column()
     table.add_column()
@@ -96,9 +122,4 @@ def run(
     for index in range(result.steps_run + 1, len(prog.steps)):
         table.add_row(str(index + 1), "[dim]·[/]", f"[dim]{escape(str(prog.steps[index]))}[/]",
                       "[dim]not run[/]")
-    console.print(table)
-    if result.executable:
-        console.print(f"[green]executable[/]: all {len(prog.steps)} steps ran")
-    else:
-        console.print(f"[red]not executable[/]: {escape(result.message)}")
-        raise typer.Exit(1)
+    return table

@@ -6,20 +6,25 @@ Glossary:
     placement: where an added object may go (the placement knowledge base).
     standing: free floor next to an object where the agent stands to act on it.
     run_program: the one pipeline every entry point uses (prepare, ground, execute).
+    repair: insert the commonsense steps a program misses (walk to an object first, ...).
 """
 
 from homesim.ground.pipeline import Run, run_program
 from homesim.ground.prepare import Addition, Prepared, prepare
+from homesim.ground.repair import Insertion, Repair, repair
 from homesim.ground.search import Grounding, ground, prepare_and_ground, unground
 
 __all__ = [
     "Addition",
     "Grounding",
+    "Insertion",
     "Prepared",
+    "Repair",
     "Run",
     "ground",
     "prepare",
     "prepare_and_ground",
+    "repair",
     "run_program",
     "unground",
 ]

@@ -29,8 +29,11 @@ Grounding finds node ids for them under which every step executes:
 
 from __future__ import annotations
 
+import bisect
 import difflib
+import math
 import random
+from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -38,12 +41,12 @@ from typing import Any
 from homesim.errors import GroundingError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import Prepared, first_use, instances_of, prepare
-from homesim.ground.standing import FloorPlan, Spot, has_geometry, square_distance
+from homesim.ground.standing import FloorPlan, Spot, has_geometry
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
-from homesim.world.graph import BoundingBox, EnvironmentGraph
+from homesim.world.graph import EnvironmentGraph
 from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 Key = tuple[str, int]
@@ -82,6 +85,71 @@ class Grounding:
 
 class _OutOfBudget(Exception):
     pass
+
+
+class _Points:
+    """Points in the floor plane, sorted by x, for the nearest one to a point.
+
+    Speed: the search walks out from the point's x in both directions and stops where
+    the x gap alone is over the best squared distance so far, so a program with many
+    objects does not compare every pair. The result is the exact minimum of
+    `square_distance` (a skipped point is strictly farther)."""
+
+    def __init__(self, centers: list[tuple[float, float, float]]):
+        self.points = sorted((c[0], c[2]) for c in centers)
+        self.xs = [p[0] for p in self.points]
+
+    def __bool__(self) -> bool:
+        return bool(self.points)
+
+    def nearest(self, center: tuple[float, float, float]) -> float:
+        """The smallest squared (x, z) distance from `center` to a point."""
+        x, z = center[0], center[2]
+        points, xs, n = self.points, self.xs, len(self.points)
+        best = math.inf
+        right = bisect.bisect_left(xs, x)
+        left = right - 1
+        while left >= 0 or right < n:
+            # The next point is the one with the smaller x gap, on either side.
+            if left >= 0 and (right >= n or x - xs[left] <= xs[right] - x):
+                i, left = left, left - 1
+            else:
+                i, right = right, right + 1
+            dx, dz = x - points[i][0], z - points[i][1]
+            if dx * dx > best:
+                break  # every point left is at least as far in x alone
+            d = dx * dx + dz * dz
+            if d < best:
+                best = d
+        return best
+
+
+class _Anchors:
+    """Objects already chosen (or fixed), indexed by the surfaces they are on.
+
+    Speed: a candidate's related anchors are a few set lookups, not a loop over every
+    anchor, so a program with many objects (1000 cups) does not compare every pair."""
+
+    def __init__(self, st: SimState, anchors: list[int]):
+        self.weight = Counter(anchors)  # an anchor may come twice (two objects, one node)
+        self.single = len(self.weight) == len(anchors)
+        self.on_surface: dict[int, set[int]] = {}
+        for b in self.weight:
+            for surface in st.targets(b, ON):
+                self.on_surface.setdefault(surface, set()).add(b)
+
+    def __bool__(self) -> bool:
+        return bool(self.weight)
+
+    def count(self, near: frozenset[int] | set[int], under: frozenset[int] | set[int]) -> int:
+        """How many anchors are in `near` or `under`, or on a surface in `under`."""
+        hit = self.weight.keys() & (near | under)
+        shared = [self.on_surface[s] for s in under if s in self.on_surface]
+        if self.single and len(shared) == 1:  # the usual case, without copying the set
+            return len(shared[0]) + sum(1 for b in hit if b not in shared[0])
+        for anchors_there in shared:
+            hit.update(anchors_there)
+        return len(hit) if self.single else sum(self.weight[b] for b in hit)
 
 
 @dataclass(slots=True)
@@ -253,15 +321,16 @@ class _Search:
         bound = [n for n in self.assign.values() if n not in st.rooms]
         anchors = bound + [n for n in self.fixed if n not in self.owner and n not in st.rooms]
         rooms = (st.room_of(st.char), {st.room_of(n) for n in self.assign.values()})
-        boxes = [b for b in (self.graph.nodes[n].bounding_box for n in bound
-                             if n in self.graph.nodes) if b is not None]
+        boxes = _Points([b.center for b in (self.graph.nodes[n].bounding_box for n in bound
+                                            if n in self.graph.nodes) if b is not None])
         needs = self.needs.get(key, ())
-        scored = [self._score(node, needs, anchors, rooms, boxes) for node in self.domains[key]]
+        index = _Anchors(st, anchors)
+        scored = [self._score(node, needs, index, rooms, boxes) for node in self.domains[key]]
         scored.sort()
         return [s[-1] for s in scored]
 
-    def _score(self, node: int, needs: Sequence[frozenset[str]], anchors: list[int],
-               rooms: tuple[int | None, set[int | None]], boxes: list[BoundingBox]
+    def _score(self, node: int, needs: Sequence[frozenset[str]], anchors: _Anchors,
+               rooms: tuple[int | None, set[int | None]], boxes: _Points
                ) -> tuple[int, int, int, float, float, int]:
         """The sort key of one candidate (lower is better)."""
         st = self.st
@@ -275,22 +344,20 @@ class _Search:
         return (lacking, -self._related(node, anchors), room_rank,
                 self._distance(node, boxes), tie, node)
 
-    def _related(self, node: int, anchors: list[int]) -> int:
+    def _related(self, node: int, anchors: _Anchors) -> int:
         """How many anchors `node` is close to, on or in, or shares a surface with."""
         if not anchors:
             return 0
         st = self.st
-        near = st.targets(node, CLOSE)
         under = st.targets(node, ON) | st.targets(node, INSIDE)
-        return sum(1 for b in anchors
-                   if b in near or b in under or not under.isdisjoint(st.targets(b, ON)))
+        return anchors.count(st.targets(node, CLOSE), under)
 
-    def _distance(self, node: int, boxes: list[BoundingBox]) -> float:
+    def _distance(self, node: int, boxes: _Points) -> float:
         """Squared floor distance from `node` to the nearest bound object (0 without)."""
         box = self.graph.nodes[node].bounding_box if node in self.graph.nodes else None
         if not boxes or box is None:
             return 0.0
-        return min(square_distance(box.center, b.center) for b in boxes)
+        return boxes.nearest(box.center)
 
     # ------------------------------------------------------------------ standing
     def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:

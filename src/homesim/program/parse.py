@@ -22,11 +22,12 @@ from homesim.program.model import ObjectRef, Program, Step, normalize_name
 _ACTION = re.compile(r"\s*\[([^\[\]]*)\]")
 _NAME = re.compile(r"\s*<([^<>]*)>")
 _ID = re.compile(r"\s*\(\s*(\d+)(?:\s*\.\s*(\d+))?\s*\)")
-_END = re.compile(r"\s*\Z")
+_OBJECT = re.compile(_NAME.pattern + _ID.pattern)
 _EXAMPLE = "a step like '[Walk] <sofa> (1)'"
 
 # Speed: every match is anchored at the current position and nothing copies the rest of
-# a line, so parsing is linear in the length of the text.
+# a line, so parsing is linear in the length of the text. An object is one match
+# (`_OBJECT`); `_NAME` and `_ID` apart only say what is wrong with a bad one.
 
 
 def parse_step(line: str, lineno: int = 1, source: str | None = None) -> Step:
@@ -52,29 +53,42 @@ def parse_step(line: str, lineno: int = 1, source: str | None = None) -> Step:
         extra = f" (did you mean {hint}?)" if hint else ""
         raise fail(f"unknown action {excerpt(word)!r}{extra}", UnknownActionError)
     pos = m.end()
+    end = len(line.rstrip())  # same whitespace as the patterns' \s
     args: list[ObjectRef] = []
-    while _END.match(line, pos) is None:
-        nm = _NAME.match(line, pos)
-        if nm is None:
-            rest = excerpt(line[pos:pos + limits.EXCERPT_CHARS + 1].strip())
-            raise fail(f"expected an object like '<sofa> (1)' but found {rest!r}")
-        raw = nm.group(1)
+    while pos < end:
+        om = _OBJECT.match(line, pos)
+        if om is None:
+            raise _object_error(line, pos, fail)
+        raw, first, second = om.groups()
         if len(raw) > limits.MAX_NAME_CHARS:
-            raise fail(f"object name of {len(raw)} characters, over the limit of "
-                       f"{limits.MAX_NAME_CHARS} (MAX_NAME_CHARS)")
+            raise fail(_long_name(raw))
         name = normalize_name(raw)
         if not name:
             raise fail("expected an object name between '<' and '>'")
-        im = _ID.match(line, nm.end())
-        if im is None:
-            raise fail(f"expected an id like '(1)' or '(1.417)' after <{raw}>")
-        args.append(ObjectRef(name, _number(im.group(1), fail),
-                              None if im.group(2) is None else _number(im.group(2), fail)))
-        pos = im.end()
+        args.append(ObjectRef(name, _number(first, fail),
+                              None if second is None else _number(second, fail)))
+        pos = om.end()
     if len(args) != action.arity:
         raise fail(f"[{action.name}] takes {_objects(action.arity)}, got {len(args)}",
                    ArityError)
     return Step(action, tuple(args))
+
+
+def _object_error(line: str, pos: int, fail: Callable[[str], ProgramError]) -> ProgramError:
+    """What is wrong with the object at `pos`, which `_OBJECT` did not match."""
+    nm = _NAME.match(line, pos)
+    if nm is None:
+        rest = excerpt(line[pos:pos + limits.EXCERPT_CHARS + 1].strip())
+        return fail(f"expected an object like '<sofa> (1)' but found {rest!r}")
+    raw = nm.group(1)
+    if len(raw) > limits.MAX_NAME_CHARS:
+        return fail(_long_name(raw))
+    return fail(f"expected an id like '(1)' or '(1.417)' after <{raw}>")
+
+
+def _long_name(raw: str) -> str:
+    return (f"object name of {len(raw)} characters, over the limit of "
+            f"{limits.MAX_NAME_CHARS} (MAX_NAME_CHARS)")
 
 
 def _objects(n: int) -> str:

@@ -288,6 +288,7 @@ class Animator:
 
 
 def standing_pose(shape: AgentShape, xy: np.ndarray) -> Pose:
+    """The start pose (a name apart from `Animator`'s `standing` argument)."""
     return standing(shape, xy, 0.0)
 
 

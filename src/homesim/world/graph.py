@@ -12,6 +12,7 @@ share it. Executing a program never changes a graph; it yields a new one.
 from __future__ import annotations
 
 import gzip
+import io
 import json
 import math
 from collections.abc import Iterable, Iterator, Mapping, Sequence
@@ -20,7 +21,9 @@ from operator import itemgetter
 from pathlib import Path
 from typing import Any, TypeGuard, cast
 
-from homesim.errors import GraphError
+import orjson
+
+from homesim.errors import GraphError, excerpt
 from homesim.files import write_bytes, write_text
 from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
 from homesim.world.index import HomeIndex, index_edges
@@ -173,13 +176,18 @@ class EnvironmentGraph:
         if size > max_bytes:
             raise GraphError(
                 f"{path}: file is {size / 2**20:.0f} MiB, over the {max_bytes / 2**20:.0f} MiB "
-                "limit for a graph"
+                "limit for a graph (MAX_GRAPH_BYTES)"
             )
         try:
             raw = path.read_bytes()
             if path.suffix == ".gz":
-                raw = gzip.decompress(raw)
-            data = json.loads(raw)
+                # Read at most the limit: a small .gz file can unpack to gigabytes.
+                with gzip.GzipFile(fileobj=io.BytesIO(raw)) as f:
+                    raw = f.read(max_bytes + 1)
+                if len(raw) > max_bytes:
+                    raise GraphError(f"{path}: unpacks to over the {max_bytes / 2**20:.0f} MiB "
+                                     "limit for a graph (MAX_GRAPH_BYTES)")
+            data = _parse_json(raw)
         except EOFError:
             raise GraphError(f"{path}: the gzip data ends early (is the file truncated?)") from None
         except (OSError, gzip.BadGzipFile) as e:
@@ -188,6 +196,8 @@ class EnvironmentGraph:
             raise GraphError(f"{path}: not UTF-8 text") from None
         except json.JSONDecodeError as e:
             raise GraphError(f"{path}: {_json_problem(e)}") from None
+        except ValueError as e:  # an integer of over 4300 digits
+            raise GraphError(f"{path}: invalid JSON ({excerpt(str(e))})") from None
         except RecursionError:
             raise GraphError(f"{path}: JSON nested deeper than the limit of {MAX_JSON_DEPTH} "
                              "levels (MAX_JSON_DEPTH)") from None
@@ -459,6 +469,18 @@ def _check_characters(index: HomeIndex, where: str) -> None:
         if not inside.get(char, _EMPTY) & index.rooms:
             raise GraphError(f"{where}character {char} is INSIDE no room; add an edge "
                              f"{{'from_id': {char}, 'relation_type': 'INSIDE', 'to_id': ROOM}}")
+
+
+def _parse_json(raw: bytes) -> Any:
+    """Parse JSON with orjson (about 3x faster on a home), else with `json`.
+
+    Anything orjson refuses (bad JSON, integers beyond 64 bits, NaN, deep nesting) is
+    parsed again by `json`, whose exceptions the caller turns into messages: the same
+    answer as before, only valid homes take the fast path."""
+    try:
+        return orjson.loads(raw)
+    except orjson.JSONDecodeError:
+        return json.loads(raw)
 
 
 def _json_problem(e: json.JSONDecodeError) -> str:

@@ -1,0 +1,109 @@
+"""EAI's own action-sequencing evaluator, per plan (run with the side venv's Python).
+
+Usage: /tmp/eai/bin/python benchmarks/eai_reference.py PLANS.json OUT.json
+
+Not part of homesim and never imported by it: `benchmarks/eai_agreement.py` runs it in a
+side environment where ``eai-eval==1.0.5`` is installed. It follows the loop of
+``virtualhome_eval/evaluation/action_sequencing/scripts/evaluate_results.py`` step by step,
+calling EAI's functions, and records each plan's verdict (that script only keeps totals).
+One change: plans equal to the gold program are executed and judged like any other (the
+script counts them executable and never checks their goals).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import logging
+import os.path as osp
+import sys
+import time
+from pathlib import Path
+
+
+def _load(path: str) -> object:
+    return json.loads(Path(path).read_text())
+
+
+def main(plans_path: str, out_path: str) -> None:
+    logging.disable(logging.CRITICAL)
+    import virtualhome_eval
+    import virtualhome_eval.simulation.evolving_graph.utils as utils
+    from virtualhome_eval.simulation.evolving_graph import eval_utils as eu
+    from virtualhome_eval.simulation.evolving_graph.checker import TemporalOrderChecker
+
+    root = osp.dirname(virtualhome_eval.__file__)
+    resources = osp.join(root, "resources", "virtualhome")
+    data_dir = osp.join(root, "dataset", "programs_processed_precond_nograb_morepreconds")
+    tasks = _load(osp.join(resources, "task_state_LTL_formula_accurate.json"))
+    tasks = tasks["scene_1"]
+    id2task = _load(osp.join(resources, "id2task.json"))
+    properties, placing, names = (utils.load_properties_data(), utils.load_object_placing(),
+                                  utils.load_name_equivalence())
+    kinds = {0: "wrong_order", 1: "missing_step", 2: "affordance", 4: "additional_step"}
+    plans = _load(plans_path)
+    out = []
+    start = time.perf_counter()
+    for plan in plans:
+        pid = plan["identifier"]
+        goals = tasks[id2task[pid]][pid]["vh_goal"]
+        nodes = eu.remove_duplicate_dicts([g for g in goals["goal"] if "state" in g])
+        edges = eu.remove_duplicate_dicts([g for g in goals["goal"] if "relation_type" in g])
+        actions_goal = list(set(goals["actions"]))
+        planner, _, _, _, _ = eu.construct_planner(names, properties, placing,
+                                                   scenegraph_id=1, script_id=pid,
+                                                   dataset_root=data_dir)
+        *_, relevant = planner.get_symbolic_goal_nl(nodes, edges, action_goals=actions_goal)
+        gold_ok = eu.scene_evaluate_wID(planner.final_state_dict, nodes, edges,
+                                        planner.acting_char_id)[3]
+        record = {"identifier": pid, "kind": plan.get("kind"), "gold_test": gold_ok,
+                  "error": None, "executable": False, "success": False, "additional": 0}
+        out.append(record)
+        text = plan["llm_output"]
+        if text.startswith("```json"):
+            text = text[7:]
+        text = text.strip().replace("\n", "").replace("'", '"')
+        try:
+            acts = eu.load_json_preserving_order(text)
+        except Exception:
+            acts = None
+        if acts is None or len(acts) == 0 or not eu.check_name_id_format(acts)[0]:
+            record["error"] = "format"
+            continue
+        if not (eu.check_no_hallucination_in_action(acts)
+                and eu.check_no_hallucination_in_arg(acts, relevant)):
+            record["error"] = "hallucination"
+            continue
+        if not eu.check_action_grammar(acts)[0]:
+            record["error"] = "arity"
+            continue
+        acts = eu.json_to_action(acts, relevant_name_to_id=relevant)
+        planner.reset()
+        history, executable = [], True
+        states = [copy.deepcopy(planner.env_state.to_dict())]
+        for action in acts:
+            ok, info = planner.my_execute_primitive_action_eval(action)
+            if ok:
+                history.append(action)
+                states.append(copy.deepcopy(planner.env_state.to_dict()))
+                continue
+            code = TemporalOrderChecker(info, copy.deepcopy(states)).run_checker()
+            code = code.get_error_type()
+            if code == 4:
+                record["additional"] += 1
+                continue
+            record["error"] = kinds.get(code, f"code {code}")
+            executable = False
+            break
+        if executable and record["additional"]:
+            record["error"] = "additional_step"
+        record["executable"] = executable
+        record["success"] = bool(eu.scene_evaluate_wID(
+            planner.env_state.to_dict(), nodes, edges, planner.acting_char_id,
+            action_seq=history, action_goals=actions_goal)[3])
+    elapsed = time.perf_counter() - start
+    Path(out_path).write_text(json.dumps({"seconds": elapsed, "plans": out}, indent=1))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])

@@ -1,0 +1,446 @@
+"""Score plans written in EAI's action-sequencing output format.
+
+A plan is the text an LLM answered for one program, a JSON object whose keys are actions
+and whose values list ``name, id`` pairs, keys repeated as needed and kept in order::
+
+    {"WALK": ["dining_room", "201"], "FIND": ["soap", "1002"], "GRAB": ["soap", "1002"],
+     "PUTBACK": ["soap", "1002", "washing_machine", "1001"]}
+
+`score_plan` judges it as EAI's evaluator does, in stages, and stops at the first that
+fails: ``format`` (not such an object, or empty, or an odd list), ``hallucination`` (an
+action homesim does not know, or an object that is not one of the task's objects: those
+whose state or relations differ between the program's initial and final graphs, as EAI
+defines them), ``arity`` (wrong number of objects), then execution through
+`homesim.run_program` in the program's initial graph. A step that fails at run time is
+classified with EAI's error kinds:
+
+- ``additional_step``: it would do what is already done (open the open, switch on the
+  on, grab what is held, or repeat a step that already ran and now fails); the step is
+  skipped and the plan goes on, as in EAI;
+- ``affordance``: the object cannot take the action (not GRABBABLE, no switch, ...);
+- ``wrong_order``: it could have run in an earlier state of this run;
+- ``missing_step``: anything else (not close, not holding, inside a closed container).
+
+Task success: every goal of the program (`homesim.goals.eai`) holds on the run's trace.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import pickle
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from operator import itemgetter
+from pathlib import Path
+from typing import Any
+
+from homesim.errors import DataError, ProgramError
+from homesim.goals.check import GoalReport, Trajectory, check_goals
+from homesim.goals.eai import TaskGoals
+from homesim.program.actions import lookup_action
+from homesim.program.parse import parse_program
+from homesim.world.graph import EnvironmentGraph
+
+GRAMMAR_KINDS = ("format", "hallucination", "arity")
+RUNTIME_KINDS = ("wrong_order", "missing_step", "affordance", "additional_step")
+
+# (action key, reason pattern) of a step that would redo what is done: additional_step.
+_ALREADY = {
+    "OPEN": "is not closed", "CLOSE": "is not open", "SWITCHON": "is not off",
+    "SWITCHOFF": "is not on", "PLUGIN": "is not unplugged", "PLUGOUT": "is not plugged in",
+    "SIT": "already sitting", "LIE": "already lying", "STANDUP": "is not sitting or lying",
+}
+_AFFORDANCE = re.compile(r"cannot be |cannot receive|has no switch|has no plug|is not a person|"
+                         r"is not clothes|is not food|cannot put .* on or in itself")
+
+
+@dataclass(frozen=True)
+class TaskContext:
+    """What scoring a plan for one program needs.
+
+    Attributes:
+        goals: the program's goals.
+        home: its initial graph.
+        objects: (class name, node id) of the objects a plan may name.
+    """
+
+    goals: TaskGoals
+    home: EnvironmentGraph
+    objects: frozenset[tuple[str, int]]
+
+
+def task_objects(init: dict, final: dict) -> frozenset[tuple[str, int]]:
+    """(class name, id) of the nodes whose dict or edges differ between two graph dicts
+    (state and property lists compared as sets, as EAI sorts them first)."""
+    edge = itemgetter("from_id", "relation_type", "to_id")
+    before = {n["id"]: n for n in init["nodes"]}
+    after = {n["id"]: n for n in final["nodes"]}
+    ids = before.keys() ^ after.keys()
+    for node_id, a in before.items():
+        b = after.get(node_id)
+        if b is not None and a != b and _differ(a, b):
+            ids.add(node_id)
+    for x, _, y in set(map(edge, init["edges"])) ^ set(map(edge, final["edges"])):
+        ids |= {x, y}
+    names = {i: n["class_name"] for i, n in after.items()}
+    names.update({i: n["class_name"] for i, n in before.items()})
+    return frozenset((names[i], i) for i in ids if i in names)
+
+
+def _differ(a: dict, b: dict) -> bool:
+    lists = ("states", "properties")
+    if any(set(a.get(k, ())) != set(b.get(k, ())) for k in lists):
+        return True
+    return {k: v for k, v in a.items() if k not in lists} != {
+        k: v for k, v in b.items() if k not in lists}
+
+
+@dataclass
+class PlanScore:
+    """The verdict on one plan.
+
+    Attributes:
+        identifier: EAI's program id (``27_2``).
+        task: the task title.
+        error: None, or one of `GRAMMAR_KINDS` and `RUNTIME_KINDS` (the first that stopped
+            the plan; ``additional_step`` only when nothing else went wrong).
+        reason: one line on why (homesim's step-level reason for run-time errors).
+        failed_step: 1-based number of the plan step that failed, if any.
+        additional: 1-based numbers of the plan's steps skipped as additional.
+        executable: every step ran (skipped additional steps allowed).
+        goals: the goal report (None when the plan never ran).
+        steps: the plan as homesim program lines.
+        totals: how many goals of each kind (state, relation, action) the task has.
+    """
+
+    identifier: str
+    task: str
+    error: str | None = None
+    reason: str | None = None
+    failed_step: int | None = None
+    additional: list[int] = field(default_factory=list)
+    executable: bool = False
+    goals: GoalReport | None = None
+    steps: list[str] = field(default_factory=list)
+    totals: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def success(self) -> bool:
+        """Every goal met."""
+        return self.goals is not None and self.goals.success
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view (one entry of the per-plan report)."""
+        return {"identifier": self.identifier, "task": self.task, "error": self.error,
+                "reason": self.reason, "failed_step": self.failed_step,
+                "additional_steps": self.additional, "executable": self.executable,
+                "success": self.success,
+                "goals": None if self.goals is None else self.goals.to_dict(),
+                "steps": self.steps}
+
+
+class _Reject(Exception):
+    """A plan stopped before execution: (kind, reason)."""
+
+    def __init__(self, kind: str, reason: str):
+        self.kind = kind
+        super().__init__(reason)
+
+
+def parse_plan(text: str) -> list[tuple[str, list[Any]]]:
+    """The (action, params) pairs of a plan text, in order; `_Reject` ``format`` if bad."""
+    if not isinstance(text, str):
+        raise _Reject("format", "the plan is not text")
+    body = text.strip()
+    if body.startswith("```"):
+        body = body.split("\n", 1)[1] if "\n" in body else body[3:]
+        body = body.removeprefix("json").rsplit("```", 1)[0]
+    start, end = body.find("{"), body.rfind("}")
+    if start < 0 or end < start:
+        raise _Reject("format", "no JSON object in the plan")
+    try:
+        pairs = json.loads(body[start:end + 1].replace("'", '"'), object_pairs_hook=list)
+    except ValueError as e:
+        raise _Reject("format", f"not JSON: {e}") from None
+    if not isinstance(pairs, list) or not pairs:
+        raise _Reject("format", "the plan has no steps")
+    for action, params in pairs:
+        if not isinstance(params, list) or len(params) % 2:
+            raise _Reject("format", f"{action}: the value must list name, id pairs")
+    return pairs
+
+
+def _steps(pairs: Sequence[tuple[str, list[Any]]], context: TaskContext) -> list[str]:
+    """Program lines of a parsed plan; `_Reject` for hallucination or arity errors."""
+    lines = []
+    instances: dict[tuple[str, int], int] = {}  # (name, node) -> instance number
+    for k, (action_name, params) in enumerate(pairs, start=1):
+        action = lookup_action(str(action_name))
+        if action is None:
+            raise _Reject("hallucination", f"step {k}: unknown action {action_name!r}")
+        refs = []
+        for name, node in zip(params[::2], params[1::2], strict=True):
+            try:
+                node_id = int(str(node))
+            except ValueError:
+                node_id = -1
+            if (str(name), node_id) not in context.objects:
+                raise _Reject("hallucination", f"step {k} [{action.key}]: {name} {node} is "
+                                               "not an object of this task")
+            same = sum(1 for n, _ in instances if n == name)
+            instance = instances.setdefault((str(name), node_id), same + 1)
+            refs.append(f"<{name}> ({instance}.{node_id})")
+        if len(refs) != action.arity:
+            raise _Reject("arity", f"step {k} [{action.key}]: takes {action.arity} "
+                                   f"object(s), not {len(refs)}")
+        lines.append(" ".join([f"[{action.key}]", *refs]))
+    return lines
+
+
+def score_plan(identifier: str, text: str, context: TaskContext) -> PlanScore:
+    """Judge one plan text for the program of `context` (see the module docstring)."""
+    goals = context.goals.goals
+    score = PlanScore(identifier, context.goals.task, totals={
+        "state": len(goals.states), "relation": len(goals.relations),
+        "action": len(goals.actions)})
+    try:
+        score.steps = _steps(parse_plan(text), context)
+    except _Reject as e:
+        score.error, score.reason = e.kind, str(e)
+        return score
+    _execute(score, context)
+    return score
+
+
+def _execute(score: PlanScore, context: TaskContext) -> None:
+    """Run the plan, skipping additional steps; fill in error, reason, goals."""
+    from homesim.ground.pipeline import run_program
+
+    try:
+        program = parse_program("\n".join(score.steps))
+    except ProgramError as e:  # e.g. a class name the parser refuses
+        score.error, score.reason = "hallucination", str(e)
+        return
+    kept = list(range(len(program.steps)))
+    while True:
+        run = run_program(program.with_steps([program.steps[i] for i in kept]),
+                          context.home, trace=True)
+        again = _regrab(run)
+        if again is not None:
+            score.additional.append(kept.pop(again) + 1)
+            continue
+        if run.executable or run.failed_step is None:
+            break
+        at = run.failed_step - 1
+        step = program.steps[kept[at]]
+        reason = run.message.split(": ", 1)[-1]
+        kind = _kind(step.action.key, reason)
+        if kind == "missing_step" and _repeats(run, at):
+            kind = "additional_step"  # the same step already ran: doing it again fails
+        if kind == "additional_step":
+            score.additional.append(kept.pop(at) + 1)
+            continue
+        if kind == "missing_step" and _ran_earlier(program, kept, at, context.home):
+            kind = "wrong_order"
+        score.error, score.reason, score.failed_step = kind, run.message, kept[at] + 1
+        break
+    score.executable = run.executable
+    if score.error is None and score.additional:
+        score.error = "additional_step"
+        score.reason = "skipped steps " + ", ".join(map(str, score.additional))
+    records = run.result.trace if run.result is not None and run.result.trace else []
+    score.goals = check_goals(context.goals.goals, Trajectory(run.graph, records))
+
+
+def _repeats(run: Any, at: int) -> bool:
+    """Whether the failed step at `at` is a step that already ran (same action, same
+    nodes), e.g. a second PutBack of what the first put back."""
+    records = run.result.trace if run.result is not None and run.result.trace else []
+    failed = run.grounding.program.steps[at] if run.grounding is not None else None
+    if failed is None or not records:
+        return False
+    nodes = tuple(r.node_id for r in failed.args)
+    return any(r.ok and r.step.action.key == failed.action.key and r.nodes == nodes
+               for r in records[:at])
+
+
+def _regrab(run: Any) -> int | None:
+    """Index of the first step that grabs what the character already holds, if any.
+
+    The simulator lets it run (the object is then held in both hands, as the reference
+    simulator does), but as a plan step it redoes what is done: an additional step.
+    """
+    records = run.result.trace if run.result is not None and run.result.trace else []
+    char = run.graph.character_id
+    held: set[int] = {n for r in ("HOLDS_RH", "HOLDS_LH")
+                      for n in run.graph.index.out.get(r, {}).get(char, ())}
+    for record in records:
+        if not record.ok:
+            break
+        if record.step.action.key == "GRAB" and record.nodes and record.nodes[0] in held:
+            return record.index
+        for a, relation, b in record.changes.added:
+            if a == char and relation in ("HOLDS_RH", "HOLDS_LH"):
+                held.add(b)
+        for a, relation, b in record.changes.removed:
+            if a == char and relation in ("HOLDS_RH", "HOLDS_LH"):
+                held.discard(b)
+    return None
+
+
+def _kind(action: str, reason: str) -> str:
+    """EAI's error kind of a step that failed with homesim's `reason`."""
+    if action in _ALREADY and reason.endswith(_ALREADY[action]):
+        return "additional_step"
+    if _AFFORDANCE.search(reason):
+        return "affordance"
+    return "missing_step"
+
+
+def _ran_earlier(program: Any, kept: list[int], at: int, home: EnvironmentGraph) -> bool:
+    """Whether the step at `at` could have run right after some earlier prefix of the run."""
+    from homesim.ground.pipeline import run_program
+
+    step = program.steps[kept[at]]
+    for k in range(at):
+        prefix = [program.steps[i] for i in kept[:k]]
+        if run_program(program.with_steps([*prefix, step]), home).executable:
+            return True
+    return False
+
+
+@dataclass
+class PlanReport:
+    """Every plan's score and EAI's summary metrics."""
+
+    scores: list[PlanScore]
+
+    def summary(self) -> dict[str, Any]:
+        """EAI's metrics (percent of plans; goal rates over all goals of scored plans)."""
+        n = len(self.scores) or 1
+        kinds = {k: sum(s.error == k for s in self.scores) for k in GRAMMAR_KINDS}
+        runtime = {k: sum(s.error == k for s in self.scores) for k in RUNTIME_KINDS[:3]}
+        runtime["additional_step"] = sum(len(s.additional) for s in self.scores)
+        met = {"state": [0, 0], "relation": [0, 0], "action": [0, 0]}
+        for s in self.scores:
+            for kind in met:
+                met[kind][1] += s.totals.get(kind, 0)
+                met[kind][0] += 0 if s.goals is None else s.goals.counts[kind][0]
+        all_met = sum(m for m, _ in met.values())
+        all_goals = sum(t for _, t in met.values()) or 1
+
+        def pct(x: int, d: int) -> float:
+            return round(100.0 * x / (d or 1), 2)
+
+        return {
+            "plans": len(self.scores),
+            "goal_evaluation": {
+                "task_success_rate": pct(sum(s.success for s in self.scores), n),
+                "state_goal": pct(*met["state"]), "relation_goal": pct(*met["relation"]),
+                "action_goal": pct(*met["action"]), "total_goal": pct(all_met, all_goals)},
+            "trajectory_evaluation": {
+                "execution_success_rate": pct(sum(s.executable for s in self.scores), n),
+                "grammar_error": {"parsing": pct(kinds["format"], n),
+                                  "hallucination": pct(kinds["hallucination"], n),
+                                  "predicate_argument_number": pct(kinds["arity"], n)},
+                "runtime_error": {"wrong_order": pct(runtime["wrong_order"], n),
+                                  "missing_step": pct(runtime["missing_step"], n),
+                                  "affordance_error": pct(runtime["affordance"], n),
+                                  "additional_step": pct(runtime["additional_step"], n)}},
+        }
+
+
+def score_plans(plans: Iterable[dict[str, Any]], contexts: dict[str, TaskContext]
+                ) -> PlanReport:
+    """Score EAI output records (``{"identifier": "27_2", "llm_output": "..."}``)."""
+    scores = []
+    for k, record in enumerate(plans):
+        identifier = str(record.get("identifier", "")) if isinstance(record, dict) else ""
+        context = contexts.get(identifier)
+        if context is None:
+            raise DataError(f"plan {k + 1}: no annotated program {identifier!r} "
+                            "(EAI identifiers look like '27_2')")
+        scores.append(score_plan(identifier, record.get("llm_output", ""), context))
+    return PlanReport(scores)
+
+
+def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
+                  ) -> dict[str, TaskContext]:
+    """`TaskContext` of every annotated program of the real data set (or of `ids`, EAI
+    identifiers), keyed by EAI identifier.
+
+    Parsing and indexing 342 homes takes most of the time of scoring plans, so the full
+    set is kept as a pickle beside the data (`_cache_path`), keyed by the data's manifest,
+    the goal file and the source of the modules whose objects it holds: any change to
+    them builds it again. `cache` False neither reads nor writes it.
+    """
+    if ids is not None:
+        wanted = {f"file{i}" for i in ids}
+        return _build_contexts(wanted)
+    path = _cache_path() if cache else None
+    if path is not None and path.exists():
+        try:
+            with path.open("rb") as f:
+                return pickle.load(f)  # our own file, written below
+        except Exception:
+            pass
+    contexts = _build_contexts(None)
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(".tmp")
+        with tmp.open("wb") as f:
+            pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
+        tmp.replace(path)
+    return contexts
+
+
+def _build_contexts(wanted: set[str] | None) -> dict[str, TaskContext]:
+    from homesim.goals.eai import eai_id, load_eai_goals
+    from homesim.knowledge.realdata import real_programs
+
+    goals = load_eai_goals()
+    out = {}
+    for item in real_programs():
+        if item.id not in goals or (wanted is not None and item.id not in wanted):
+            continue
+        init, final = item.graph_dicts()
+        home = EnvironmentGraph.from_dict(init, f"{item.graph_path}:init_graph")
+        out[eai_id(item.id)] = TaskContext(goals[item.id], home, task_objects(init, final))
+    return out
+
+
+def _cache_path() -> Path | None:
+    """``<data root>/eai-contexts/<key>.pickle``; None when the data is not fetched."""
+    import homesim.goals.check
+    import homesim.goals.eai
+    import homesim.goals.formula
+    import homesim.program.model
+    import homesim.world.graph
+    import homesim.world.index
+    from homesim.goals.eai import GOALS_FILE
+    from homesim.knowledge.fetch import data_root, dataset_dir
+
+    directory = dataset_dir()
+    inputs = [directory / "MANIFEST.json", directory / GOALS_FILE, Path(__file__)]
+    inputs += [Path(m.__file__) for m in (  # type: ignore[arg-type]
+        homesim.goals.check, homesim.goals.eai, homesim.goals.formula,
+        homesim.program.model, homesim.world.graph, homesim.world.index)]
+    digest = hashlib.sha256()
+    for source in inputs:
+        if not source.is_file():
+            return None
+        digest.update(source.read_bytes())
+    return data_root() / "eai-contexts" / f"{digest.hexdigest()[:16]}.pickle"
+
+
+def gold_plan(context_program: Any) -> str:
+    """A program as a plan in EAI's output format (keys repeat, in order)."""
+    parts = []
+    for step in context_program.steps:
+        params = []
+        for ref in step.args:
+            params += [ref.name, str(ref.node_id)]
+        parts.append(f"{json.dumps(step.action.key)}: {json.dumps(params)}")
+    return "{" + ", ".join(parts) + "}"

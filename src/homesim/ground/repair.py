@@ -1,0 +1,340 @@
+"""Repair: insert the commonsense steps a program misses so that it runs.
+
+People writing programs leave out minor steps (the paper: 28 % of collected programs miss
+some, most often walking to an object). `repair` runs the program through the one
+pipeline (`homesim.run_program`); when a step fails it tries inserting steps before it,
+derived from that step's row of the action catalog (`homesim.program.actions`):
+
+- ``reach``: walk to the (last) object first (Grab, Open, SwitchOn, PutBack's destination).
+- ``moves``: stand up first (Walk, Run, Find while sitting or lying).
+- ``hands`` ``put`` / ``let_go``, or a ``use_held`` motion without ``reach`` (Read, Drink):
+  grab the object first.
+- ``connector`` ``into`` with ``hands`` ``put`` (PutIn): open the destination first.
+- ``needs`` GRABBABLE (Grab): open a closed container holding the object first.
+- ``presupposes_if_able`` (SwitchOn: PLUGGED_IN, Open: OFF): the catalog action that
+  ``sets_states`` that state (PlugIn, SwitchOff).
+- ``presupposes`` (SwitchOn: OFF, Open: CLOSED): likewise, but only with
+  ``undo_states=True`` (switching off what is on before "switching it on" changes what the
+  program means, so it is asked for).
+- neither ``handles`` nor ``moves`` (LookAt, Watch): turn to, or walk to, the object.
+- ``hands`` ``let_go`` with a ``reach`` motion but no ``reach`` (PutObjBack): walk back to
+  where the object was taken from (a run of the steps before it says where).
+
+An insertion is kept when the program then runs further (a later original step fails, or
+none); an insertion after which the program still fails, at its own step (a Walk needs a
+StandUp) or at another, may be repaired in turn, up to `depth` levels. The search is
+bounded (`max_runs` pipeline runs, `max_insertions`). The program's own steps are never
+changed, dropped or reordered; every insertion is listed with its reason.
+
+>>> from homesim.program import parse_program
+>>> r = repair(parse_program("[Grab] <wine_glass> (1)"), "scene1_trimmed")
+>>> r.executable, str(r.program).splitlines()
+(True, ['[Walk] <wine_glass> (1)', '[Grab] <wine_glass> (1)'])
+>>> r.insertions[0].reason
+'walk to <wine_glass> (1) before [Grab]: it needs the character close to it'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
+from homesim.ground.pipeline import Run, run_program
+from homesim.program.actions import ACTIONS, ActionSpec
+from homesim.program.model import ObjectRef, Program, Step
+from homesim.world.graph import EnvironmentGraph
+from homesim.world.vocab import CAN_OPEN, GRABBABLE, INSIDE
+
+# One program line plus why it is there: None for the program's own steps.
+_Item = tuple[Step, str | None]
+
+
+@dataclass(frozen=True, slots=True)
+class Insertion:
+    """One step `repair` inserted.
+
+    Attributes:
+        index: 0-based position of the step in the repaired program.
+        step: the inserted step.
+        reason: why it is needed, in words.
+        before: 0-based index of the original step it precedes.
+    """
+
+    index: int
+    step: Step
+    reason: str
+    before: int
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"index": self.index, "step": str(self.step), "reason": self.reason,
+                "before": self.before}
+
+
+@dataclass(frozen=True, eq=False)
+class Repair:
+    """What `repair` did.
+
+    Attributes:
+        original: the program as given.
+        program: the repaired program (the original steps, in order, plus `insertions`).
+        insertions: every inserted step with its reason, in program order.
+        run: the pipeline's run of `program`.
+        before: the pipeline's run of `original`.
+        runs: how many pipeline runs the search made.
+    """
+
+    original: Program
+    program: Program
+    insertions: tuple[Insertion, ...]
+    run: Run
+    before: Run
+    runs: int = 0
+
+    @property
+    def executable(self) -> bool:
+        return self.run.executable
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: the repaired program, the insertions and both verdicts."""
+        return {"program": str(self.program), "executable": self.run.executable,
+                "message": self.run.message, "executable_before": self.before.executable,
+                "message_before": self.before.message,
+                "insertions": [i.to_dict() for i in self.insertions], "runs": self.runs}
+
+
+@dataclass
+class _Search:
+    """The fixed inputs and the run budget of one repair."""
+
+    home: EnvironmentGraph
+    seed: int
+    kb: ObjectKnowledge
+    undo_states: bool
+    runs_left: int
+    runs: int = 0
+
+    def run(self, items: list[_Item]) -> Run:
+        self.runs_left -= 1
+        self.runs += 1
+        return run_program(Program(tuple(s for s, _ in items)), self.home, seed=self.seed,
+                           kb=self.kb)
+
+
+def repair(program: Program | str, home: EnvironmentGraph | str, *, seed: int = 0,
+           kb: ObjectKnowledge | None = None, undo_states: bool = False,
+           max_insertions: int = 16, depth: int = 3, max_runs: int = 200) -> Repair:
+    """Insert the missing steps `program` needs to run in `home` (see the module docstring).
+
+    Args:
+        program: a `Program` or program text, grounded or not.
+        home: an environment graph or the name of a built-in home.
+        seed: seed of preparation and grounding (as `run_program`).
+        kb: the object knowledge base (default: `homesim.knowledge.load_kb()`).
+        undo_states: also insert steps that undo a state an action presupposes the
+            opposite of (SwitchOff before a SwitchOn of a device that is already on).
+        max_insertions: at most this many inserted steps.
+        depth: how many insertions may be chained to get past one failing step.
+        max_runs: at most this many pipeline runs in all.
+
+    Returns:
+        A `Repair`; when no insertion helps, its run is the best one found (it may still
+        not be executable).
+    """
+    if isinstance(program, str):
+        program = Program.parse(program)
+    if isinstance(home, str):
+        from homesim.world.homes import load_home
+
+        home = load_home(home)
+    search = _Search(home, seed, kb or default_kb(), undo_states, max_runs)
+    items: list[_Item] = [(s, None) for s in program.steps]
+    before = run = search.run(items)
+    while not run.executable and sum(r is not None for _, r in items) < max_insertions:
+        found = _improve(items, run, depth, search)
+        if found is None:
+            break
+        items, run = found
+    repaired = program.with_steps([s for s, _ in items])
+    return Repair(program, repaired, _insertions(items), run, before, search.runs)
+
+
+def _insertions(items: list[_Item]) -> tuple[Insertion, ...]:
+    out = []
+    original = 0
+    for index, (step, reason) in enumerate(items):
+        if reason is None:
+            original += 1
+        else:
+            out.append(Insertion(index, step, reason, original))
+    return tuple(out)
+
+
+def _progress(items: list[_Item], run: Run) -> int:
+    """How many of the program's own steps ran (all of them plus one when executable)."""
+    if run.executable:
+        return len(items) + 1
+    upto = len(items) if run.failed_step is None else run.failed_step - 1
+    return sum(reason is None for _, reason in items[:upto])
+
+
+def _improve(items: list[_Item], run: Run, depth: int, search: _Search
+             ) -> tuple[list[_Item], Run] | None:
+    """The first insertion (or chain of up to `depth`) after which more original steps
+    run; None when there is none within the budget."""
+    if run.failed_step is None or run.failed_step > len(items):
+        return None
+    base = _progress(items, run)
+    stuck: list[tuple[list[_Item], Run]] = []
+    for inserted in _candidates(items, run.failed_step - 1, run, search):
+        if search.runs_left <= 0:
+            return None
+        trial = search.run(inserted)
+        progress = _progress(inserted, trial)
+        if progress > base:
+            return inserted, trial
+        if trial.failed_step is not None:
+            # Preparation places added objects where the program first acts on them, so an
+            # insertion may move the failure earlier: worth repairing in turn, after those
+            # that leave it where it was.
+            stuck.append((inserted, trial))
+    if depth <= 1:
+        return None
+    stuck.sort(key=lambda t: -_progress(*t))  # stable: candidate order among equals
+    for inserted, trial in stuck:
+        found = _improve(inserted, trial, depth - 1, search)
+        if found is not None and _progress(*found) > base:
+            return found
+    return None
+
+
+def _candidates(items: list[_Item], k: int, run: Run, search: _Search
+                ) -> Iterator[list[_Item]]:
+    """Programs with one step inserted before step `k`, most likely fix first."""
+    step = items[k][0]
+    previous = items[k - 1][0] if k > 0 else None
+    seen: set[Step] = set()
+    for new, reason in _fixes(step, k, items, search):
+        if new == previous or new in seen:
+            continue  # the same step twice in a row fixes nothing
+        seen.add(new)
+        yield [*items[:k], (new, reason), *items[k:]]
+
+
+def _fixes(step: Step, k: int, items: list[_Item], search: _Search
+           ) -> Iterator[tuple[Step, str]]:
+    """Steps that may make `step` (step `k` of `items`) runnable, each with its reason,
+    from its catalog row."""
+    a = step.action
+    name = f"[{a.name}]"
+    if a.moves:
+        yield _step("STANDUP"), f"stand up before {name}: the character cannot walk seated"
+    if not step.args:
+        return
+    yield from _hand_fixes(step, name)
+    yield from _place_fixes(step, k, items, search, name)
+    obj = step.args[0]
+    for state in a.presupposes_if_able + (a.presupposes if search.undo_states else ()):
+        yield from _setting(state, obj, name)
+    if not a.handles and not a.moves:
+        yield _step("TURNTO", obj), f"turn to {obj} before {name}: it needs the character facing it"
+        yield _step("WALK", obj), f"walk to {obj} before {name}: it may be in another room"
+
+
+def _hand_fixes(step: Step, name: str) -> Iterator[tuple[Step, str]]:
+    """Get within reach, take the object in hand, open where it goes."""
+    a = step.action
+    obj, last = step.args[0], step.args[-1]
+    if a.reach:
+        yield (_step("WALK", last),
+               f"walk to {last} before {name}: it needs the character close to it")
+    if a.hands in ("put", "let_go") or (a.motion == "use_held" and not a.reach):
+        yield _step("GRAB", obj), f"grab {obj} before {name}: it needs {obj} in hand"
+    if a.hands == "put" and a.connector == "into":
+        yield _step("OPEN", last), f"open {last} before {name}: it must be open to put into"
+
+
+def _place_fixes(step: Step, k: int, items: list[_Item], search: _Search, name: str
+                 ) -> Iterator[tuple[Step, str]]:
+    """Open the container the object is in; go back to where it was taken from."""
+    a = step.action
+    obj = step.args[0]
+    if any(GRABBABLE in r for r in a.needs_of(0)):
+        for box in _containers(obj, items, search):
+            yield _step("OPEN", box), f"open {box} before {name}: {obj} may be inside it"
+    if a.hands == "let_go" and a.motion == "reach" and not a.reach:
+        # PutObjBack: it reaches back to where the object was taken from, a place the
+        # program does not name; a run of the steps before it tells which.
+        back = _origin(obj, k, items, search)
+        if back is not None:
+            yield (_step("WALK", back), f"walk back to {back}, where {obj} was taken from, "
+                   f"before {name}")
+
+
+def _step(key: str, *args: ObjectRef) -> Step:
+    return Step(ACTIONS[key], args)
+
+
+def _setting(state: str, obj: ObjectRef, name: str) -> Iterator[tuple[Step, str]]:
+    """The one-object actions whose ``sets_states`` put `obj` in `state`."""
+    for spec in _setters(state):
+        yield (_step(spec.key, obj),
+               f"{spec.name.lower()} {obj} before {name}: it must be {state}")
+
+
+def _setters(state: str) -> list[ActionSpec]:
+    return [a for a in ACTIONS.values() if a.arity == 1 and state in a.sets_states]
+
+
+def _containers(obj: ObjectRef, items: list[_Item], search: _Search) -> list[ObjectRef]:
+    """Refs for the openable containers of the home that hold an object of `obj`'s class:
+    the program's own ref of that class if it has one, else a new instance (grounding
+    binds it); for a grounded `obj`, the exact container node."""
+    home = search.home
+    if obj.node_id is not None:
+        nodes = [obj.node_id] if obj.node_id in home else []
+    else:
+        nodes = [n.id for c in class_names_for(obj.name, search.kb)
+                 for n in home.nodes_of_class(c)]
+    boxes = sorted({b for n in nodes for b in home.targets(n, INSIDE)
+                    if CAN_OPEN in home.node(b).properties})
+    refs: dict[tuple[str, int | None], ObjectRef] = {}
+    own: dict[str, ObjectRef] = {}
+    for step, _ in items:
+        for ref in step.args:
+            own.setdefault(ref.name, ref)
+    for b in boxes:
+        cls = home.node(b).class_name
+        if obj.node_id is not None:
+            ref = ObjectRef(cls, _free_instance(cls, items), b)
+        else:
+            ref = own.get(cls) or ObjectRef(cls, _free_instance(cls, items))
+        refs.setdefault((cls, ref.node_id), ref)
+    return list(refs.values())[:6]  # bounded: a few containers at most
+
+
+def _origin(obj: ObjectRef, k: int, items: list[_Item], search: _Search) -> ObjectRef | None:
+    """A ref for the node `obj` was taken from, found by running the steps before step `k`:
+    the program's own ref for that node, else a new ref of its class (grounding binds it;
+    bound to the node when the program is grounded)."""
+    if search.runs_left <= 0:
+        return None
+    prefix = search.run(items[:k])
+    if prefix.result is None or prefix.bindings is None:
+        return None
+    node = prefix.bindings.get(obj.key)
+    origin = None if node is None else prefix.result.state.memory.get(node)
+    if origin is None or origin[0] < 0:
+        return None
+    for ref, bound in prefix.bindings.items():
+        if bound == origin[0]:
+            return next(r for step, _ in items for r in step.args if r.key == ref)
+    cls = prefix.result.state.class_name(origin[0])
+    grounded = obj.node_id is not None
+    return ObjectRef(cls, _free_instance(cls, items), origin[0] if grounded else None)
+
+
+def _free_instance(name: str, items: list[_Item]) -> int:
+    used = [ref.instance for step, _ in items for ref in step.args if ref.name == name]
+    return max(used, default=0) + 1

@@ -1,0 +1,116 @@
+import pytest
+
+from homesim.goals.check import GoalSet
+from homesim.goals.eai import TaskGoals
+from homesim.goals.plans import PlanReport, TaskContext, parse_plan, score_plan, task_objects
+
+
+@pytest.fixture
+def context(tiny_home):
+    goals = TaskGoals("file1_1", "Turn on TV", GoalSet(states=((14, "tv", "ON"),)), None, "")
+    objects = frozenset({("fridge", 11), ("cup", 12), ("tv", 14), ("sofa", 15),
+                         ("kitchen", 1)})
+    return TaskContext(goals, tiny_home, objects)
+
+
+def plan(*steps: str) -> str:
+    return "{" + ", ".join(steps) + "}"
+
+
+WALK_TV = '"WALK": ["tv", "14"]'
+ON_TV = '"SWITCHON": ["tv", "14"]'
+
+
+def test_a_plan_that_reaches_the_goal(context):
+    s = score_plan("1_1", "```json\n" + plan(WALK_TV, ON_TV) + "\n```", context)
+    assert (s.error, s.executable, s.success) == (None, True, True)
+    assert s.steps == ["[WALK] <tv> (1.14)", "[SWITCHON] <tv> (1.14)"]
+
+
+def test_keys_repeat_in_order():
+    assert parse_plan(plan(WALK_TV, '"WALK": ["sofa", 15]', WALK_TV)) == [
+        ("WALK", ["tv", "14"]), ("WALK", ["sofa", 15]), ("WALK", ["tv", "14"])]
+
+
+@pytest.mark.parametrize(("text", "kind", "reason"), [
+    ("I would walk to the TV", "format", "no JSON object"),
+    ("{}", "format", "no steps"),
+    ('{"WALK": ["tv"]}', "format", "name, id pairs"),
+    (plan('"FLY": ["tv", "14"]'), "hallucination", "unknown action 'FLY'"),
+    (plan('"WALK": ["unicorn", "9"]'), "hallucination", "unicorn 9 is not an object"),
+    (plan('"WALK": ["tv", "15"]'), "hallucination", "tv 15 is not an object"),
+    (plan('"WALK": ["tv", "14", "sofa", "15"]'), "arity", "takes 1 object"),
+    (plan(ON_TV), "missing_step", "not close to tv"),
+    (plan('"WALK": ["fridge", "11"]', '"GRAB": ["cup", "12"]'), "missing_step",
+     "inside closed fridge"),
+    (plan('"WALK": ["fridge", "11"]', '"GRAB": ["fridge", "11"]'), "affordance",
+     "not GRABBABLE"),
+    (plan(WALK_TV, '"WALK": ["fridge", "11"]', ON_TV), "wrong_order", "not close to tv"),
+])
+def test_error_kinds(context, text, kind, reason):
+    s = score_plan("1_1", text, context)
+    assert s.error == kind
+    assert reason in s.reason
+    assert not s.executable and not s.success
+
+
+def test_additional_steps_are_skipped_and_the_plan_goes_on(context):
+    s = score_plan("1_1", plan(WALK_TV, ON_TV, ON_TV), context)
+    assert (s.error, s.additional, s.executable, s.success) == (
+        "additional_step", [3], True, True)
+
+
+def test_summary_uses_eai_metrics(context):
+    scores = [score_plan("1_1", t, context) for t in (
+        plan(WALK_TV, ON_TV), plan(ON_TV), "nonsense", plan(WALK_TV, ON_TV, ON_TV))]
+    summary = PlanReport(scores).summary()
+    assert summary["goal_evaluation"]["task_success_rate"] == 50.0
+    traj = summary["trajectory_evaluation"]
+    assert traj["execution_success_rate"] == 50.0
+    assert traj["grammar_error"]["parsing"] == 25.0
+    assert traj["runtime_error"] == {"wrong_order": 0.0, "missing_step": 25.0,
+                                     "affordance_error": 0.0, "additional_step": 25.0}
+
+
+def test_task_objects_are_what_changed():
+    init = {"nodes": [{"id": 1, "class_name": "tv", "states": ["OFF"]},
+                      {"id": 2, "class_name": "sofa"}, {"id": 3, "class_name": "character"},
+                      {"id": 4, "class_name": "lamp"}],
+            "edges": [{"from_id": 3, "relation_type": "CLOSE", "to_id": 4}]}
+    final = {"nodes": [{"id": 1, "class_name": "tv", "states": ["ON"]},
+                       {"id": 2, "class_name": "sofa"}, {"id": 3, "class_name": "character"},
+                       {"id": 4, "class_name": "lamp"}],
+             "edges": [{"from_id": 3, "relation_type": "CLOSE", "to_id": 2}]}
+    assert task_objects(init, final) == {("tv", 1), ("sofa", 2), ("character", 3),
+                                         ("lamp", 4)}
+
+
+def test_grabbing_what_is_held_is_an_additional_step(context):
+    walk, grab = '"WALK": ["fridge", "11"]', '"OPEN": ["fridge", "11"]'
+    s = score_plan("1_1", plan(walk, grab, '"GRAB": ["cup", "12"]', '"GRAB": ["cup", "12"]',
+                               WALK_TV, ON_TV), context)
+    assert (s.error, s.additional, s.executable, s.success) == (
+        "additional_step", [4], True, True)
+
+
+def test_a_repeated_step_that_now_fails_is_additional(context, tiny_home):
+    walk, open_ = '"WALK": ["fridge", "11"]', '"OPEN": ["fridge", "11"]'
+    grab, drop = '"GRAB": ["cup", "12"]', '"DROP": ["cup", "12"]'
+    s = score_plan("1_1", plan(walk, open_, grab, drop, drop, WALK_TV, ON_TV), context)
+    assert (s.error, s.additional, s.executable, s.success) == (
+        "additional_step", [5], True, True)
+
+
+def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, context):
+    from homesim.goals import plans
+
+    builds = []
+    monkeypatch.setattr(plans, "_build_contexts",
+                        lambda wanted: builds.append(wanted) or {"1_1": context})
+    path = tmp_path / "c.pickle"
+    monkeypatch.setattr(plans, "_cache_path", lambda: path)
+    assert set(plans.load_contexts()) == {"1_1"} and path.exists()
+    assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 1
+    path.write_bytes(b"torn")
+    assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 2
+    assert plans.load_contexts(cache=False) and len(builds) == 3
