@@ -3,6 +3,18 @@ def test_homes_lists_builtin_homes_with_default(client):
     names = [h["name"] for h in data["homes"]]
     assert data["default"] == "scene1" and "scene1" in names and "scene5_trimmed" in names
     assert {h["name"]: h["geometry"] for h in data["homes"]}["scene1_trimmed"] is False
+    assert "gen-0" in names
+
+
+def test_generated_home_objects_and_no_files(client, tmp_path, monkeypatch):
+    objects = client.get("/api/homes/gen-1/objects")
+    assert objects.status_code == 200
+    assert {r["class_name"] for r in objects.json()["rooms"]} >= {"kitchen", "bathroom"}
+    from homesim.world import load_home
+
+    load_home("scene1").save(tmp_path / "h.json")  # a valid home file ...
+    monkeypatch.chdir(tmp_path)
+    assert client.get("/api/homes/h.json/objects").status_code == 404  # ... is not served
 
 
 def test_actions_are_grouped_in_the_nine_categories(client):

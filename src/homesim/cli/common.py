@@ -12,7 +12,7 @@ from homesim.limits import MAX_PROGRAM_BYTES
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.homes import load_home
+from homesim.world.homes import open_home
 
 # soft_wrap: a message stays one line however narrow the terminal (no hard wrapping).
 console = Console(highlight=False, soft_wrap=True)
@@ -52,4 +52,4 @@ def read_graph(graph: str | None, home: str | None,
     if graph:
         return EnvironmentGraph.load(graph), graph
     name = home or default_home
-    return load_home(name), name
+    return open_home(name), name

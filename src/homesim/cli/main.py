@@ -16,10 +16,9 @@ import typer
 from rich.markup import escape
 
 from homesim import __version__
-from homesim.cli import data, goals, learn, render, run, serve, synth
+from homesim.cli import data, goals, homes, learn, render, run, serve, synth
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
-from homesim.world.homes import home_names
 
 app = typer.Typer(
     name="homesim",
@@ -36,13 +35,7 @@ app.command("synth")(synth.synth)
 app.add_typer(learn.app, name="learn")
 app.add_typer(goals.app, name="goals")
 app.add_typer(goals.eval_app, name="eval")
-
-
-@app.command("homes")
-def homes() -> None:
-    """List the built-in homes."""
-    for name in home_names():
-        console.print(name)
+app.add_typer(homes.app, name="homes")
 
 
 def _show_version(value: bool) -> None:

@@ -12,7 +12,7 @@ from homesim.cli.common import console
 from homesim.errors import HomesimError
 from homesim.files import check_target
 from homesim.synth import DEFAULT_HOMES, generate, write_jsonl
-from homesim.world.homes import home_names
+from homesim.world.homes import home_names, is_generated
 
 
 def synth(
@@ -34,10 +34,10 @@ def synth(
         raise HomesimError(f"--n must be at least 1, got {n}")
     check_target(out, force)  # before the work, not after it
     homes = tuple(home) if home else DEFAULT_HOMES
-    unknown = [h for h in homes if h not in home_names()]
+    unknown = [h for h in homes if h not in home_names() and not is_generated(h)]
     if unknown:
-        raise HomesimError(f"--home {unknown[0]}: not a built-in home "
-                           f"(choose from {', '.join(home_names())})")
+        raise HomesimError(f"--home {unknown[0]}: not a built-in home or gen-SEED "
+                           f"(choose from {', '.join(home_names())}, gen-0, gen-1, ...)")
     with Progress(TextColumn("sampling programs"), BarColumn(), MofNCompleteColumn(),
                   console=console) as bar:
         task = bar.add_task("synth", total=n)

@@ -15,6 +15,8 @@ from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import home_names, load_home
 
 router = APIRouter(prefix="/api", tags=["catalog"])
+LISTED_GENERATED = 3
+"""Generated homes (seeds 0..n-1) offered in the editor's home list."""
 
 CATEGORY_LABELS: dict[Category, str] = {
     Category.MOVEMENT: "Movement",
@@ -40,8 +42,10 @@ def get_home(name: str) -> EnvironmentGraph:
 
 @router.get("/homes")
 def list_homes() -> dict[str, Any]:
-    """Built-in homes; ``geometry`` is True for the full apartments (renderable)."""
+    """Built-in homes, then a few generated ones (``gen-SEED``; any seed loads);
+    ``geometry`` is True for homes with boxes (renderable)."""
     homes = [{"name": n, "geometry": not n.endswith("_trimmed")} for n in home_names()]
+    homes += [{"name": f"gen-{seed}", "geometry": True} for seed in range(LISTED_GENERATED)]
     return {"default": DEMO_HOME, "homes": homes}
 
 

@@ -29,9 +29,33 @@ def home_names() -> list[str]:
     return sorted(names)
 
 
+GENERATED_PREFIX = "gen-"
+"""``gen-42`` names the home `homesim.world.procedural.generate_home` makes from seed 42."""
+
+
+def is_generated(name: str) -> bool:
+    """Whether `name` names a generated home: ``gen-`` and a seed of up to 9 digits."""
+    seed = name.removeprefix(GENERATED_PREFIX)
+    return name.startswith(GENERATED_PREFIX) and seed.isascii() and seed.isdigit() and (
+        len(seed) <= 9)
+
+
+def open_home(name_or_path: str) -> EnvironmentGraph:
+    """A home by name (`load_home`) or from a file (a name ending in ``.json`` or
+    ``.json.gz``, read afresh each time): what the CLI's ``--home`` takes."""
+    if name_or_path.endswith((".json", ".json.gz")):
+        return EnvironmentGraph.load(name_or_path)
+    return load_home(name_or_path)
+
+
 @lru_cache(maxsize=16)
 def load_home(name: str) -> EnvironmentGraph:
-    """Load a built-in home by name (cached: graphs are read-only)."""
+    """A built-in home, or a generated one (``gen-SEED``), by name (cached: graphs are
+    read-only). Never reads a file the name points to: servers pass names from clients."""
+    if is_generated(name):
+        from homesim.world.procedural import generate_home
+
+        return generate_home(int(name.removeprefix(GENERATED_PREFIX)))
     names = home_names()
     if name not in names:
         close = difflib.get_close_matches(name, names, n=1)

@@ -1,0 +1,98 @@
+"""Procedural homes: generation time, validity, determinism, and the 518 real programs.
+
+For each seed: generate the home (time it; load a built-in home as the reference in the
+same run), check it (`check_home`), generate again and compare bytes; then run the 518
+real programs (ungrounded, as in benchmarks/grounding.py) through `homesim.run_program`
+and count the executable ones and the objects preparation added. The built-in homes
+(full, with boxes) are measured the same way for comparison.
+
+    nice python benchmarks/homes.py [--seeds 0-99] [--programs 518] [--workers 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import gzip
+import json
+import multiprocessing as mp
+import statistics
+import time
+
+
+def _measure(name: str, limit: int) -> dict:
+    from homesim import run_program
+    from homesim.ground import unground
+    from homesim.knowledge import real_programs
+    from homesim.world import load_home
+    from homesim.world.procedural import check_home, generate_home
+
+    row: dict = {"home": name}
+    if name.startswith("gen-"):
+        seed = int(name[4:])
+        t0 = time.perf_counter()
+        graph = generate_home(seed)
+        row["gen_s"] = time.perf_counter() - t0
+        again = generate_home(seed)
+        row["same_bytes"] = (gzip.compress(json.dumps(graph.to_dict()).encode(), mtime=0)
+                             == gzip.compress(json.dumps(again.to_dict()).encode(), mtime=0))
+        row["problems"] = len(check_home(graph))
+    else:
+        load_home.cache_clear()
+        t0 = time.perf_counter()
+        graph = load_home(name)
+        row["gen_s"] = time.perf_counter() - t0
+    rooms = graph.rooms()
+    row["objects"] = len(graph)
+    row["area"] = sum(r.bounding_box.size[0] * r.bounding_box.size[2] for r in rooms)
+    programs = [unground(rp.program) for rp in real_programs()[:limit]]
+    ok = added = 0
+    for p in programs:
+        run = run_program(p, graph)
+        ok += run.executable
+        added += len(run.prepared.added) if run.prepared else 0
+    row["rate"] = ok / len(programs)
+    row["added"] = added / len(programs)
+    return row
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seeds", default="0-99")
+    parser.add_argument("--programs", type=int, default=518)
+    parser.add_argument("--workers", type=int, default=2)
+    args = parser.parse_args()
+    lo, _, hi = args.seeds.partition("-")
+    seeds = range(int(lo), int(hi or lo) + 1)
+    builtin = [f"scene{i}" for i in range(1, 6)]
+    names = builtin + [f"gen-{s}" for s in seeds]
+    with mp.Pool(args.workers) as pool:
+        rows = pool.starmap(_measure, [(n, args.programs) for n in names], chunksize=1)
+    base, gen = rows[:5], rows[5:]
+    print(f"{'home':<10} {'load/gen s':>10} {'objects':>8} {'area m2':>8} {'exec %':>7} "
+          f"{'added/prog':>10}")
+    for r in base + gen[:12]:
+        print(f"{r['home']:<10} {r['gen_s']:>10.3f} {r['objects']:>8} {r['area']:>8.0f} "
+              f"{100 * r['rate']:>7.1f} {r['added']:>10.2f}")
+
+    def summary(rs: list[dict], what: str) -> str:
+        rates = [100 * r["rate"] for r in rs]
+        return (f"{what}: {len(rs)} homes; executable min {min(rates):.1f}% median "
+                f"{statistics.median(rates):.1f}%; objects mean "
+                f"{statistics.mean(r['objects'] for r in rs):.0f}; floor area mean "
+                f"{statistics.mean(r['area'] for r in rs):.0f} m2; objects added per program "
+                f"mean {statistics.mean(r['added'] for r in rs):.2f}")
+
+    print(summary(base, "built-in"))
+    print(summary(gen, "generated"))
+    times = [r["gen_s"] for r in gen]
+    ref = statistics.median(r["gen_s"] for r in base)
+    print(f"generation s/home: median {statistics.median(times):.3f} max {max(times):.3f} "
+          f"(goal <= 1 s); loading a built-in home (reference) median {ref:.3f} s, ratio "
+          f"{statistics.median(times) / ref:.1f}x")
+    print(f"checks: {sum(r['problems'] == 0 for r in gen)}/{len(gen)} pass; same seed, same "
+          f"bytes: {sum(r['same_bytes'] for r in gen)}/{len(gen)}; homes under 95%: "
+          f"{sum(r['rate'] < 0.95 for r in gen)}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,163 @@
+"""Validity checks every generated home passes before it is returned or written.
+
+- every node has a bounding box;
+- no two pieces of furniture overlap (things standing on the floor or mounted on a wall
+  or ceiling; rugs lie under furniture and are left out);
+- every room can be reached on foot from every other: rooms are joined by doors, and in
+  each room the agent's square can walk from each door to every other door and to within
+  reach of every piece of furniture;
+- every object is supported: ON or INSIDE something other than a room;
+- edges agree with the boxes (ON: resting on the top or hung on the face; INSIDE: the
+  centre is in the box; CLOSE: the boxes are less than 1.5 m apart; BETWEEN: a door
+  touches both rooms).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from homesim.world.graph import EnvironmentGraph, Node
+from homesim.world.procedural.geometry import FreeFloor, Rect, blocks, grow
+from homesim.world.procedural.parts import Box3, gap3, overlap3
+from homesim.world.procedural.plan import WALL
+
+STRUCTURAL = frozenset({"Walls", "Floor", "Floors", "Ceiling", "Doors", "Windows"})
+MOUNTS = frozenset({"floor", "wall", "ceiling"})
+TOL = 0.02
+
+
+def _box(n: Node) -> Box3:
+    b = n.bounding_box
+    assert b is not None
+    c, s = b.center, b.size
+    return (c[0] - s[0] / 2, c[1] - s[1] / 2, c[2] - s[2] / 2,
+            c[0] + s[0] / 2, c[1] + s[1] / 2, c[2] + s[2] / 2)
+
+
+def _fp(b: Box3) -> Rect:
+    return (b[0], b[2], b[3], b[5])
+
+
+def check_home(graph: EnvironmentGraph) -> list[str]:
+    """Every problem found, one line each; an empty list for a valid home."""
+    missing = [n.label() for n in graph if n.bounding_box is None]
+    if missing:
+        return [f"{missing[0]} has no bounding box"]
+    problems: list[str] = []
+    fixtures = _fixtures(graph)
+    problems += _overlaps(graph, fixtures)
+    problems += _support(graph)
+    problems += _reachable(graph, fixtures)
+    problems += _edges(graph)
+    return problems
+
+
+def _fixtures(graph: EnvironmentGraph) -> list[Node]:
+    out = []
+    for n in graph:
+        if n.is_room or n.category in STRUCTURAL or n.category == "Characters":
+            continue
+        held = [graph.node(t) for r in ("ON", "INSIDE") for t in graph.targets(n.id, r)]
+        if held and all(h.class_name in MOUNTS or h.is_room for h in held):
+            out.append(n)
+    return out
+
+
+def _is_flat(n: Node) -> bool:
+    return n.class_name == "rug" or _box(n)[4] - _box(n)[1] < 0.03
+
+
+def _overlaps(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
+    solid = [n for n in fixtures if not _is_flat(n)]
+    out = []
+    for i, a in enumerate(solid):
+        for b in solid[i + 1:]:
+            if overlap3(_box(a), _box(b), TOL):
+                out.append(f"{a.label()} overlaps {b.label()}")
+    return out
+
+
+def _support(graph: EnvironmentGraph) -> list[str]:
+    out = []
+    for n in graph:
+        if n.is_room or n.category in STRUCTURAL or n.category == "Characters":
+            continue
+        held = [t for r in ("ON", "INSIDE") for t in graph.targets(n.id, r)
+                if not graph.node(t).is_room]
+        if not held:
+            out.append(f"{n.label()} is not ON or INSIDE anything")
+    return out
+
+
+def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
+    rooms = graph.room_ids
+    doors = [n for n in graph if n.class_name == "door"]
+    joined = {r: {r} for r in rooms}
+    for d in doors:
+        ends = [r for r in graph.targets(d.id, "BETWEEN") if r in rooms]
+        if len(ends) == 2:
+            merged = joined[ends[0]] | joined[ends[1]]
+            for r in merged:
+                joined[r] = merged
+    out = []
+    if rooms and len(joined[min(rooms)]) != len(rooms):
+        lone = min(rooms - joined[min(rooms)])
+        out.append(f"{graph.node(lone).label()} has no door path from "
+                   f"{graph.node(min(rooms)).label()}")
+    for room in sorted(rooms):
+        area = grow(_fp(_box(graph.node(room))), -WALL)  # the floor inside the walls
+        mine = [n for n in fixtures if graph.room_of(n.id) == room]
+        obstacles = [_fp(_box(n)) for n in mine if blocks(_box(n)) and not _is_flat(n)]
+        ways = [_fp(_box(d)) for d in doors if room in graph.targets(d.id, "BETWEEN")]
+        floor = FreeFloor(area, obstacles)
+        why = floor.walkable(ways, [_fp(_box(n)) for n in mine], reach=0.75)
+        if why is not None:
+            what = why
+            if why.startswith("object "):
+                what = f"{mine[int(why.split()[1])].label()} cannot be reached on foot"
+            out.append(f"{graph.node(room).label()}: {what}")
+    return out
+
+
+def _edges(graph: EnvironmentGraph) -> list[str]:
+    out = _close_edges(graph)
+    for a, rel, b in graph.edges():
+        if rel == "CLOSE":
+            continue
+        na, nb = graph.node(a), graph.node(b)
+        ba, bb = _box(na), _box(nb)
+        bad = False
+        if rel == "ON":
+            if nb.class_name == "wall":
+                bad = gap3(ba, bb) > TOL
+            elif nb.class_name == "ceiling":
+                bad = abs(ba[4] - bb[1]) > TOL
+            else:
+                bad = abs(ba[1] - bb[4]) > TOL or not overlap3(
+                    (ba[0], 0, ba[2], ba[3], 1, ba[5]), (bb[0], 0, bb[2], bb[3], 1, bb[5]))
+        elif rel == "INSIDE":
+            c = [(ba[k] + ba[k + 3]) / 2 for k in range(3)]
+            axes = (0, 2) if nb.is_room else (0, 1, 2)
+            bad = any(not bb[k] - TOL <= c[k] <= bb[k + 3] + TOL for k in axes)
+        elif rel == "BETWEEN":
+            bad = gap3(ba, bb) > TOL
+        if bad:
+            out.append(f"edge {na.label()} {rel} {nb.label()} disagrees with their boxes")
+            if len(out) >= 5:
+                break
+    return out
+
+
+def _close_edges(graph: EnvironmentGraph) -> list[str]:
+    """CLOSE edges whose boxes are 1.5 m apart or more (vectorised: most edges are CLOSE)."""
+    pairs = list(graph.edges("CLOSE"))
+    if not pairs:
+        return []
+    ids = sorted(graph.nodes)
+    row = {nid: k for k, nid in enumerate(ids)}
+    boxes = np.array([_box(graph.node(i)) for i in ids])  # (n, 6)
+    a = boxes[[row[p[0]] for p in pairs]]
+    b = boxes[[row[p[2]] for p in pairs]]
+    gap = np.maximum(a[:, :3] - b[:, 3:], b[:, :3] - a[:, 3:]).max(axis=1)
+    return [f"edge {graph.node(pairs[k][0]).label()} CLOSE {graph.node(pairs[k][2]).label()} "
+            "disagrees with their boxes" for k in np.nonzero(gap >= 1.5 + 1e-6)[0][:5]]

@@ -1,0 +1,84 @@
+"""Small objects on and in furniture: the parent is one seen for the class in the
+built-in homes, else one the placement knowledge base allows, else any surface."""
+
+from __future__ import annotations
+
+import random
+
+from homesim.ground.kbtypes import ObjectKnowledge, class_names_for
+from homesim.world.procedural.furnish import Entry
+from homesim.world.procedural.parts import Part, box3, overlap3
+from homesim.world.procedural.stats import class_info
+
+SURFACE_CLASSES = frozenset({"kitchencounter", "kitchentable", "coffeetable", "desk",
+                             "nightstand", "bathroomcounter", "tvstand", "wallshelf",
+                             "bookshelf", "cabinet"})
+
+
+def place_items(rng: random.Random, parts: list[Part], room: int, entries: list[Entry],
+                kb: ObjectKnowledge) -> None:
+    """Put every item of `entries` on or in something of the room (in up to 3 passes,
+    so a faucet finds the sink placed before it); an item with no possible parent is
+    left out."""
+    todo = [(e, n) for e in entries for n in range(e.count)]
+    for _ in range(3):
+        later = []
+        for e, n in todo:
+            if not _place(rng, parts, room, e, kb, final=False):
+                later.append((e, n))
+        todo = later
+    for e, _ in todo:
+        _place(rng, parts, room, e, kb, final=True)
+
+
+def _candidates(parts: list[Part], room: int, e: Entry, kb: ObjectKnowledge, final: bool
+                ) -> list[tuple[int, str, int]]:
+    here = [(k, p) for k, p in enumerate(parts) if p.room == room
+            and p.kind in ("fixture", "item") and p.cls != e.cls]
+    out = [(k, rel, n) for key, n in e.parents.items() for rel in [key.split("|")[1]]
+           for k, p in here if p.cls == key.split("|")[0] and _may_hold(p.cls, rel)]
+    if out or not final:
+        return out
+    for pl in kb.placements(e.cls):
+        names = set(class_names_for(pl.destination, kb))
+        out += [(k, pl.relation, 1) for k, p in here
+                if p.cls in names and _may_hold(p.cls, pl.relation)]
+    if out:
+        return out
+    return [(k, "ON", 1) for k, p in here if p.cls in SURFACE_CLASSES]
+
+
+def _may_hold(parent: str, relation: str) -> bool:
+    """Nothing goes ON what people sit or lie on: the simulator counts what is ON a
+    sofa against its seats, so a sofa under five shirts could not be sat on."""
+    props = class_info(parent)["properties"]
+    return relation != "ON" or not ("SITTABLE" in props or "LIEABLE" in props)
+
+
+def _place(rng: random.Random, parts: list[Part], room: int, e: Entry,
+           kb: ObjectKnowledge, final: bool) -> bool:
+    options = _candidates(parts, room, e, kb, final)
+    if not options:
+        return False
+    k, rel, _ = rng.choices(options, weights=[n for _, _, n in options])[0]
+    parent = parts[k].box
+    w, h, d = class_info(e.cls)["size"]
+    px, py, pz = parent[3] - parent[0], parent[4] - parent[1], parent[5] - parent[2]
+    w, d = min(w, 0.9 * px), min(d, 0.9 * pz)
+    if rel == "INSIDE":
+        h = min(h, 0.9 * py)
+        y0 = parent[1] + rng.uniform(0.02 * py, py - h - 0.02 * py)
+    else:
+        y0 = parent[4]
+    siblings = [p.box for p in parts if p.support and p.support[0] == k]
+    box = None
+    for _ in range(8):
+        x = rng.uniform(parent[0] + w / 2, parent[3] - w / 2)
+        z = rng.uniform(parent[2] + d / 2, parent[5] - d / 2)
+        box = box3(x - w / 2, y0, z - d / 2, x + w / 2, y0 + h, z + d / 2)
+        if not any(overlap3(box, s) for s in siblings):
+            break
+    assert box is not None
+    parts.append(Part(e.cls, room, box, (k, rel), parts[k].normal, kind="item",
+                      states=tuple(class_info(e.cls)["states"])))
+    return True

@@ -1,0 +1,108 @@
+"""Procedural homes: determinism, validity checks (which can fail), a real program runs."""
+
+from __future__ import annotations
+
+import pytest
+
+from homesim import run_program
+from homesim.errors import GraphError
+from homesim.program import parse_program
+from homesim.world import EnvironmentGraph, load_home
+from homesim.world.homes import open_home
+from homesim.world.procedural import check_home, generate_home, write_home
+
+
+@pytest.fixture(scope="module")
+def home() -> EnvironmentGraph:
+    return generate_home(2)
+
+
+def test_same_seed_same_bytes(tmp_path, home):
+    write_home(home, tmp_path / "a.json.gz")
+    write_home(generate_home(2), tmp_path / "b.json.gz")
+    assert (tmp_path / "a.json.gz").read_bytes() == (tmp_path / "b.json.gz").read_bytes()
+    assert generate_home(5).to_dict() != home.to_dict()
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_generated_homes_pass_checks(seed):
+    g = generate_home(seed)
+    assert check_home(g) == []
+    assert all(n.bounding_box is not None for n in g)
+    assert {"livingroom", "kitchen", "bedroom", "bathroom"} <= {r.class_name for r in g.rooms()}
+
+
+def test_rooms_option():
+    g = generate_home(3, ["kitchen", "home_office", "entrance_hall"])
+    assert sorted(r.class_name for r in g.rooms()) == ["entrance_hall", "home_office",
+                                                       "kitchen"]
+    with pytest.raises(GraphError, match="unknown room kind 'garage'"):
+        generate_home(3, ["garage"])
+
+
+def _moved(home: EnvironmentGraph, cls: str, onto: str) -> EnvironmentGraph:
+    """The home with the first `cls` moved to stand where the first `onto` stands."""
+    d = home.to_dict()
+    a = next(n for n in d["nodes"] if n["class_name"] == cls)
+    b = next(n for n in d["nodes"] if n["class_name"] == onto)
+    a["bounding_box"]["center"][0] = b["bounding_box"]["center"][0]
+    a["bounding_box"]["center"][2] = b["bounding_box"]["center"][2]
+    return EnvironmentGraph.from_dict(d)
+
+
+def test_broken_home_fails_checks(tmp_path, home):
+    broken = _moved(home, "fridge", "stove")
+    problems = check_home(broken)
+    assert any("overlaps" in p for p in problems)
+    with pytest.raises(GraphError, match="not written"):
+        write_home(broken, tmp_path / "x.json")
+    assert not (tmp_path / "x.json").exists()
+    d = home.to_dict()
+    d["edges"] = [e for e in d["edges"] if e["relation_type"] != "BETWEEN"]
+    assert any("no door path" in p for p in check_home(EnvironmentGraph.from_dict(d)))
+
+
+def test_real_program_runs(home, tmp_path):
+    p = parse_program("[Walk] <kitchen> (1)\n[Walk] <freezer> (1)\n[Open] <freezer> (1)\n"
+                      "[Close] <freezer> (1)\n[Walk] <television> (1)\n"
+                      "[SwitchOn] <television> (1)")
+    run = run_program(p, home)
+    assert run.executable, run.message
+    home.save(tmp_path / "h.json.gz")
+    assert open_home(str(tmp_path / "h.json.gz")) == home
+    with pytest.raises(GraphError, match="unknown home"):
+        load_home(str(tmp_path / "h.json.gz"))  # names only: servers pass client names
+    assert load_home("gen-2") == home
+
+
+def test_cli_generate_and_show(tmp_path):
+    from typer.testing import CliRunner
+
+    from homesim.cli.main import app
+
+    out = tmp_path / "g.json.gz"
+    res = CliRunner().invoke(app, ["homes", "generate", "--seed", "2", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    assert EnvironmentGraph.load(out) == generate_home(2)
+    res = CliRunner().invoke(app, ["homes", "show", str(out), "--out", str(tmp_path / "p.png")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+    assert "scene1" in CliRunner().invoke(app, ["homes"]).output
+    again = CliRunner().invoke(app, ["homes", "generate", "--seed", "3", "--out", str(out)])
+    assert "already exists" in str(again.exception)
+    assert EnvironmentGraph.load(out) == generate_home(2)  # not overwritten
+
+
+def test_edges_and_support_are_checked(home):
+    d = home.to_dict()
+    by_class = {}
+    for n in d["nodes"]:
+        by_class.setdefault(n["class_name"], n["id"])
+    d["edges"].append({"from_id": by_class["toilet"], "relation_type": "CLOSE",
+                       "to_id": by_class["fridge"]})
+    plate = by_class["plate"]
+    d["edges"] = [e for e in d["edges"] if not (e["from_id"] == plate
+                                                and e["relation_type"] == "ON")]
+    problems = check_home(EnvironmentGraph.from_dict(d))
+    assert any("CLOSE" in p and "disagrees" in p for p in problems)
+    assert f"plate {plate} is not ON or INSIDE anything" in problems
