@@ -195,8 +195,8 @@ class RoomFurnisher:
                 lo, hi = (r[1], r[3]) if side[0] == "x" else (r[0], r[2])
                 if hi - lo < w:
                     continue
-                a = rng.uniform(lo, hi - w)
-                yield side_box(r, side, a, a + w, d, 0.0, h), INWARD[side]
+                start = rng.uniform(lo, hi - w)
+                yield side_box(r, side, start, start + w, d, 0.0, h), INWARD[side]
 
     def place_wall(self, cls: str) -> bool:
         info = class_info(cls)
@@ -213,9 +213,10 @@ class RoomFurnisher:
             if cls == "stovefan" and stoves and t < TRIES // 2:
                 s = stoves[0]
                 side = _side(s.normal)
-                k = self._wall_on(side, s.footprint)
-                if k is None:
+                on = self._wall_on(side, s.footprint)
+                if on is None:
                     continue
+                k = on
                 mid = ((s.box[2] + s.box[5]) / 2 if side[0] == "x"
                        else (s.box[0] + s.box[3]) / 2)
                 a = mid - w / 2

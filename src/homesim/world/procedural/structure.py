@@ -59,10 +59,11 @@ def build_shell(plan: Plan) -> list[Part]:
             # A floor tile across the threshold: walking (and the renderer's grid) needs
             # floor under the doorway, between the two rooms' tiles.
             # It reaches 0.3 m into both rooms so it overlaps their tiles on any grid.
-            b = door.box
+            db = door.box
             dx, dz = (0.3, 0.0) if d.side[0] == "x" else (0.0, 0.3)
-            parts.append(Part("floor", d.room, box3(b[0] - dx, -0.001, b[2] - dz, b[3] + dx,
-                                                    0.0, b[5] + dz), kind="structure"))
+            parts.append(Part("floor", d.room, box3(db[0] - dx, -0.001, db[2] - dz,
+                                                    db[3] + dx, 0.0, db[5] + dz),
+                              kind="structure"))
     for w in plan.windows:
         box = side_box(plan.rooms[w.room].rect, w.side, w.lo, w.hi, WALL, 0.9, 2.0)
         parts.append(Part("window", w.room, box, normal=INWARD[w.side], kind="structure"))
@@ -86,7 +87,7 @@ def _door(plan: Plan, d: Opening) -> Part:
     else:
         lo[axis] = round(lo[axis] - WALL, 4)
     assert d.other is not None
-    return Part("door", d.room, (*lo, *hi), normal=INWARD[d.side], states=("OPEN",),
+    return Part("door", d.room, (lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), normal=INWARD[d.side], states=("OPEN",),
                 kind="structure", between=(d.room, d.other))
 
 
