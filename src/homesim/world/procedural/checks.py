@@ -90,8 +90,19 @@ def _support(graph: EnvironmentGraph) -> list[str]:
 
 
 def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
-    rooms = graph.room_ids
+    """Rooms cut off from the rest, and fixtures the agent cannot walk to."""
     doors = [n for n in graph if n.class_name == "door"]
+    out = _connected(graph, doors)
+    for room in sorted(graph.room_ids):
+        why = _room_walkable(graph, room, fixtures, doors)
+        if why is not None:
+            out.append(f"{graph.node(room).label()}: {why}")
+    return out
+
+
+def _door_groups(graph: EnvironmentGraph, doors: list[Node]) -> dict[int, set[int]]:
+    """Each room mapped to the set of rooms joined to it through doors."""
+    rooms = graph.room_ids
     joined = {r: {r} for r in rooms}
     for d in doors:
         ends = [r for r in graph.targets(d.id, "BETWEEN") if r in rooms]
@@ -99,24 +110,33 @@ def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
             merged = joined[ends[0]] | joined[ends[1]]
             for r in merged:
                 joined[r] = merged
-    out = []
-    if rooms and len(joined[min(rooms)]) != len(rooms):
-        lone = min(rooms - joined[min(rooms)])
-        out.append(f"{graph.node(lone).label()} has no door path from "
-                   f"{graph.node(min(rooms)).label()}")
-    for room in sorted(rooms):
-        area = grow(_fp(_box(graph.node(room))), -WALL)  # the floor inside the walls
-        mine = [n for n in fixtures if graph.room_of(n.id) == room]
-        obstacles = [_fp(_box(n)) for n in mine if blocks(_box(n)) and not _is_flat(n)]
-        ways = [_fp(_box(d)) for d in doors if room in graph.targets(d.id, "BETWEEN")]
-        floor = FreeFloor(area, obstacles)
-        why = floor.walkable(ways, [_fp(_box(n)) for n in mine], reach=0.75)
-        if why is not None:
-            what = why
-            if why.startswith("object "):
-                what = f"{mine[int(why.split()[1])].label()} cannot be reached on foot"
-            out.append(f"{graph.node(room).label()}: {what}")
-    return out
+    return joined
+
+
+def _connected(graph: EnvironmentGraph, doors: list[Node]) -> list[str]:
+    """A problem when some room has no door path from the first room."""
+    rooms = graph.room_ids
+    if not rooms:
+        return []
+    first = min(rooms)
+    group = _door_groups(graph, doors)[first]
+    if len(group) == len(rooms):
+        return []
+    lone = min(rooms - group)
+    return [f"{graph.node(lone).label()} has no door path from {graph.node(first).label()}"]
+
+
+def _room_walkable(graph: EnvironmentGraph, room: int, fixtures: list[Node],
+                   doors: list[Node]) -> str | None:
+    """Why the agent cannot walk from the doors of `room` to each of its fixtures, or None."""
+    area = grow(_fp(_box(graph.node(room))), -WALL)  # the floor inside the walls
+    mine = [n for n in fixtures if graph.room_of(n.id) == room]
+    obstacles = [_fp(_box(n)) for n in mine if blocks(_box(n)) and not _is_flat(n)]
+    ways = [_fp(_box(d)) for d in doors if room in graph.targets(d.id, "BETWEEN")]
+    why = FreeFloor(area, obstacles).walkable(ways, [_fp(_box(n)) for n in mine], reach=0.75)
+    if why is not None and why.startswith("object "):
+        return f"{mine[int(why.split()[1])].label()} cannot be reached on foot"
+    return why
 
 
 def _edges(graph: EnvironmentGraph) -> list[str]:

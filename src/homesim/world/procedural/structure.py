@@ -87,8 +87,9 @@ def _door(plan: Plan, d: Opening) -> Part:
     else:
         lo[axis] = round(lo[axis] - WALL, 4)
     assert d.other is not None
-    return Part("door", d.room, (lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), normal=INWARD[d.side], states=("OPEN",),
-                kind="structure", between=(d.room, d.other))
+    return Part("door", d.room, (lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]),
+                normal=INWARD[d.side], states=("OPEN",), kind="structure",
+                between=(d.room, d.other))
 
 
 def _segments(lo: float, hi: float, gaps: list[tuple[float, float]]
