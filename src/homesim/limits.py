@@ -57,6 +57,22 @@ MAX_RENDER_PIXEL_FRAMES = 64 * 320 * 240
 """Most frames x pixels one render request may ask for (64 frames at 320x240; an
 RGB frame costs 3 bytes a pixel, so at most ~15 MB of images per request)."""
 
+MIN_VIDEO_SIDE = 8
+"""Smallest frame width or height of a recorded video (``homesim render``), in pixels."""
+
+MAX_VIDEO_SIDE = 4096
+"""Largest frame width or height of a recorded video, in pixels."""
+
+MAX_VIDEO_FPS = 240
+"""Highest frame rate of a recorded video."""
+
+MAX_VIDEO_PIXEL_FRAMES = 30 * 60 * 20 * 640 * 480
+"""Most frames x pixels one recorded video may hold (20 minutes at 30 fps and 640x480;
+the whole recording is checked before its first frame is drawn). A video is written to
+disk frame by frame, so it may be far longer than what one API request renders
+(`MAX_RENDER_PIXEL_FRAMES`), but not unbounded: a 1000-step program at 4096x4096 and 240
+fps would run for days and fill the disk."""
+
 RENDER_WORKERS = 1
 """Render requests that run at the same time (each holds an OpenGL context)."""
 

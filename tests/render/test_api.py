@@ -50,3 +50,16 @@ def test_existing_recording_is_not_overwritten(box_home, tmp_path, gl):
     with pytest.raises(HomesimError, match="already holds a recording"):
         render_program(p, box_home, tmp_path, width=32, height=24)
     assert (tmp_path / "meta.json").read_text() == "{}"
+
+
+def test_a_video_over_the_frames_x_pixels_limit_is_refused_before_drawing(
+        box_home, tmp_path, gl, monkeypatch):
+    from homesim.errors import LimitError
+    from homesim.render import api
+
+    p = homesim.parse_program("[Walk] <tv> (22)\n")
+    monkeypatch.setattr(api, "MAX_VIDEO_PIXEL_FRAMES", 32 * 24 * 3)  # 3 frames
+    with pytest.raises(LimitError, match="MAX_VIDEO_PIXEL_FRAMES") as e:
+        render_program(p, box_home, tmp_path / "x", width=32, height=24)
+    assert e.value.limit == "MAX_VIDEO_PIXEL_FRAMES"
+    assert not (tmp_path / "x").exists()

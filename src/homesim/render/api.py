@@ -9,7 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.errors import HomesimError
+from homesim.errors import HomesimError, LimitError
+from homesim.limits import MAX_VIDEO_FPS, MAX_VIDEO_PIXEL_FRAMES, MAX_VIDEO_SIDE, MIN_VIDEO_SIDE
 from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
@@ -44,13 +45,25 @@ class RenderResult:
 
 
 def _check_size(width: int, height: int, fps: int) -> None:
-    if not (8 <= width <= 4096 and 8 <= height <= 4096):
-        raise HomesimError(f"image size {width}x{height} out of range (8..4096)")
+    lo, hi = MIN_VIDEO_SIDE, MAX_VIDEO_SIDE
+    if not (lo <= width <= hi and lo <= height <= hi):
+        raise LimitError(f"image size {width}x{height} out of range ({lo}..{hi}; "
+                         "MIN_VIDEO_SIDE, MAX_VIDEO_SIDE)", "MAX_VIDEO_SIDE")
     if width % 2 or height % 2:
         raise HomesimError(f"image size {width}x{height}: width and height must be even "
                            "(H.264 video)")
-    if not 1 <= fps <= 240:
-        raise HomesimError(f"fps {fps} out of range (1..240)")
+    if not 1 <= fps <= MAX_VIDEO_FPS:
+        raise LimitError(f"fps {fps} out of range (1..{MAX_VIDEO_FPS}; MAX_VIDEO_FPS)",
+                         "MAX_VIDEO_FPS")
+
+
+def _check_length(frames: int, width: int, height: int) -> None:
+    """Refuse a recording over `MAX_VIDEO_PIXEL_FRAMES` before drawing anything."""
+    if frames * width * height > MAX_VIDEO_PIXEL_FRAMES:
+        raise LimitError(f"{frames} frames at {width}x{height} is over the limit of "
+                         f"{MAX_VIDEO_PIXEL_FRAMES:,} frames x pixels per video "
+                         "(MAX_VIDEO_PIXEL_FRAMES); lower --fps or the image size",
+                         "MAX_VIDEO_PIXEL_FRAMES")
 
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
@@ -95,6 +108,7 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
                                     seed=seed, bindings=bindings, agent=agent,
                                     standing=standing)
     total = len(timeline)
+    _check_length(total, width, height)
     writer = RecordingWriter(out, width, height, fps)
     try:
         with Renderer(scene, width, height) as renderer:
