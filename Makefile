@@ -46,6 +46,12 @@ bench: setup
 	$(BIN)/python benchmarks/serve.py
 	$(BIN)/python benchmarks/learn.py
 	$(BIN)/python benchmarks/repair.py
+	$(BIN)/python benchmarks/home_load.py
+	$(BIN)/python benchmarks/parse.py
+	$(BIN)/python benchmarks/entry_points.py
+	$(BIN)/python benchmarks/serve_load.py
+	$(BIN)/python benchmarks/serve_render_rss.py
+	$(BIN)/python benchmarks/homes.py --seeds 0-19
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .ruff_cache
