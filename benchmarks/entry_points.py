@@ -27,6 +27,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from _real_programs import ungrounded_texts
+
 HOMES = [f"scene{i}{t}" for t in ("_trimmed", "") for i in range(1, 6)]
 
 
@@ -81,13 +83,7 @@ def main() -> None:
     parser.add_argument("--cli-sample", type=int, default=20)
     args = parser.parse_args()
 
-    from homesim.ground import unground
-    from homesim.knowledge import real_programs
-
-    programs = list(real_programs())
-    if args.limit:
-        programs = programs[:args.limit]
-    texts = [str(unground(rp.program)) for rp in programs]
+    texts = ungrounded_texts(args.limit)
     homes = args.homes.split(",")
     with mp.get_context("spawn").Pool(args.workers) as pool:
         results = dict(pool.map(_run_home, [(h, texts, args.cli_sample) for h in homes],

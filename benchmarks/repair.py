@@ -22,6 +22,8 @@ import argparse
 import multiprocessing as mp
 import time
 
+from _real_programs import ungrounded_texts
+
 HOMES = [f"scene{i}{t}" for t in ("_trimmed", "") for i in range(1, 6)]
 MINOR = frozenset({"WALK", "RUN", "FIND"})
 
@@ -62,13 +64,7 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args()
 
-    from homesim.ground import unground
-    from homesim.knowledge import real_programs
-
-    programs = list(real_programs())
-    if args.limit:
-        programs = programs[:args.limit]
-    texts = [str(unground(rp.program)) for rp in programs]
+    texts = ungrounded_texts(args.limit)
     homes = args.homes.split(",")
     jobs = [(h, texts, strip) for strip in (False, True) for h in homes]
     with mp.get_context("spawn").Pool(args.workers) as pool:
