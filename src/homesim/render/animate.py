@@ -29,6 +29,7 @@ from homesim.render.poses import (
     Pose,
     blend,
     carrying,
+    gripping,
     lying,
     sitting,
     standing,
@@ -102,6 +103,7 @@ class Animator:
         for side in props.held:
             if pose.tilt == 0.0 and side not in self.reaching:
                 pose = carrying(pose, side)
+        pose = gripping(pose, props.held)  # hands close on what they hold
         write_qpos(self.qpos, pose, self.scene.joint_qpos)
         for n, angle in props.hinge_angle.items():
             self.qpos[self.scene.hinge_qpos[n]] = angle
