@@ -32,6 +32,7 @@ class FrameTruth:
     class_seg: np.ndarray  # uint16 class index (0 background)
     instance_seg: np.ndarray  # int32 graph node id (0 background)
     flow: np.ndarray  # (H, W, 2) float32 pixels to the next frame (u, v)
+    flow_valid: np.ndarray  # bool: the pixel's point is seen in front of the next camera
     intrinsics: np.ndarray  # (3, 3)
     world_to_cam: np.ndarray  # (4, 4) OpenCV convention
     joints3d: np.ndarray  # (J, 3) world metres
@@ -150,18 +151,25 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         depth[~seen] = 0.0
         truth = FrameTruth(
             i, cam, rgb, depth, class_lut[ids + 1], instance,
-            np.zeros((h, w, 2), np.float32), ks[cam], w2c, joints, uv, inside & unhidden, False)
+            np.zeros((h, w, 2), np.float32), np.zeros((h, w), bool), ks[cam], w2c, joints, uv,
+            inside & unhidden, False)
         pending = (truth, ids, poses)
     if pending is not None:
         truth = pending[0]
-        yield _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
+        last = _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
+        last.flow_valid[:] = False  # no next frame to flow to
+        yield last
 
 
 def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> FrameTruth:
+    """Complete frame t with the flow to t+1 (camera `cam1`, geom poses `poses1`)."""
     truth, ids, (xpos0, xmat0) = pending
-    truth.flow = optical_flow(truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1,
-                              xpos0, xmat0, poses1[0], poses1[1])
+    truth.flow, truth.flow_valid = optical_flow(
+        truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1, xpos0, xmat0,
+        poses1[0], poses1[1])
     truth.cut = cam1 != truth.camera
+    if truth.cut:  # across a cut the flow is no visual correspondence
+        truth.flow_valid[:] = False
     return truth
 
 
