@@ -19,6 +19,7 @@ from homesim.render.flow import intrinsics, optical_flow, project, world_to_cam
 from homesim.render.gl import mujoco
 from homesim.render.renderer import Renderer
 from homesim.render.scene import BACKGROUND, SceneModel
+from homesim.render.shots import shot_frames
 
 
 @dataclass
@@ -119,6 +120,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     w, h = renderer.width, renderer.height
     ks = [intrinsics(w, h, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
+    shots = shot_frames(scene, timeline)
     node_lut = np.concatenate([[BACKGROUND], scene.geom_node]).astype(np.int32)
     class_lut = np.concatenate([[0], scene.geom_class]).astype(np.uint16)
     visible = None
@@ -128,6 +130,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         agent = d.xpos[scene.model.body("agent").id].copy()
         if fixed_camera is not None:
             cam = fixed_camera
+        elif shots[i] >= 0:  # a close-up of the interaction under way
+            cam = director.force(shots[i])
         else:
             cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: view_score(
                 renderer, d, scene, c, ks, f))
@@ -186,9 +190,17 @@ def iter_still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     body = scene.model.body("agent").id
     ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
+    shots = shot_frames(scene, timeline)
     for i in frames:
         d = state.apply(i)
         director = Director(scene)  # a fresh choice per frame: no continuity needed
-        cam = director.choose(d.xpos[body].copy(), None,
-                              lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
+        cam = shots[i] if shots[i] >= 0 else director.choose(
+            d.xpos[body].copy(), None,
+            lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
         yield i, renderer.rgb(d, cam)
+
+
+def shot_camera(scene: SceneModel, timeline: Timeline, frame: int) -> int | None:
+    """The close-up camera that films `frame` (an interaction under way), if any."""
+    cam = shot_frames(scene, timeline)[frame]
+    return None if cam < 0 else cam
