@@ -19,6 +19,8 @@ TASK_MEMORY = 2 * 1024**3
 node than its memory allows. Rendering at 640x480 peaks below 1 GiB."""
 TASK_GPU = 0.25
 """GPU share per task where the cluster has GPUs (four renderers share one GPU with EGL)."""
+OBJECT_STORE_BYTES = 256 * 1024**2
+"""Object store of a local Ray (its default takes 30% of the memory)."""
 MAX_CALLS = 16
 """A Ray worker process is replaced after this many episodes: whatever a renderer leaks
 (GL contexts, caches) is given back."""
@@ -90,8 +92,10 @@ def _init(ray, options: RayOptions) -> None:
         return
     if options.workers < 1:
         raise HomesimError("--workers must be at least 1 for Ray (0 runs without Ray)")
+    # Tasks return small rows (the episodes go to disk): a small object store will do.
     ray.init(num_cpus=options.workers, num_gpus=_local_gpus(), include_dashboard=False,
-             log_to_driver=False, configure_logging=False)
+             log_to_driver=False, configure_logging=False,
+             object_store_memory=OBJECT_STORE_BYTES)
 
 
 def _local_gpus() -> int:
