@@ -126,7 +126,9 @@ class Animator:
     """
 
     def __init__(self, scene: SceneModel, graph: EnvironmentGraph, shape: AgentShape,
-                 fps: int = 30, seed: int = 0, standing: Standing | None = None):
+                 fps: float = 30, seed: int = 0, standing: Standing | None = None):
+        # fps may be fractional: the activity dataset animates at fps / speed, so every
+        # motion takes 1/speed of its time (homesim.dataset).
         self.scene, self.graph, self.shape, self.fps = scene, graph, shape, fps
         self.rng = np.random.default_rng(seed)
         self.ik = ArmIK(scene)
