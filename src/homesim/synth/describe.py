@@ -102,8 +102,9 @@ P_BEFORE = 0.12
 P_AFTER = 0.08
 P_OPENER = 0.3
 P_EXTRA = 0.15
-_PERSON = {"my": ("my", "your"), "me": ("me", "you"), "I": ("I", "you")}
 P_FIRST_PERSON = 0.5
+_PERSON = {"my": ("my", "your"), "me": ("me", "you"), "I": ("I", "you")}
+"""Voice-dependent slots: (first person, imperative)."""
 
 
 @dataclass(frozen=True)
