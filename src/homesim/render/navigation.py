@@ -47,8 +47,12 @@ class Grid:
         return int(idx[k][0]), int(idx[k][1])
 
     def line_free(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Whether every cell under the segment a-b (sampled each half cell) is free."""
         n = int(np.ceil(np.linalg.norm(b - a) / (CELL / 2))) + 1
-        return all(self.free[self.cell(a + t * (b - a))] for t in np.linspace(0.0, 1.0, n))
+        t = np.linspace(0.0, 1.0, n)[:, None]
+        ij = np.round((a + t * (b - a) - self.origin) / CELL).astype(int)
+        ij = np.clip(ij, 0, np.array(self.free.shape) - 1)
+        return bool(self.free[ij[:, 0], ij[:, 1]].all())
 
 
 def build_grid(layout: Layout) -> Grid:
