@@ -15,9 +15,11 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from homesim.world.graph import EnvironmentGraph, Node
+from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.procedural.geometry import Rect
 from homesim.world.procedural.parts import Box3, gap3, overlap3
 
@@ -27,8 +29,12 @@ TOL = 0.02
 
 
 def _box(n: Node) -> Box3:
-    b = n.bounding_box
-    assert b is not None
+    assert n.bounding_box is not None
+    return _corners(n.bounding_box)
+
+
+@functools.lru_cache(maxsize=8192)
+def _corners(b: BoundingBox) -> Box3:
     c, s = b.center, b.size
     return (c[0] - s[0] / 2, c[1] - s[1] / 2, c[2] - s[2] / 2,
             c[0] + s[0] / 2, c[1] + s[1] / 2, c[2] + s[2] / 2)
@@ -69,12 +75,15 @@ def _is_flat(n: Node) -> bool:
 
 def _overlaps(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
     solid = [n for n in fixtures if not _is_flat(n)]
-    out = []
-    for i, a in enumerate(solid):
-        for b in solid[i + 1:]:
-            if overlap3(_box(a), _box(b), TOL):
-                out.append(f"{a.label()} overlaps {b.label()}")
-    return out
+    if len(solid) < 2:
+        return []
+    boxes = np.array([_box(n) for n in solid])  # (n, 6)
+    lo, hi = boxes[:, :3], boxes[:, 3:]
+    depth = np.minimum(hi[:, None, :], hi[None, :, :]) - np.maximum(lo[:, None, :],
+                                                                    lo[None, :, :])
+    hit = np.triu((depth > TOL).all(axis=2), k=1)
+    return [f"{solid[i].label()} overlaps {solid[j].label()}"
+            for i, j in zip(*np.nonzero(hit), strict=True)]
 
 
 def _support(graph: EnvironmentGraph) -> list[str]:
@@ -140,9 +149,8 @@ def _connected(graph: EnvironmentGraph, doors: list[Node]) -> list[str]:
 
 def _edges(graph: EnvironmentGraph) -> list[str]:
     out = _close_edges(graph)
-    for a, rel, b in graph.edges():
-        if rel == "CLOSE":
-            continue
+    others = (e for rel in ("ON", "INSIDE", "BETWEEN") for e in graph.edges(rel))
+    for a, rel, b in others:
         na, nb = graph.node(a), graph.node(b)
         ba, bb = _box(na), _box(nb)
         bad = False

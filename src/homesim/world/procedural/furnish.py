@@ -8,6 +8,8 @@ import random
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+import numpy as np
+
 from homesim.world.procedural.geometry import (
     DOOR_REACH,
     SLACK,
@@ -104,6 +106,7 @@ class RoomFurnisher:
         self.keep_out = [self._keep_out(d) for d in self.doors]
         self.fixtures: list[int] = []
         self._base: tuple[int, FreeFloor, list[Rect]] | None = None
+        self._masks: dict[tuple[Rect, float], np.ndarray] = {}
 
     def _keep_out(self, d: Rect) -> Box3:
         x0, z0, x1, z1 = d
@@ -148,8 +151,8 @@ class RoomFurnisher:
         if self._base is None or self._base[0] != len(self.fixtures):
             boxes = [self.parts[k].box for k in self.fixtures]
             obstacles = [(b[0], b[2], b[3], b[5]) for b in boxes if blocks(b)]
-            self._base = (len(self.fixtures),
-                          FreeFloor(self.interior, obstacles, strict=True), obstacles)
+            self._base = (len(self.fixtures), FreeFloor(self.interior, obstacles, strict=True,
+                                                        masks=self._masks), obstacles)
         floor, obstacles = self._base[1].copy(), list(self._base[2])
         if extra is not None and blocks(extra):
             floor.block((extra[0], extra[2], extra[3], extra[5]))

@@ -55,10 +55,11 @@ class FreeFloor:
     cells and the furnisher asks thousands of times per home, so flood fills run as
     whole-array dilations instead of cell-by-cell."""
 
-    def __init__(self, room: Rect, obstacles: Iterable[Rect], strict: bool = False):
+    def __init__(self, room: Rect, obstacles: Iterable[Rect], strict: bool = False,
+                 masks: dict[tuple[Rect, float], np.ndarray] | None = None):
         """`strict` (the generator) asks for a few centimetres more room than the checks
         (`homesim.world.procedural.checks`), so rounding never makes a home it built fail
-        them."""
+        them. `masks` keeps the masks of `near` across floors of the same room."""
         self.room = room
         self.slack = SLACK if strict else 0.0
         self.nx = max(1, int((room[2] - room[0]) / CELL))
@@ -69,7 +70,7 @@ class FreeFloor:
         fx = (self.xs >= inner[0]) & (self.xs <= inner[2])
         fz = (self.zs >= inner[1]) & (self.zs <= inner[3])
         self.free = fx[:, None] & fz[None, :]
-        self._near: dict[tuple[Rect, float], np.ndarray] = {}
+        self._near: dict[tuple[Rect, float], np.ndarray] = {} if masks is None else masks
         for ob in obstacles:
             self.block(ob)
 
