@@ -19,7 +19,15 @@ from homesim.errors import ExecutionError
 from homesim.render.layout import Box, Layout
 from homesim.world.floor import CELL
 
-__all__ = ["CELL", "Grid", "astar", "build_grid", "goal_cells", "plan_path", "smooth"]
+__all__ = ["CELL", "LEG_LEVEL", "PASSABLE", "Grid", "astar", "build_grid", "goal_cells",
+           "plan_path", "smooth"]
+
+PASSABLE = frozenset({"floor", "ceiling", "door", "doorjamb", "rug", "character"})
+"""Parts the body passes through (`homesim.render.interact` steps up to furniture among
+the others; walking uses the floor model, not parts)."""
+LEG_LEVEL = (0.08, 1.2)
+"""Parts between these heights (metres) are in the body's way when it steps up to
+furniture (`homesim.render.interact`)."""
 
 
 @dataclass
