@@ -89,8 +89,8 @@ def _measure(name: str, limit: int, render: bool) -> dict:
         run = run_program(p, graph)
         ok += run.executable
         added += len(run.prepared.added) if run.prepared else 0
-    row["rate"] = ok / len(programs)
-    row["added"] = added / len(programs)
+    row["rate"] = ok / max(1, len(programs))  # --programs 0: time and check homes only
+    row["added"] = added / max(1, len(programs))
     if render:
         row["renders"], row["render_problems"] = _renders(graph)
     return row
