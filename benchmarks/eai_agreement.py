@@ -29,7 +29,8 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from homesim.goals.plans import TaskContext, load_contexts, score_plans
+from homesim.goals.contexts import TaskContext, load_contexts
+from homesim.goals.plans import score_plans
 
 HERE = Path(__file__).parent
 VENV = Path(os.environ.get("EAI_VENV", "/tmp/eai"))
