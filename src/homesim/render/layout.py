@@ -255,6 +255,9 @@ def _window(panel: Box, axis: int, sign: float) -> Shape:
 
 
 _WINDOWED = frozenset({"microwave", "stove", "oven", "washingmachine"})
+_CARCASS_ROLE = {"fridge": "white", "washingmachine": "white", "dishwasher": "white",
+                 "stove": "metal", "oven": "metal", "microwave": "black", "garbagecan": "metal"}
+"""Material of a hinged object's body; others are wood."""
 
 
 def _seat(box: Box, axis: int, sign: float) -> list[Box]:
@@ -462,9 +465,10 @@ def _door_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
     axis, sign = home.front(node, box)
     part.boxes, part.hinge = _hollow(box, axis, sign)
-    part.shapes = _slab_shapes(part.boxes, "body")
+    role = _CARCASS_ROLE.get(node.class_name, "wood")
+    part.shapes = _slab_shapes(part.boxes, role)
     h = part.hinge
-    h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), "front"),
+    h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), role),
                 _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
     if node.class_name in _WINDOWED:
         h.shapes.append(_window(h.panel, axis, sign))

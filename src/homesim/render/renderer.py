@@ -42,6 +42,11 @@ class Renderer:
         self._depth = np.empty((height, width), np.float32)
         self._seg4: np.ndarray | None = None
         self._lut: np.ndarray | None = None
+        # The light of the room a camera is in casts shadows in its colour draws.
+        self._shadow_light = {c: scene.room_light.get(spec.room_id, -1)
+                              for c, spec in enumerate(scene.cameras)}
+        self._shadow_now: int | None = None
+        self.shadows = True
         extent = model.stat.extent
         self.znear = float(model.vis.map.znear * extent)
         self.zfar = float(model.vis.map.zfar * extent)
@@ -86,8 +91,20 @@ class Renderer:
         self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
         mujoco.mjr_render(rect or self._rect, self._scn, self._con)
 
+    def _cast_shadows(self, camera_id: int) -> None:
+        """Only the light of the camera's room casts shadows (one shadow pass a frame)."""
+        light = self._shadow_light.get(camera_id, -1) if self.shadows else -1
+        if light == self._shadow_now:
+            return
+        flags = self.scene.model.light_castshadow
+        flags[:] = 0
+        if light >= 0:
+            flags[light] = 1
+        self._shadow_now = light
+
     def rgb(self, data: mujoco.MjData, camera_id: int) -> np.ndarray:
         """(H, W, 3) uint8 colour image."""
+        self._cast_shadows(camera_id)
         self._draw(data, camera_id, segment=False)
         mujoco.mjr_readPixels(self._rgb, None, self._rect, self._con)
         return self._rgb[::-1].copy()  # GL rows start at the bottom
