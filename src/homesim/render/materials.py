@@ -44,7 +44,7 @@ _FIXED: dict[str, tuple[str, tuple[float, float, float] | None, float, float]] =
     "leaf": ("matte", (0.22, 0.48, 0.20), 0.1, 0.2),
     "coffee": ("glossy", (0.28, 0.16, 0.08), 0.5, 0.6),
     "label": ("matte", (0.95, 0.93, 0.85), 0.0, 0.1),
-    "ceiling": ("matte", (0.96, 0.96, 0.94), 0.0, 0.1),
+    "ceiling": ("ceiling", (0.96, 0.96, 0.94), 0.0, 0.1),
     "body": ("plastic", None, 0.3, 0.4),
     "front": ("plastic", None, 0.3, 0.4),
     "accent": ("plastic", None, 0.3, 0.4),
@@ -283,6 +283,7 @@ class Look:
             '<material name="plastic" specular="0.3" shininess="0.4"/>',
             '<material name="glossy" specular="0.6" shininess="0.7"/>',
             '<material name="matte" specular="0"/>',
+            '<material name="ceiling" specular="0" emission="0.35"/>',
             '<material name="metal" specular="0.9" shininess="0.8"/>',
             '<material name="glass" specular="1" shininess="1"/>',
             '<material name="screen_off" rgba="0.02 0.02 0.03 1" specular="0.6" '
