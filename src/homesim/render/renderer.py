@@ -14,7 +14,6 @@ from homesim.errors import HomesimError
 from homesim.render.gl import BACKEND, mujoco
 from homesim.render.scene import SceneModel
 
-
 HIDDEN_GROUP = 5
 """Geom group of the static geoms a camera cannot see (not drawn)."""
 
