@@ -7,7 +7,8 @@ box and CLOSE edges in bedroom 67), the edge is moved to the room of the box, an
 is printed. Door boxes are VirtualHome placeholders (0.93 x 0.93 x 1.0 m at the floor);
 each becomes the closed leaf of its door frame (`homesim.render.layout.door_leaf`: between
 the posts, as tall as the opening, 2.5 cm thick), so the rendered door and its graph box
-agree. Run from the repo root:
+agree. Then the column files `load_home` reads are written from the JSON
+(`tools/pack_homes.py`). Run from the repo root:
 
     python tools/convert_homes.py [../shared/data/virtualhome/scenes]
 """
@@ -24,6 +25,7 @@ from homesim.render.layout import door_leaf, to_mujoco
 from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.homes import character_room_problem, rooms_holding_box
 from homesim.world.vocab import INSIDE
+from pack_homes import pack_all  # tools/ is on the path when this script runs
 
 OUT = Path(__file__).resolve().parents[1] / "src" / "homesim" / "world" / "builtin"
 
@@ -37,6 +39,7 @@ def main(scenes: Path) -> None:
         graph.save(target)
         print(f"{path.name}: {len(graph)} nodes, {graph.num_edges()} edges -> {target.name} "
               f"({target.stat().st_size // 1024} KiB)")
+    pack_all(OUT)
 
 
 def fix_character_room(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:

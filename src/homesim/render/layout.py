@@ -4,7 +4,8 @@ Frames: the graph's boxes are in Unity's frame (y up, metres). Everything in
 `homesim.render` uses MuJoCo's frame (z up): ``(x, y, z)_mujoco = (x, z, y)_unity``.
 Boxes are axis-aligned and stored as (centre, half size).
 
-This module is pure geometry (no mujoco), so navigation and tests can use it alone.
+This module is pure geometry (no mujoco), so navigation and tests can use it alone. The
+walk grid comes from the floor model (`homesim.world.floor`), not from the parts.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 
 from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
+from homesim.world.floor import FloorModel
 from homesim.world.graph import EnvironmentGraph, Node
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
 
@@ -111,6 +113,8 @@ class Layout:
     floors: list[Box]
     room_floors: dict[int, Box]  # bounds of each room's floor tiles
     start: np.ndarray  # the character's start position on the floor (x, y)
+    walk: FloorModel | None = None
+    """Where the agent may walk: the floor model grounding uses (MuJoCo x, y = Unity x, z)."""
 
     def part(self, node_id: int) -> Part | None:
         return next((p for p in self.parts if p.node_id == node_id), None)
@@ -366,7 +370,7 @@ def build_layout(graph: EnvironmentGraph, seed: int = 0) -> Layout:
         part.is_on = S_ON in node.states
         parts.append(part)
     return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
-                  _room_floors(home.tiles), _start(graph))
+                  _room_floors(home.tiles), _start(graph), FloorModel(graph))
 
 
 def _start(graph: EnvironmentGraph) -> np.ndarray:

@@ -8,6 +8,7 @@ mocap slot of each movable object, the qpos address of each hinge.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -193,15 +194,17 @@ def _lamp_lights(scene: SceneModel, graph: EnvironmentGraph) -> None:
 
 
 def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
-                max_size: tuple[int, int] = (640, 480)) -> SceneModel:
-    """Compile a home with geometry into a `SceneModel` (cameras randomised by `seed`)."""
+                max_size: tuple[int, int] = (640, 480),
+                shots: Sequence[CameraSpec] = ()) -> SceneModel:
+    """Compile a home with geometry into a `SceneModel` (cameras randomised by `seed`;
+    `shots`: close-up cameras added after the room cameras, see `homesim.render.shots`)."""
     layout = build_layout(graph, seed)
     if not layout.floors:
         raise HomesimError("the home has no floor boxes: rendering needs a home with 3D "
                            "geometry (e.g. --home scene1, not scene1_trimmed)")
     if graph.character_id is None:
         raise HomesimError("the home has no character node to animate")
-    cameras = room_cameras(layout, seed)
+    cameras = room_cameras(layout, seed) + list(shots)
     xml, files = scene_mjcf(layout, cameras, agent, max_size, Look(seed, layout.room_names))
     try:
         model = mujoco.MjModel.from_xml_string(xml, files)
