@@ -476,7 +476,9 @@ def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
                 _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
     if node.class_name in _WINDOWED:
         h.shapes.append(_window(h.panel, axis, sign))
-    if node.class_name in ("stove", "oven"):
+    if node.class_name in ("stove", "oven"):  # the top gives way to the hot plates
+        part.shapes = [Shape(s.kind, s.center - [0, 0, 0.004], s.half, s.role)
+                       if s.center[2] - s.half[2] > box.center[2] else s for s in part.shapes]
         part.shapes += _burners(box)
     return True
 
