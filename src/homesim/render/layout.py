@@ -521,9 +521,9 @@ def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     """The class's model; screens get their panel, lamps light."""
     part.boxes.append(_flat(box))
-    front = home.front(node, box)
-    part.shapes = home.model(node, _flat(box), front)
     cls = node.class_name
+    front = _facing_seat(node, box, home) if cls in SCREEN_CLASSES else home.front(node, box)
+    part.shapes = home.model(node, _flat(box), front)
     if cls in SCREEN_CLASSES:
         screen = next((s for s in part.shapes if s.role == "screen"), None)
         if screen is None:
@@ -537,6 +537,17 @@ def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     if cls in LAMP_CLASSES or node.category == "Lamps":
         part.lamp = True
     return True
+
+
+def _facing_seat(node: Node, box: Box, home: _Home) -> tuple[int, float]:
+    """A screen faces the nearest sofa of its room (else the room's middle)."""
+    room = home.graph.room_of(node.id)
+    seats = [b for n in home.graph.nodes_of_class("sofa") if home.graph.room_of(n.id) == room
+             and (b := to_mujoco(n)) is not None]
+    if not seats:
+        return home.front(node, box)
+    seat = min(seats, key=lambda b: float(np.hypot(*(b.center[:2] - box.center[:2]))))
+    return _front_axis(box, seat.center)
 
 
 def _screen(box: Box, front: tuple[int, float]) -> Shape:
