@@ -191,6 +191,6 @@ def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 32
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
                                  seed=seed, bindings=bindings, agent=agent, standing=standing)
     ends = [end for _, end in timeline.step_frames]
-    with Renderer(scene, width, height) as renderer:
+    with Renderer(scene, width, height, shadows=True) as renderer:  # stills: no rush
         for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, ends)):
             yield step, rgb
