@@ -19,6 +19,7 @@ from homesim.render.groundtruth import RecordingWriter, StepSpan, open_video
 from homesim.render.recorder import iter_still_frames, record
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
+from homesim.render.shots import plan_shots
 from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
@@ -70,9 +71,13 @@ def _check_length(frames: int, width: int, height: int,
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
             seed: int, bindings: Bindings | None, agent: str | None,
-            standing: Mapping[int, tuple[float, float]] | None = None
+            standing: Mapping[int, tuple[float, float]] | None = None, speed: float = 1.0
             ) -> tuple[SceneModel, Timeline, str]:
-    """Execute, build the scene and animate: everything before drawing."""
+    """Execute, build the scene and animate: everything before drawing.
+
+    `speed` scales how fast the agent moves (2.0: every motion takes half its time)."""
+    if not speed > 0:
+        raise HomesimError(f"speed must be positive, got {speed}")
     if not program.steps:
         raise HomesimError("the program has no steps to render")
     name = agent or list(AGENTS)[seed % len(AGENTS)]
@@ -82,8 +87,11 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     reference = bindings is None and not program.is_grounded
     result = execute(program, graph, trace=True, bindings=bindings, reference=reference)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
-    timeline = Animator(scene, graph, shape, fps=fps, seed=seed,
+    timeline = Animator(scene, graph, shape, fps=fps / speed, seed=seed,
                         standing=standing).run(result)
+    shots = plan_shots(scene, timeline, width / height)
+    if shots:  # the same model with a close-up camera per interaction
+        scene = build_scene(graph, shape, seed=seed, max_size=(width, height), shots=shots)
     return scene, timeline, name
 
 
@@ -179,6 +187,7 @@ def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed
         "character_id": scene.character_id,
         "joints": list(JOINTS),
         "cameras": [{"name": c.name, "room_id": c.room_id, "fovy": c.fovy,
+                     "step": None if c.step < 0 else c.step,
                      "position": [float(x) for x in c.pos],
                      "intrinsics": intrinsics(width, height, c.fovy).tolist()}
                     for c in scene.cameras],
