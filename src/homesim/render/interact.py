@@ -31,6 +31,8 @@ CROUCH = (0.0, 0.2, 0.35)
 """Pelvis drops (metres) tried, in order, for points below `LOW`."""
 LOW = 0.75
 """Metres: points lower than this may be reached crouching."""
+COMFORT_LEAN = 0.5
+"""Radians of spine pitch: the agent steps closer rather than bow more than this."""
 AROUND = (0.35, 0.5, 0.65)
 """Metres from the target (horizontally) of the standing points tried around it when the
 way straight to it is blocked."""
@@ -109,22 +111,26 @@ class ReachPlanner:
              grip: np.ndarray | None = None) -> ReachPlan:
         """Where to stand to reach `point`: the first point on the way from `start_xy`
         toward it (every `STEP` metres, while the body fits) from which the hand touches
-        it; else the nearest point around it (`AROUND`) from which it does; else the
+        it without bowing more than `COMFORT_LEAN` (else the first from which it touches
+        at all); else the nearest point around it (`AROUND`) from which it does; else the
         point tried from which the hand comes closest."""
         d = point[:2] - start_xy
         dist = float(np.hypot(*d))
+        tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
         best = self.reach_from(start_xy, side, point, grip)
-        for s in np.arange(STEP, dist, STEP):
-            if best.gap <= TOUCH:
-                return best
-            xy = start_xy + d / dist * s
+        touching = best if best.gap <= TOUCH else None
+        for xy in tries:
+            if touching is not None and _lean(touching) <= COMFORT_LEAN:
+                return touching
             if not self.fits(xy):
                 break
             plan = self.reach_from(xy, side, point, grip)
+            if plan.gap <= TOUCH and (touching is None or _lean(plan) < _lean(touching)):
+                touching = plan
             if plan.gap < best.gap - 1e-3:
                 best = plan
-        if best.gap <= TOUCH:
-            return best
+        if touching is not None:
+            return touching
         for xy in self.around(start_xy, point)[:MAX_AROUND]:
             plan = self.reach_from(xy, side, point, grip)
             if plan.gap < best.gap - 1e-3:
@@ -145,3 +151,7 @@ class ReachPlanner:
         """Whether the body fits all along the segment a-b (checked every 5 cm)."""
         n = max(2, int(np.ceil(np.linalg.norm(b - a) / 0.05)) + 1)
         return all(self.fits(a + t * (b - a)) for t in np.linspace(0.0, 1.0, n)[1:])
+
+
+def _lean(plan: ReachPlan) -> float:
+    return plan.pose.joints.get("spine_pitch", 0.0)

@@ -1,9 +1,10 @@
 """Close-ups of interactions: one virtual camera per hands-on step, as the paper films.
 
 For each `Interaction` of a timeline (a hand reaching an object, from the start of the
-reach to its return), the cameras of the room where it happens are tried: each one's
-position is kept, it is turned toward the hand and the object, and its field of view is
-narrowed until they fill the frame (with a margin). The camera kept is the one that sees
+reach to its return), the cameras of the room where it happens are tried, each at its
+place and moved part of the way toward the action (staying in the room): it is turned
+toward the hand and the object, and its field of view is narrowed until they fill the
+frame (with a margin). The camera kept is the one that sees
 the object and the hand best at the moment of the effect (rays cast with `mj_ray`
 against every geom), nearer ones first. A step is never filmed from another room: a room
 without cameras gets no close-up.
@@ -12,6 +13,7 @@ without cameras gets no close-up.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -22,11 +24,16 @@ from homesim.render.scene import SceneModel
 
 MARGIN = 1.3
 """The frame spans this many times the angular extent of hand and object."""
-MIN_FOVY = 18.0
+MIN_FOVY = 8.0
 MAX_FOVY = 80.0
 """Degrees: the narrowest and widest close-up."""
 FRAMED = 5
 """Hand positions sampled along the reach (start to peak) that the shot must contain."""
+DOLLY = (0.0, 0.3, 0.55)
+"""Each room camera is also tried moved this share of the way toward the action (at its
+height, inside the room, out of furniture)."""
+MIN_RANGE = 1.2
+"""Metres: a camera is not moved closer than this to the action."""
 
 
 def plan_shots(scene: SceneModel, timeline: Timeline, aspect: float) -> list[CameraSpec]:
@@ -35,15 +42,38 @@ def plan_shots(scene: SceneModel, timeline: Timeline, aspect: float) -> list[Cam
     data = mujoco.MjData(scene.model)
     shots = []
     for k, it in enumerate(timeline.interactions):
-        cams = [c for c in scene.cameras if c.room_id == it.room and c.shot < 0]
+        framed = _framed_points(scene, timeline, it, data)
+        cams = _positions(scene, it.room, 0.5 * (framed.min(axis=0) + framed.max(axis=0)))
         if not cams:
             continue
-        framed = _framed_points(scene, timeline, it, data)
         _pose(scene, timeline, it.peak, data)
         targets = _targets(scene, it, data)
         best = max(cams, key=lambda c: _score(scene, data, c, it, targets))
         shots.append(_aim(best, framed, aspect, k, it.step))
     return shots
+
+
+def _positions(scene: SceneModel, room: int | None, subject: np.ndarray) -> list[CameraSpec]:
+    """The room's cameras, and each moved part of the way toward `subject` (`DOLLY`)
+    where that stays inside the room and out of furniture."""
+    floor = scene.layout.room_floors.get(room) if room is not None else None
+    blockers = [b for p in scene.layout.parts
+                if p.class_name not in ("floor", "ceiling", "wall", "doorjamb")
+                for b in p.boxes]
+    out = []
+    for cam in scene.cameras:
+        if cam.room_id != room or cam.shot >= 0:
+            continue
+        for t in DOLLY:
+            pos = cam.pos.copy()
+            pos[:2] += t * (subject[:2] - pos[:2])
+            if t > 0 and (floor is None or np.linalg.norm(pos - subject) < MIN_RANGE
+                          or np.any(np.abs(pos[:2] - floor.center[:2]) > floor.half[:2] - 0.2)
+                          or any(np.all(np.abs(pos - b.center) < b.half + 0.1)
+                                 for b in blockers)):
+                continue
+            out.append(replace(cam, pos=pos))
+    return out
 
 
 def _pose(scene: SceneModel, timeline: Timeline, frame: int, data: mujoco.MjData) -> None:
