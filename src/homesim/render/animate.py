@@ -31,6 +31,7 @@ from homesim.render.poses import (
     Pose,
     blend,
     carrying,
+    gripping,
     lying,
     sitting,
     standing,
@@ -125,7 +126,9 @@ class Animator:
     """
 
     def __init__(self, scene: SceneModel, graph: EnvironmentGraph, shape: AgentShape,
-                 fps: int = 30, seed: int = 0, standing: Standing | None = None):
+                 fps: float = 30, seed: int = 0, standing: Standing | None = None):
+        # fps may be fractional: the activity dataset animates at fps / speed, so every
+        # motion takes 1/speed of its time (homesim.dataset).
         self.scene, self.graph, self.shape, self.fps = scene, graph, shape, fps
         self.rng = np.random.default_rng(seed)
         self.ik = ArmIK(scene)
@@ -153,6 +156,7 @@ class Animator:
         for side in props.held:
             if pose.tilt == 0.0 and side not in self.reaching:
                 pose = carrying(pose, side)
+        pose = gripping(pose, props.held)  # hands close on what they hold
         write_qpos(self.qpos, pose, self.scene.joint_qpos)
         for n, angle in props.hinge_angle.items():
             self.qpos[self.scene.hinge_qpos[n]] = angle

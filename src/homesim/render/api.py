@@ -69,9 +69,13 @@ def _check_length(frames: int, width: int, height: int) -> None:
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
             seed: int, bindings: Bindings | None, agent: str | None,
-            standing: Mapping[int, tuple[float, float]] | None = None
+            standing: Mapping[int, tuple[float, float]] | None = None, speed: float = 1.0
             ) -> tuple[SceneModel, Timeline, str]:
-    """Execute, build the scene and animate: everything before drawing."""
+    """Execute, build the scene and animate: everything before drawing.
+
+    `speed` scales how fast the agent moves (2.0: every motion takes half its time)."""
+    if not speed > 0:
+        raise HomesimError(f"speed must be positive, got {speed}")
     if not program.steps:
         raise HomesimError("the program has no steps to render")
     name = agent or list(AGENTS)[seed % len(AGENTS)]
@@ -81,7 +85,7 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     reference = bindings is None and not program.is_grounded
     result = execute(program, graph, trace=True, bindings=bindings, reference=reference)
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
-    timeline = Animator(scene, graph, shape, fps=fps, seed=seed,
+    timeline = Animator(scene, graph, shape, fps=fps / speed, seed=seed,
                         standing=standing).run(result)
     shots = plan_shots(scene, timeline, width / height)
     if shots:  # the same model with a close-up camera per interaction

@@ -97,12 +97,15 @@ class SceneState:
         if self._mocap:
             d.mocap_pos[:] = tl.mocap[i]
         lit = tl.lamps[i]
+        lights: dict[int, bool] = {}  # a room's light is on when any of its lamps is
         for n, mat in self.scene.lamp_mat.items():
             on = n in lit
             m.mat_emission[mat] = 0.9 if on else 0.0
             lid = self._light_ids.get(n, -1)
             if lid >= 0:
-                m.light_active[lid] = on
+                lights[lid] = lights.get(lid, False) or on
+        for lid, on in lights.items():
+            m.light_active[lid] = on
         screen_off, screen_on = self.scene.screen_mats
         for n, g in self.scene.screen_geom.items():
             m.geom_matid[g] = screen_on if n in tl.screens[i] else screen_off
