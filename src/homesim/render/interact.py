@@ -2,9 +2,10 @@
 
 A reach aims at a point on the object's surface (the point of its box nearest the
 shoulder, or a door's handle). When grounding's standing spot leaves it out of the arm's
-reach, `ReachPlanner` finds where to stand instead: on the straight line toward the
-object, as far as the body fits between the obstacles, crouching for low points, leaning
-(the IK bends the spine) for far ones.
+reach, `ReachPlanner` finds where to stand instead, on the same floor model
+(`homesim.world.floor`): on the straight line toward the object while the floor is
+walkable, else around it; crouching for low points, leaning (the IK bends the spine) for
+far ones.
 """
 
 from __future__ import annotations
@@ -17,14 +18,10 @@ import numpy as np
 from homesim.render.agent import AgentShape
 from homesim.render.ik import ArmIK, crouched
 from homesim.render.layout import Box, Layout
-from homesim.render.navigation import LEG_LEVEL, PASSABLE
 from homesim.render.poses import Pose, standing
 
 TOUCH = 0.01
 """Metres: a hand this close to an object's surface touches it (grab, press, open)."""
-BODY_RADIUS = 0.16
-"""Metres: the agent's footprint when it steps up to furniture (narrower than the 0.25 m
-the path planner keeps while walking)."""
 STEP = 0.05
 """Metres between the standing points tried on the way to an object."""
 CROUCH = (0.0, 0.2, 0.35)
@@ -73,21 +70,14 @@ class ReachPlanner:
 
     def __init__(self, layout: Layout, ik: ArmIK, shape: AgentShape):
         self.ik, self.shape = ik, shape
-        self.floors = [(f.lo[:2], f.hi[:2]) for f in layout.floors]
-        self.obstacles = [(b.lo[:2], b.hi[:2]) for p in layout.parts
-                          if p.class_name not in PASSABLE and p.movable is None
-                          for b in p.boxes
-                          if b.hi[2] > LEG_LEVEL[0] and b.lo[2] < LEG_LEVEL[1]]
+        self.walk = layout.walk
 
     def fits(self, xy: np.ndarray) -> bool:
-        """Whether the agent's footprint stands on floor, clear of furniture and walls."""
-        if not any(np.all(xy >= lo) and np.all(xy <= hi) for lo, hi in self.floors):
+        """Whether the agent may stand at `xy`: the nearest cell of the floor model
+        (`homesim.world.floor`, the one grounding's spots come from) is walkable."""
+        if self.walk is None:
             return False
-        for lo, hi in self.obstacles:
-            d = np.maximum(np.maximum(lo - xy, xy - hi), 0.0)
-            if float(np.hypot(d[0], d[1])) < BODY_RADIUS:
-                return False
-        return True
+        return self.walk.walkable(*self.walk.index(float(xy[0]), float(xy[1])))
 
     def reach_from(self, xy: np.ndarray, side: str, point: np.ndarray,
                    grip: np.ndarray | None = None) -> ReachPlan:
