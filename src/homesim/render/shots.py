@@ -32,13 +32,14 @@ MIN_FOVY = 8.0
 MAX_FOVY = 80.0
 """Degrees: the narrowest and widest close-up."""
 FRAMED = 5
-"""Hand positions sampled along the reach (start to peak) that the shot must contain."""
+"""Hand positions sampled along the second half of the reach (to the effect) that the
+shot must contain."""
 DOLLY = (0.0, 0.3, 0.55)
 """Each room camera is also tried moved this share of the way toward the action (at its
 height, inside the room, out of furniture)..."""
 ORBIT = (0.0, 0.45, -0.45, 0.9, -0.9)
 """... and swung around the action by these angles (radians) first."""
-DRAWN = 8
+DRAWN = 16
 """Candidate views (the best by rays) drawn to choose the close-up."""
 PROBE_HEIGHT = 60
 """Pixels: the height of those drawings."""
@@ -172,11 +173,11 @@ def node_corners(scene: SceneModel, data: mujoco.MjData, node: int) -> np.ndarra
 
 def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
                    data: mujoco.MjData) -> np.ndarray:
-    """What the shot must contain: the hand along the reach, the objects at its start
-    and at the effect."""
+    """What the shot must contain: the hand as it comes to the object, the objects at
+    the start of the reach and at the effect."""
     site = scene.hand_sites[it.side]
     pts = []
-    for f in np.linspace(it.start, it.peak, FRAMED).round().astype(int):
+    for f in np.linspace((it.start + it.peak) / 2, it.peak, FRAMED).round().astype(int):
         _pose(scene, timeline, int(f), data)
         pts.append(data.site_xpos[site].copy()[None])
     for f in (it.start, it.peak):
