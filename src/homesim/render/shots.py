@@ -22,6 +22,7 @@ import numpy as np
 
 from homesim.render.animate import Interaction, Timeline
 from homesim.render.cameras import CameraSpec, look_at
+from homesim.render.flow import intrinsics, project, world_to_cam
 from homesim.render.gl import mujoco
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel
@@ -46,7 +47,7 @@ PROBE_HEIGHT = 60
 GOOD_SHARE = 0.02
 """An object covering this share of the drawing is seen well enough; beyond it, the hand
 being seen counts more."""
-MIN_RANGE = 1.2
+MIN_RANGE = 1.5
 """Metres: a camera is not moved closer than this to the action."""
 
 
@@ -56,8 +57,8 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
     is the interaction's index), for images of `size` (width, height).
 
     Candidates are ranked by rays (object and hand seen at the effect); the best `DRAWN`
-    are aimed and drawn in segmentation at a small size, and the one showing most of the
-    object (the hand seen breaking ties) is kept."""
+    are aimed and drawn in segmentation at a small size, and the one kept shows the
+    object well (`GOOD_SHARE` of the view) and the hand, else most of the object."""
     data = mujoco.MjData(scene.model)
     aspect = size[0] / size[1]
     plans = []
@@ -79,12 +80,19 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
     with Renderer(scene, *probe) as renderer, _spare_camera(scene) as spare:
         for it, aimed in plans:
             _pose(scene, timeline, it.peak, data)
-            drawn = [(spare.share(renderer, data, spec, it.nodes[0], probe), hand, n)
-                     for n, (spec, hand) in enumerate(aimed)]
-            best = max(drawn, key=lambda d: (min(d[0] / GOOD_SHARE, 1.0) + 0.5 * d[1] + d[0],
-                                             -d[2]))
+            arm = _arm_bodies(scene, it.side)
+            drawn = [(*spare.view(renderer, data, spec, it, arm), n)
+                     for n, (spec, _) in enumerate(aimed)]
+            best = max(drawn, key=lambda d: (_view_score(d[0], d[1], aimed[d[2]][0]), -d[2]))
             shots.append(aimed[best[2]][0])
     return shots
+
+
+def _view_score(share: float, hand: bool, spec: CameraSpec) -> float:
+    """A drawn candidate's worth: the object seen well (up to `GOOD_SHARE`), the hand
+    seen, more of the object; a view too wide to frame them (at `MAX_FOVY`) counts less."""
+    cramped = spec.fovy >= MAX_FOVY - 1e-6
+    return min(share / GOOD_SHARE, 1.0) + 0.5 * hand + share - 0.5 * cramped
 
 
 class _SpareCamera:
@@ -95,16 +103,28 @@ class _SpareCamera:
         m = scene.model
         self.saved = (m.cam_pos[0].copy(), m.cam_quat[0].copy(), float(m.cam_fovy[0]))
 
-    def share(self, renderer: Renderer, data: mujoco.MjData, spec: CameraSpec, node: int,
-              size: tuple[int, int]) -> float:
-        """Share of a small view from `spec` covered by `node`."""
+    def view(self, renderer: Renderer, data: mujoco.MjData, spec: CameraSpec,
+             it: Interaction, arm: frozenset[int]) -> tuple[float, bool]:
+        """Drawn from `spec` at the renderer's (small) size: the share of the view the
+        acted-on object covers, and whether the hand shows (its pixel is on the arm)."""
         m = self.scene.model
         mat = np.stack([spec.xaxis, spec.yaxis, np.cross(spec.xaxis, spec.yaxis)], axis=1)
         quat = np.zeros(4)
         mujoco.mju_mat2Quat(quat, mat.reshape(-1))
         m.cam_pos[0], m.cam_quat[0], m.cam_fovy[0] = spec.pos, quat, spec.fovy
         mujoco.mj_camlight(m, data)
-        return renderer.probe_nodes(data, 0, (node,), size)[0]
+        ids, _ = renderer.ids_depth(data, 0)
+        nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
+        share = float(np.count_nonzero(nodes == it.nodes[0])) / ids.size
+        h, w = ids.shape
+        k = intrinsics(w, h, spec.fovy)
+        uv, z = project(data.site_xpos[self.scene.hand_sites[it.side]][None], k,
+                        world_to_cam(data.cam_xpos[0], data.cam_xmat[0]))
+        u, v = np.round(uv[0]).astype(int)
+        if z[0] <= 0 or not (0 <= u < w and 0 <= v < h) or ids[v, u] < 0:
+            return share, False
+        g = int(ids[v, u])
+        return share, int(m.geom_bodyid[g]) in arm
 
     def restore(self) -> None:
         m = self.scene.model
