@@ -42,7 +42,7 @@ ORBIT = (0.0, 0.45, -0.45, 0.9, -0.9)
 """... and swung around the action by these angles (radians) first."""
 DRAWN = 16
 """Candidate views (the best by rays) drawn to choose the close-up."""
-PROBE_HEIGHT = 60
+PROBE_HEIGHT = 120
 """Pixels: the height of those drawings."""
 GOOD_SHARE = 0.02
 """An object covering this share of the drawing is seen well enough; beyond it, the hand
