@@ -89,7 +89,7 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
     timeline = Animator(scene, graph, shape, fps=fps / speed, seed=seed,
                         standing=standing).run(result)
-    shots = plan_shots(scene, timeline, width / height)
+    shots = plan_shots(scene, timeline, (width, height))
     if shots:  # the same model with a close-up camera per interaction
         scene = build_scene(graph, shape, seed=seed, max_size=(width, height), shots=shots)
     return scene, timeline, name
