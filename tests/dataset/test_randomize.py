@@ -1,6 +1,6 @@
 import random
 
-from homesim.dataset.randomize import move_character, move_objects, movable_objects
+from homesim.dataset.randomize import movable_objects, move_character, move_objects
 from homesim.ground.kbtypes import default_kb
 from homesim.ground.standing import FloorPlan
 from homesim.world.homes import load_home
