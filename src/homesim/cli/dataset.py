@@ -133,3 +133,17 @@ def verify(root: Annotated[Path, typer.Argument(help="Data set folder.")]) -> No
         raise HomesimError(f"{root}: {len(report.problems)} problems")
     console.print(f"[green]ok[/]: {report.shards} shards, {report.episodes} episodes "
                   f"({report.ok} made), {report.frames} frames; checksums match")
+
+
+@app.command()
+def card(
+    root: Annotated[Path, typer.Argument(help="Data set folder.")],
+    out: Annotated[Path, typer.Option(help="Folder for stats.json and the figures.")],
+    seed: Annotated[int, typer.Option(help="Seed of the episodes on the contact sheet.")] = 0,
+) -> None:
+    """Figures of the data set card: counts and Table 1(a) (stats.json), action and object
+    histograms, and a contact sheet of 12 random episodes."""
+    from homesim.dataset.card import write_card
+
+    for path in write_card(root, out, seed):
+        console.print(f"wrote {path}")
