@@ -68,8 +68,8 @@ def main() -> None:
                   f"failed, {summary.frames} frames) in {seconds:.0f} s = "
                   f"{rates[workers]:.1f} episodes/hour")
         print(f"ratio 2 workers / 1 worker: {rates[2] / rates[1]:.2f}x (goal >= 1.8x)")
-        per_episode = summary.bytes / max(summary.ok, 1)
-        print(f"bytes per frame: {summary.bytes_per_frame / 1e3:.1f} KB (goal <= 100 KB); "
+        per_episode = summary.disk_bytes / max(summary.ok, 1)
+        print(f"bytes per frame on disk: {summary.bytes_per_frame / 1e3:.1f} KB (goal <= 100 KB); "
               f"{per_episode / 1e6:.1f} MB per episode -> {PAPER_EPISODES} episodes: "
               f"{per_episode * PAPER_EPISODES / 1e9:.1f} GB")
         root = Path(tmp) / "w2"

@@ -96,8 +96,8 @@ def generate(
     seconds = time.perf_counter() - t0
     console.print(
         f"[green]ok[/]: {summary.ok} episodes ({summary.failed} failed), {summary.frames} "
-        f"frames, {summary.bytes / 1e6:.1f} MB ({summary.bytes_per_frame / 1e3:.1f} KB per "
-        f"frame) in {summary.shards} shards in {out}; {seconds:.0f} s")
+        f"frames, {summary.disk_bytes / 1e6:.1f} MB ({summary.bytes_per_frame / 1e3:.1f} KB "
+        f"per frame) in {summary.shards} shards in {out}; {seconds:.0f} s")
 
 
 @app.command()

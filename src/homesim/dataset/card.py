@@ -39,7 +39,7 @@ class CardStats:
     height: int
     homes: dict[str, int]
     agents: dict[str, int]
-    bytes: int
+    bytes: int  # shard files on disk
     bytes_per_frame: float
     table1a: dict[str, float]  # programs, avg_steps, avg_sentences, avg_words
     actions: list[tuple[str, int]]
@@ -50,11 +50,12 @@ def card_stats(root: str | Path, programs: ActivityDataset) -> CardStats:
     """Counts from the manifest and config; Table 1(a) and histograms from `programs`
     (the made episodes' programs, one per episode)."""
     layout = Layout(root)
-    config = read_json(layout.config_path)["config"]
+    info = read_json(layout.config_path)
+    config = info["config"]
     rows = read_manifest(layout.manifest_path)
     made = [r for r in rows if r["status"] == "ok"]
     frames = sum(r["num_frames"] for r in made)
-    size = sum(r["bytes"] for r in made)
+    size = sum(s["bytes"] for s in info.get("shards", []))  # on disk, tar headers included
     s = summarize(programs)
     return CardStats(
         episodes=len(rows), made=len(made), failed=len(rows) - len(made),
