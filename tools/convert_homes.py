@@ -4,7 +4,8 @@ Each scene is validated by `EnvironmentGraph.from_dict` and written, canonically
 and gzip-compressed, to src/homesim/world/builtin/<name>.json.gz. Where the character's
 INSIDE edge names another room than the one its box is in (scene1: bathroom 1, with its
 box and CLOSE edges in bedroom 67), the edge is moved to the room of the box, and the fix
-is printed. Run from the repo root:
+is printed. Then the column files `load_home` reads are written from the JSON
+(`tools/pack_homes.py`). Run from the repo root:
 
     python tools/convert_homes.py [../shared/data/virtualhome/scenes]
 """
@@ -17,6 +18,7 @@ from pathlib import Path
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import character_room_problem, rooms_holding_box
 from homesim.world.vocab import INSIDE
+from pack_homes import pack_all  # tools/ is on the path when this script runs
 
 OUT = Path(__file__).resolve().parents[1] / "src" / "homesim" / "world" / "builtin"
 
@@ -29,6 +31,7 @@ def main(scenes: Path) -> None:
         graph.save(target)
         print(f"{path.name}: {len(graph)} nodes, {graph.num_edges()} edges -> {target.name} "
               f"({target.stat().st_size // 1024} KiB)")
+    pack_all(OUT)
 
 
 def fix_character_room(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:

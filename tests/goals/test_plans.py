@@ -1,8 +1,9 @@
 import pytest
 
 from homesim.goals.check import GoalSet
+from homesim.goals.contexts import TaskContext, task_objects
 from homesim.goals.eai import TaskGoals
-from homesim.goals.plans import PlanReport, TaskContext, parse_plan, score_plan, task_objects
+from homesim.goals.plans import PlanReport, parse_plan, score_plan
 
 
 @pytest.fixture
@@ -102,7 +103,7 @@ def test_a_repeated_step_that_now_fails_is_additional(context, tiny_home):
 
 
 def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, context):
-    from homesim.goals import plans
+    from homesim.goals import contexts as plans
 
     builds = []
     monkeypatch.setattr(plans, "_build_contexts",

@@ -18,7 +18,7 @@ def test_step_out_of_order_does_not_execute(tiny_splits):
 def test_can_run_leaves_the_state_and_try_step_binds(tiny_splits):
     e = tiny_splits.train[0]
     first = e.program.steps[0]
-    key = (first.action.key, tuple(r.name for r in first.args))
+    key = (first.action.key, tuple(r.key for r in first.args))
     runner = StepRunner(e)
     assert runner.can_run(key)
     assert runner.steps == () and not runner.bound
@@ -27,7 +27,7 @@ def test_can_run_leaves_the_state_and_try_step_binds(tiny_splits):
 
 def test_missing_class_cannot_run(tiny_splits):
     e = replace(tiny_splits.train[0], bindings={})
-    assert not StepRunner(e).try_step(("WALK", ("no_such_thing",)))
+    assert not StepRunner(e).try_step(("WALK", (("no_such_thing", 1),)))
 
 
 def test_the_runner_accepts_exactly_what_run_program_runs(tiny_splits):
@@ -35,9 +35,10 @@ def test_the_runner_accepts_exactly_what_run_program_runs(tiny_splits):
     e = tiny_splits.train[0]
     runner = StepRunner(e)
     verdicts = []
-    for key in [("WALK", ("television",)), ("SWITCHON", ("television",)),
-                ("GRAB", ("television",)), ("WALK", ("wine_glass",)), ("GRAB", ("wine_glass",))]:
-        step = Step(ACTIONS[key[0]], tuple(ObjectRef(name, 1) for name in key[1]))
+    for action, name in [("WALK", "television"), ("SWITCHON", "television"),
+                         ("GRAB", "television"), ("WALK", "wine_glass"), ("GRAB", "wine_glass")]:
+        key = (action, ((name, 1),))
+        step = Step(ACTIONS[action], (ObjectRef(name, 1),))
         expected = run_program(Program((*runner.steps, step)), e.graph()).executable
         verdicts.append(runner.try_step(key))
         assert verdicts[-1] == expected

@@ -34,12 +34,15 @@ def animated():
     return g, scene, timeline
 
 
-def _hand_and_cup(scene, timeline, frame):
+def _in_hand(scene, timeline, frame, node=21, side="r"):
+    """An object's centre in the frame of the hand's body (constant while it is held)."""
     d = mujoco.MjData(scene.model)
     d.qpos[:] = timeline.qpos[frame]
     d.mocap_pos[:] = timeline.mocap[frame]
     mujoco.mj_kinematics(scene.model, d)
-    return d.site_xpos[scene.hand_sites["r"]], timeline.mocap[frame][scene.mocap[21]]
+    site = scene.hand_sites[side]
+    rot = d.xmat[scene.model.site_bodyid[site]].reshape(3, 3)
+    return rot.T @ (timeline.mocap[frame][scene.mocap[node]] - d.site_xpos[site])
 
 
 def test_steps_cover_the_timeline_in_order(animated):
@@ -55,9 +58,10 @@ def test_grabbed_cup_stays_in_the_right_hand_while_walking(animated):
     _, scene, tl = animated
     grab_end = tl.step_frames[1][1]
     put_start = tl.step_frames[6][0]
+    grip = _in_hand(scene, tl, grab_end)
+    assert np.linalg.norm(grip) < 0.15  # held close to the hand
     for f in range(grab_end, put_start, 3):
-        hand, cup = _hand_and_cup(scene, tl, f)
-        assert np.linalg.norm(hand - cup) < 1e-6
+        np.testing.assert_allclose(_in_hand(scene, tl, f), grip, atol=1e-6)
     walked = np.linalg.norm(tl.qpos[put_start][:2] - tl.qpos[grab_end][:2])
     assert walked > 1.0
 
@@ -126,12 +130,10 @@ def _run(program: str, fps: int = 10):
 def test_second_object_goes_to_the_left_hand():
     scene, tl = _run("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Grab] <apple> (24)\n"
                      "[Walk] <tv> (22)\n")
-    d = mujoco.MjData(scene.model)
-    d.qpos[:] = tl.qpos[-1]
-    mujoco.mj_kinematics(scene.model, d)
-    right, left = (d.site_xpos[scene.hand_sites[s]] for s in ("r", "l"))
-    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[21]], right, atol=1e-6)
-    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[24]], left, atol=1e-6)
+    assert [(a.node, a.side) for a in tl.attaches] == [(21, "r"), (24, "l")]
+    for node, side in ((21, "r"), (24, "l")):
+        grip = _in_hand(scene, tl, -1, node, side)
+        np.testing.assert_allclose(_in_hand(scene, tl, -10, node, side), grip, atol=1e-6)
 
 
 def test_running_is_faster_than_walking():

@@ -1,4 +1,9 @@
-"""The paper's baselines: random sampling, random retrieval, nearest-neighbour retrieval."""
+"""Baselines that learn nothing: random sampling and retrieval, the title's medoid program,
+nearest-neighbour retrieval by title or by description.
+
+Sentence vectors are all-MiniLM-L6-v2's (`embeddings.sentence_vectors`), the modern
+stand-in for the paper's skip-thoughts.
+"""
 
 from __future__ import annotations
 
@@ -7,6 +12,7 @@ import random
 import numpy as np
 
 from homesim.learn.data import Example
+from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 
 
@@ -38,3 +44,51 @@ def nn_retrieval(train: list[Example], test: list[Example],
         test_vectors = sentence_vectors([e.text for e in test])
     nearest = (test_vectors @ train_vectors.T).argmax(1)
     return [Program(train[i].program.steps) for i in nearest]
+
+
+def nn_title(train: list[Example], test: list[Example]) -> list[Program]:
+    """The program of the training example whose title is nearest (MiniLM cosine)."""
+    return _nearest(train, test, lambda e: e.title)
+
+
+def nn_description(train: list[Example], test: list[Example]) -> list[Program]:
+    """The program of the training example whose description is nearest (MiniLM cosine)."""
+    return _nearest(train, test, lambda e: e.description)
+
+
+def _nearest(train: list[Example], test: list[Example], field) -> list[Program]:
+    from homesim.learn.embeddings import cached_sentence_vectors
+
+    train_vectors = cached_sentence_vectors([field(e) for e in train])
+    test_vectors = cached_sentence_vectors([field(e) for e in test])
+    nearest = (test_vectors @ train_vectors.T).argmax(1)
+    return [Program(train[i].program.steps) for i in nearest]
+
+
+def medoids(train: list[Example]) -> dict[str, Example]:
+    """Activity -> its medoid training example: the one with the highest mean steps LCS
+    to the other programs of its activity (ties: the first)."""
+    groups: dict[str, list[Example]] = {}
+    for e in train:
+        groups.setdefault(e.activity, []).append(e)
+    out = {}
+    for activity, group in groups.items():
+        tokens = [step_tokens(e.program) for e in group]
+        totals = [sum(normalized_lcs(a, b) for b in tokens) for a in tokens]
+        out[activity] = group[max(range(len(group)), key=lambda i: (totals[i], -i))]
+    return out
+
+
+def title_medoid(train: list[Example], test: list[Example]) -> list[Program]:
+    """The medoid program of the test title's activity; an activity not in training is
+    mapped to the training activity whose name is nearest (MiniLM cosine)."""
+    from homesim.learn.embeddings import cached_sentence_vectors
+
+    centres = medoids(train)
+    known = sorted(centres)
+    unseen = sorted({e.activity for e in test} - set(centres))
+    nearest: dict[str, str] = {}
+    if unseen:
+        sims = cached_sentence_vectors(unseen) @ cached_sentence_vectors(known).T
+        nearest = {a: known[int(i)] for a, i in zip(unseen, sims.argmax(1), strict=True)}
+    return [Program(centres[nearest.get(e.activity, e.activity)].program.steps) for e in test]

@@ -31,8 +31,8 @@ def _rollout(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, max_steps:
     steps = model.step_embeddings()
     batch = words.shape[0]
     out: list[list[int]] = [[] for _ in range(batch)]
-    logp = torch.zeros(batch)
-    alive = torch.ones(batch, dtype=torch.bool)
+    logp = torch.zeros(batch, device=words.device)
+    alive = torch.ones(batch, dtype=torch.bool, device=words.device)
     prev = None
     for _ in range(max_steps):
         logits, state = model.decode_step(state, prev, steps)
@@ -52,14 +52,37 @@ def _rollout(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, max_steps:
     return out, logp
 
 
+REPEAT_PENALTY = 1.0
+"""Log-probability taken off a step for each time the program already has it (coverage)."""
+MAX_RUN = 2
+"""A step may follow itself at most this many times in a row."""
+
+
+def penalized(log_probs: torch.Tensor, emitted: list[int]) -> torch.Tensor:
+    """(steps,) log-probabilities less `REPEAT_PENALTY` per earlier use of each step, and
+    minus infinity for a step that would repeat itself more than `MAX_RUN` times in a row."""
+    out = log_probs.clone()
+    if emitted:
+        used = torch.bincount(torch.tensor(emitted, device=out.device),
+                              minlength=out.shape[0]).to(out.dtype)
+        out -= REPEAT_PENALTY * used
+        tail = emitted[-MAX_RUN:]
+        if len(tail) == MAX_RUN and len(set(tail)) == 1:
+            out[tail[0]] = float("-inf")
+    out[END] = log_probs[END]
+    return out
+
+
 @torch.no_grad()
 def constrained(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, vocab: StepVocab,
                 runners: list[StepRunner], max_steps: int | None = None) -> list[list[int]]:
-    """Greedy decoding that only emits steps whose preconditions hold in the simulated home.
+    """Greedy decoding that only emits steps whose preconditions hold in the simulated home,
+    with a repetition penalty (`penalized`) so that it cannot loop.
 
-    At each position the steps are tried from most to least likely; the first that runs in
-    the example's `StepRunner` (END always may) is emitted, so every program is executable
-    by construction.
+    At each position the steps are tried from best to worst penalized score; the first that
+    runs in the example's `StepRunner` (END always may) is emitted, so every program is
+    executable by construction. Decoding stops at END or after `max_steps` (the longest
+    training program, `Seq2SeqConfig.max_steps`).
     """
     max_steps = max_steps or model.config.max_steps
     state = model.encode(words, mask)
@@ -70,20 +93,25 @@ def constrained(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, vocab: 
     prev = None
     for _ in range(max_steps):
         logits, state = model.decode_step(state, prev, steps)
-        order = logits.argsort(1, descending=True)
-        choice = torch.full((batch,), END, dtype=torch.long)
+        log_probs = logits.log_softmax(1)
+        choice = [END] * batch
         for b in range(batch):
-            if not alive[b]:
-                continue
-            for i in order[b].tolist():
-                if i == END or runners[b].try_step(vocab.steps[i]):
-                    choice[b] = i
-                    break
-            if choice[b].item() == END:
-                alive[b] = False
-            else:
-                out[b].append(int(choice[b].item()))
+            if alive[b]:
+                choice[b] = _first_runnable(penalized(log_probs[b], out[b]), vocab, runners[b])
+                alive[b] = choice[b] != END
+                if alive[b]:
+                    out[b].append(choice[b])
         if not any(alive):
             break
-        prev = choice
+        prev = torch.tensor(choice, device=words.device)
     return out
+
+
+def _first_runnable(scores: torch.Tensor, vocab: StepVocab, runner: StepRunner) -> int:
+    """The best-scoring step the runner accepts (appending it), or END."""
+    for i in scores.argsort(descending=True).tolist():
+        if i == END or scores[i] == float("-inf"):
+            return END
+        if runner.try_step(vocab.steps[i]):
+            return int(i)
+    return END

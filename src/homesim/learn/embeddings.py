@@ -84,3 +84,32 @@ def sentence_vectors(texts: list[str], batch_size: int = 64) -> np.ndarray:
     """(len(texts), 384) unit-length MiniLM sentence embeddings."""
     return _sentence_model().encode(texts, batch_size=batch_size, normalize_embeddings=True,
                                     show_progress_bar=False)
+
+
+_VECTORS: dict[str, np.ndarray] = {}
+
+
+def cached_sentence_vectors(texts: list[str]) -> np.ndarray:
+    """`sentence_vectors`, each distinct text embedded once per process (see
+    `preload_sentence_vectors` for embedding a whole data set in one fixed batch order)."""
+    missing = sorted({t for t in texts if t not in _VECTORS})
+    if missing:
+        _VECTORS.update(zip(missing, sentence_vectors(missing), strict=True))
+    return np.stack([_VECTORS[t] for t in texts]) if texts else np.zeros((0, WORD_DIM))
+
+
+def preload_sentence_vectors(texts: list[str], cache: Path | None = None) -> None:
+    """Embed all `texts` at once (sorted: the batches, so the floats, do not depend on what
+    ran before), reading and writing them from `cache` (an ``.npz``) when given."""
+    wanted = sorted(set(texts))
+    if cache is not None and cache.is_file():
+        with np.load(cache, allow_pickle=False) as data:
+            stored = dict(zip(data["texts"].tolist(), data["vectors"], strict=True))
+        if set(wanted) <= set(stored):
+            _VECTORS.update(stored)
+            return
+    vectors = sentence_vectors(wanted)
+    _VECTORS.update(zip(wanted, vectors, strict=True))
+    if cache is not None:
+        cache.parent.mkdir(parents=True, exist_ok=True)
+        np.savez(cache, texts=np.array(wanted), vectors=vectors)

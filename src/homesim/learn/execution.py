@@ -9,12 +9,15 @@ that step passes `run_program`, so a decoded program is executable by the same r
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 from homesim.ground.pipeline import run_program, runs
 from homesim.learn.data import Example
-from homesim.learn.vocab import StepKey
+from homesim.learn.vocab import StepKey, key_step
 from homesim.program.actions import ACTIONS
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
+from homesim.program.parse import parse_program
 
 SEED = 0
 """Seed of preparation and grounding for the reward, the table and decoding."""
@@ -58,18 +61,45 @@ class StepRunner:
         return ok
 
     def try_step(self, key: StepKey) -> bool:
-        """`try_refs` for a vocabulary step (every object is instance 1)."""
-        return self.try_refs(key[0], tuple((name, 1) for name in key[1]))
+        """`try_refs` for a vocabulary step."""
+        return self.try_refs(key[0], key[1])
 
     def can_run(self, key: StepKey) -> bool:
         """Whether the step could be appended now (nothing changes)."""
-        step = Step(ACTIONS[key[0]], tuple(ObjectRef(name, 1) for name in key[1]))
-        return self._runs(step)
+        return self._runs(key_step(key))
 
 
 def executable(program: Program, example: Example) -> bool:
     """Whether `run_program` runs `program` in the example's home."""
     return run_program(program, example.graph(), seed=SEED).executable
+
+
+BUILTIN_HOMES = tuple(f"scene{i}_trimmed" for i in range(1, 6))
+"""The built-in homes predictions are also run in (cross-home Simulator %)."""
+REAL_HOME = "scene1_trimmed"
+"""The built-in home the real programs' stored graphs are versions of (apartment 1)."""
+
+
+def other_homes(example: Example) -> tuple[str, ...]:
+    """The built-in homes other than the example's own (real programs live in apartment 1)."""
+    own = example.home or REAL_HOME
+    return tuple(h for h in BUILTIN_HOMES if h != own)
+
+
+@lru_cache(maxsize=200_000)
+def runs_in_builtin(program_text: str, home: str) -> bool:
+    """Whether `run_program` runs the program (its text) in a built-in home; cached, since
+    retrieval rows propose the same training programs again and again."""
+    from homesim.world.homes import load_home
+
+    return run_program(parse_program(program_text), load_home(home), seed=SEED).executable
+
+
+def cross_home_rate(program: Program, example: Example) -> float:
+    """Share of the other built-in homes (`other_homes`) in which the program runs."""
+    homes = other_homes(example)
+    text = str(program)
+    return sum(runs_in_builtin(text, h) for h in homes) / len(homes)
 
 
 def runs_greedily(program: Program, example: Example) -> bool:

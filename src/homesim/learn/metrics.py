@@ -8,7 +8,12 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-from homesim.program.metrics import ProgramScores, executability_rate, score_programs
+from homesim.program.metrics import (
+    ProgramScores,
+    executability_rate,
+    score_programs,
+    step_tokens,
+)
 from homesim.program.model import Program
 
 
@@ -40,3 +45,26 @@ def score(preds: list[Program], truths: list[Program], executable: list[bool]) -
     s = score_programs(preds, truths)
     return Scores(s["actions"], s["objects"], s["steps"], s["mean"],
                   100.0 * executability_rate(executable), len(preds))
+
+
+SOLVED_LCS = 0.5
+"""Steps LCS a prediction needs (besides executing) to count as solved."""
+
+
+def repeats(program: Program) -> int:
+    """Steps equal to the step before them (action and object classes)."""
+    tokens = step_tokens(program)
+    return sum(a == b for a, b in zip(tokens, tokens[1:], strict=False))
+
+
+def example_scores(pred: Program, truth: Program, runs_here: bool,
+                   runs_elsewhere: float | None) -> dict:
+    """One prediction's scores: the three LCS, whether it executes in the example's home,
+    the share of the other built-in homes it executes in, whether it is solved
+    (executes here and steps LCS >= `SOLVED_LCS`: an empty or one-step program is not),
+    its length and its repeated steps."""
+    s = ProgramScores.of(pred, truth)
+    return {"action": s.actions, "objects": s.objects, "steps": s.steps, "mean": s.mean,
+            "simulator": float(runs_here), "elsewhere": runs_elsewhere,
+            "solved": float(runs_here and s.steps >= SOLVED_LCS),
+            "length": len(pred), "repeats": repeats(pred)}

@@ -1,7 +1,9 @@
 """The paper's description -> program model: LSTM encoder, attentive LSTM step decoder.
 
 Glossary:
-    step embedding: e(s) = mean of the action embedding and the object embeddings of step s.
+    step embedding: e(s) = mean of the action embedding and the object embeddings of step s
+        (an object's embedding is its class's plus its instance number's, zero for
+        instance 1).
     step score: normalize(e(s)) · W_v [h_t ‖ x_t], where h_t is the decoder state and x_t
         the attention read of the encoder states; a softmax over all vocabulary steps
         (index 0 ends the program) gives the next-step distribution.
@@ -15,6 +17,8 @@ from dataclasses import asdict, dataclass
 import torch
 import torch.nn.functional as F
 from torch import nn
+
+from homesim.learn.vocab import MAX_INSTANCE
 
 
 @dataclass
@@ -63,19 +67,21 @@ class Seq2Seq(nn.Module):
         self.init_h = nn.Linear(cfg.hidden, cfg.hidden)
         self.actions = nn.Embedding(cfg.n_actions, cfg.step_dim)
         self.objects = nn.Embedding(cfg.n_objects, cfg.step_dim, padding_idx=0)
+        self.instances = nn.Embedding(MAX_INSTANCE, cfg.step_dim, padding_idx=0)
         self.start = nn.Parameter(torch.zeros(cfg.step_dim))
         self.decoder = nn.LSTMCell(cfg.step_dim + cfg.hidden, cfg.hidden)
         self.attend = nn.Linear(cfg.hidden, cfg.hidden, bias=False)
         self.out = nn.Linear(2 * cfg.hidden, cfg.step_dim)  # W_v
         self.drop = nn.Dropout(cfg.dropout)
-        self.register_buffer("step_table", step_table.long())  # (steps, 3): action, obj, obj
+        self.register_buffer("step_table", step_table.long())  # (steps, 5): a, o, o, i, i
 
     # ------------------------------------------------------------------ pieces
     def step_embeddings(self) -> torch.Tensor:
         """(steps, step_dim): mean of each step's action and object embeddings."""
         t: torch.Tensor = self.step_table  # type: ignore[assignment]  # a registered buffer
-        n_parts = 1 + (t[:, 1:] > 0).sum(1, keepdim=True)
-        total = self.actions(t[:, 0]) + self.objects(t[:, 1]) + self.objects(t[:, 2])
+        n_parts = 1 + (t[:, 1:3] > 0).sum(1, keepdim=True)
+        total = (self.actions(t[:, 0]) + self.objects(t[:, 1]) + self.objects(t[:, 2])
+                 + self.instances(t[:, 3]) + self.instances(t[:, 4]))
         return total / n_parts
 
     def encode(self, words: torch.Tensor, mask: torch.Tensor) -> DecoderState:

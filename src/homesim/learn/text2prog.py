@@ -29,11 +29,12 @@ class Text2Prog:
 
     @classmethod
     def create(cls, train: list[Example], seed: int, config: dict | None = None,
-               embeddings: str = "minilm") -> Text2Prog:
+               embeddings: str = "minilm", device: str = "cpu") -> Text2Prog:
         """A fresh model whose vocabularies come from the training examples.
 
         `embeddings` initialises the word embeddings: "minilm" (pretrained token
         embeddings), "word2vec" (trained on the training descriptions) or "none" (random).
+        Decoding stops after the longest training program's length.
         """
         from homesim.learn import embeddings as emb
 
@@ -43,8 +44,9 @@ class Text2Prog:
         torch.manual_seed(seed)
         words = WordVocab.build(e.text for e in train)
         steps = StepVocab.build(e.program for e in train)
+        longest = max((len(e.program) for e in train), default=1)
         cfg = Seq2SeqConfig(len(words), len(steps.actions), len(steps.objects),
-                            **(config or {}))
+                            **{"max_steps": longest, **(config or {})})
         vectors = None
         if embeddings == "minilm":
             vectors = emb.word_vectors(words.words)
@@ -53,8 +55,13 @@ class Text2Prog:
         if vectors is not None:
             cfg.word_dim = vectors.shape[1]
         torch.manual_seed(seed)
-        model = Seq2Seq(cfg, torch.tensor(steps.table), vectors)
+        model = Seq2Seq(cfg, torch.tensor(steps.table), vectors).to(device)
         return cls(model, words, steps, {"seed": seed, "embeddings": embeddings})
+
+    @property
+    def device(self) -> torch.device:
+        """Where the model's weights are."""
+        return next(self.model.parameters()).device
 
     def batch(self, examples: list[Example]) -> tuple[torch.Tensor, torch.Tensor]:
         """Padded word ids (batch, words) and their mask."""
@@ -63,6 +70,7 @@ class Text2Prog:
         words = torch.zeros(len(encoded), width, dtype=torch.long)
         for i, w in enumerate(encoded):
             words[i, :len(w)] = torch.tensor(w)
+        words = words.to(self.device)
         return words, words != 0
 
     @torch.no_grad()
@@ -91,12 +99,13 @@ class Text2Prog:
                         "steps": self.steps.to_json(), "meta": self.meta}, f)
 
     @classmethod
-    def load(cls, path: Path) -> Text2Prog:
+    def load(cls, path: Path, device: str = "cpu") -> Text2Prog:
+        """A checkpoint written by `save`, its weights on `device`."""
         try:
-            data = torch.load(path, map_location="cpu", weights_only=True)
+            data = torch.load(path, map_location=device, weights_only=True)
             cfg = Seq2SeqConfig(**data["config"])
             steps = StepVocab.from_json(data["steps"])
-            model = Seq2Seq(cfg, torch.tensor(steps.table))
+            model = Seq2Seq(cfg, torch.tensor(steps.table)).to(device)
             model.load_state_dict(data["state"])
         except (OSError, KeyError, TypeError, RuntimeError, pickle.UnpicklingError) as e:
             raise HomesimError(f"{path}: not a text2prog checkpoint ({e})") from None

@@ -46,7 +46,7 @@ def _targets(t2p: Text2Prog, examples: list[Example]) -> torch.Tensor:
     out = torch.full((len(seqs), width), -100, dtype=torch.long)
     for i, s in enumerate(seqs):
         out[i, :len(s)] = torch.tensor(s)
-    return out
+    return out.to(t2p.device)
 
 
 def _batches(examples: list[Example], size: int, rng: random.Random) -> list[list[Example]]:
@@ -107,7 +107,7 @@ def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim:
     of each epoch."""
     rng = random.Random(config.seed)
     torch.manual_seed(config.seed)  # dropout draws from the global RNG: not from what ran before
-    gen = torch.Generator().manual_seed(config.seed)
+    gen = torch.Generator(device=t2p.device).manual_seed(config.seed)
     opt = torch.optim.Adam(t2p.model.parameters(), lr=config.lr)
     history = []
     total = config.epochs * -(-len(train) // config.batch_size)
@@ -122,9 +122,10 @@ def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim:
             t2p.model.train()
             ids, logp = decode.sample(t2p.model, words, mask, gen)
             r_s = torch.tensor([reward(t2p.steps.decode(p), e, use_sim)
-                                for p, e in zip(ids, chunk, strict=True)])
+                                for p, e in zip(ids, chunk, strict=True)], device=t2p.device)
             r_g = torch.tensor([reward(t2p.steps.decode(p), e, use_sim)
-                                for p, e in zip(base_ids, chunk, strict=True)])
+                                for p, e in zip(base_ids, chunk, strict=True)],
+                               device=t2p.device)
             loss = -((r_s - r_g) * logp).mean()
             _update(opt, t2p, loss, config.clip)
             rewards.extend(r_s.tolist())

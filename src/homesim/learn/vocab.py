@@ -1,8 +1,8 @@
 """Vocabularies: description words, and program steps built from actions and objects.
 
-A step is reduced to its key, (action key, object class names): instance numbers are
-dropped, and a decoded program numbers every class instance 1 (as nearly all real programs
-do).
+A step is reduced to its key, (action key, ((class name, instance), ...)): the instance
+numbers are kept, so a decoded program can use two chairs (``<chair> (1)``, ``<chair> (2)``).
+The metrics ignore instance numbers; the simulator does not.
 """
 
 from __future__ import annotations
@@ -15,8 +15,12 @@ from dataclasses import dataclass
 from homesim.program.actions import ACTIONS
 from homesim.program.model import ObjectRef, Program, Step
 
-StepKey = tuple[str, tuple[str, ...]]
-"""(action key, object class names) of a step."""
+ObjectKey = tuple[str, int]
+"""(class name, instance number) of a step's object."""
+StepKey = tuple[str, tuple[ObjectKey, ...]]
+"""(action key, objects) of a step."""
+MAX_INSTANCE = 4
+"""Instances above this share one instance embedding (`StepVocab.table`)."""
 
 PAD, UNK = 0, 1
 END = 0
@@ -30,7 +34,13 @@ def tokenize(text: str) -> list[str]:
 
 
 def step_key(step: Step) -> StepKey:
-    return (step.action.key, tuple(ref.name for ref in step.args))
+    """The step's action key and its objects' (class, instance)."""
+    return (step.action.key, tuple((ref.name, ref.instance) for ref in step.args))
+
+
+def key_step(key: StepKey) -> Step:
+    """The ungrounded step of a key."""
+    return Step(ACTIONS[key[0]], tuple(ObjectRef(name, inst) for name, inst in key[1]))
 
 
 @dataclass
@@ -61,7 +71,8 @@ class StepVocab:
     """The steps a model can emit: index 0 ends the program, then every training step.
 
     `actions` and `objects` list the parts step embeddings are built from (index 0 of each
-    is the end marker / no object).
+    is the end marker / no object); `table` gives each step's (action, object, object,
+    instance, instance) indices, instance index 0 standing for instance 1 or no object.
     """
 
     steps: list[StepKey]
@@ -69,11 +80,13 @@ class StepVocab:
     def __post_init__(self) -> None:
         self.index = {s: i for i, s in enumerate(self.steps)}
         self.actions = ["<end>", *sorted({a for a, _ in self.steps[1:]})]
-        self.objects = ["<none>", *sorted({o for _, objs in self.steps[1:] for o in objs})]
+        self.objects = ["<none>", *sorted({o for _, objs in self.steps[1:] for o, _ in objs})]
         a_index = {a: i for i, a in enumerate(self.actions)}
         o_index = {o: i for i, o in enumerate(self.objects)}
-        self.table = [(0, 0, 0)] + [
-            (a_index[a], *[o_index[o] for o in objs], *[0] * (2 - len(objs)))
+        pad = [0] * 2
+        self.table = [(0, 0, 0, 0, 0)] + [
+            (a_index[a], *([o_index[o] for o, _ in objs] + pad)[:2],
+             *([min(i, MAX_INSTANCE) - 1 for _, i in objs] + pad)[:2])
             for a, objs in self.steps[1:]]
 
     @classmethod
@@ -92,16 +105,21 @@ class StepVocab:
         for i in ids:
             if i == END:
                 break
-            action, objs = self.steps[i]
-            steps.append(Step(ACTIONS[action], tuple(ObjectRef(o, 1) for o in objs)))
+            steps.append(key_step(self.steps[i]))
         return Program(tuple(steps))
+
+    def unseen_share(self, programs: Iterable[Program]) -> float:
+        """Share of the programs' steps that are not in the vocabulary (no model can emit
+        them: they bound the step LCS any decoder here reaches)."""
+        keys = [step_key(s) for p in programs for s in p.steps]
+        return sum(k not in self.index for k in keys) / max(1, len(keys))
 
     def __len__(self) -> int:
         return len(self.steps)
 
     def to_json(self) -> list:
-        return [[a, list(o)] for a, o in self.steps]
+        return [[a, [list(o) for o in objs]] for a, objs in self.steps]
 
     @classmethod
     def from_json(cls, data: list) -> StepVocab:
-        return cls([(a, tuple(o)) for a, o in data])
+        return cls([(a, tuple((o, int(i)) for o, i in objs)) for a, objs in data])

@@ -19,6 +19,7 @@ from homesim.render.groundtruth import RecordingWriter, StepSpan
 from homesim.render.recorder import iter_still_frames, record
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
+from homesim.render.shots import plan_shots
 from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
@@ -86,6 +87,9 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
     timeline = Animator(scene, graph, shape, fps=fps / speed, seed=seed,
                         standing=standing).run(result)
+    shots = plan_shots(scene, timeline, width / height)
+    if shots:  # the same model with a close-up camera per interaction
+        scene = build_scene(graph, shape, seed=seed, max_size=(width, height), shots=shots)
     return scene, timeline, name
 
 
@@ -154,6 +158,7 @@ def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed
         "character_id": scene.character_id,
         "joints": list(JOINTS),
         "cameras": [{"name": c.name, "room_id": c.room_id, "fovy": c.fovy,
+                     "step": None if c.step < 0 else c.step,
                      "position": [float(x) for x in c.pos],
                      "intrinsics": intrinsics(width, height, c.fovy).tolist()}
                     for c in scene.cameras],

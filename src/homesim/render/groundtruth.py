@@ -6,7 +6,9 @@ Layout of a recording folder (see docs/render.md)::
                        cameras, class and instance legends, joint names, units
     video.mp4          RGB, H.264 (yuv420p)
     frames/000000.npz  depth (H,W) float32 m; class (H,W) uint16; instance (H,W) int32
-                       (graph node ids); flow (H,W,2) float32 px to the next frame
+                       (graph node ids); flow (H,W,2) float32 px to the next frame;
+                       flow_valid (H,W) bool (in front of the next camera, on screen,
+                       no cut after this frame)
     frames.npz         per-frame arrays: camera (T,) int16, intrinsics (T,3,3),
                        world_to_cam (T,4,4), joints3d (T,J,3), joints2d (T,J,2),
                        joints_visible (T,J) bool, cut (T,) bool
@@ -26,7 +28,8 @@ from homesim.errors import DataError
 from homesim.files import write_text
 from homesim.render.recorder import FrameTruth
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+"""2: frames carry `flow_valid`."""
 ZIP_LEVEL = 1
 """Deflate level of the frame files: level 1 is ~3x faster than numpy's default 6 and
 the files are ~3x larger; writing must keep up with rendering."""
@@ -69,7 +72,7 @@ class RecordingWriter:
         self._video.send(np.ascontiguousarray(f.rgb))
         write_npz(self.out / "frames" / f"{f.index:06d}.npz", {
             "depth": f.depth, "class": f.class_seg, "instance": f.instance_seg,
-            "flow": f.flow})
+            "flow": f.flow, "flow_valid": f.flow_valid})
 
     def add(self, f: FrameTruth) -> None:
         # Frames are written in order by the single worker (video and frame files); at
@@ -147,7 +150,7 @@ class Recording:
         return {int(k): v["class"] for k, v in self.meta["instances"].items()}
 
     def frame(self, i: int) -> dict[str, np.ndarray]:
-        """Dense ground truth of frame `i`: depth, class, instance, flow."""
+        """Dense ground truth of frame `i`: depth, class, instance, flow, flow_valid."""
         if not 0 <= i < self.num_frames:
             raise DataError(f"{self.path}: frame {i} out of range 0..{self.num_frames - 1}")
         with np.load(self.path / "frames" / f"{i:06d}.npz") as z:

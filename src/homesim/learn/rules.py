@@ -1,0 +1,123 @@
+"""A hand-written rule parser for the synthetic descriptions: an upper bound, not a model.
+
+It knows the phrasings `homesim.synth` wrote when it was made (frozen here on purpose: if
+the synthetic text changes, the parser does not) and inverts them: split the description
+at the connectives, match each part to a phrase, turn the phrase's objects back into class
+names and write the task's steps. Where it scores near 1, the synthetic text says the
+program outright and a learned model's score there measures template inversion, not reading.
+"""
+
+from __future__ import annotations
+
+import re
+from functools import cache
+
+from homesim.learn.vocab import key_step
+from homesim.program.model import Program
+
+_WORD = r"(?!(?:and|the|it|to|from|on|onto|over|out|of|then)\b)[a-z]+"
+_O = r"(?P<{}>" + _WORD + r"(?: " + _WORD + r"){{0,2}}?)"
+"""A slot: one to three words, none of them a connective."""
+PHRASES: dict[str, tuple[str, ...]] = {
+    "walk_room": ("go to the {room}", "walk to the {room}", "head into the {room}",
+                  "make your way to the {room}", "enter the {room}"),
+    "run_room": ("run to the {room}", "hurry to the {room}", "rush into the {room}",
+                 "dash over to the {room}"),
+    "switch_on": ("turn on the {x}", "switch the {x} on", "go to the {x} and turn it on",
+                  "power up the {x}", "walk over to the {x} and switch it on"),
+    "switch_off": ("turn off the {x}", "switch the {x} off", "go to the {x} and turn it off",
+                   "shut off the {x}", "walk over to the {x} and switch it off"),
+    "fetch": ("put the {x} on the {y}", "take the {x} to the {y}",
+              "pick up the {x} and place it on the {y}", "move the {x} onto the {y}",
+              "bring the {x} over to the {y}"),
+    "fetch_open": ("open the {c}, take the {x} and put it on the {y}",
+                   "get the {x} out of the {c} and set it on the {y}",
+                   "take the {x} from the {c} and leave it on the {y}"),
+    "fetch_open_close": ("open the {c}, take out the {x}, close the {c2} and put the {x2} on "
+                         "the {y}", "get the {x} from the {c}, shut the {c2} and put the {x2} "
+                         "on the {y}"),
+    "grab": ("pick up the {x}", "grab the {x}", "go get the {x}", "take the {x}",
+             "walk to the {x} and pick it up"),
+    "grab_open": ("open the {c} and take the {x}", "get the {x} out of the {c}",
+                  "take the {x} from the {c}"),
+    "touch": ("touch the {x}", "go and touch the {x}", "walk to the {x} and touch it",
+              "feel the {x}"),
+    "open": ("open the {x}", "go to the {x} and open it", "walk over and open the {x}"),
+    "open_close": ("open the {x} and close it again", "open and then close the {x}",
+                   "check inside the {x} and shut it"),
+    "close": ("close the {x}", "shut the {x}", "go to the {x} and close it"),
+    "sit": ("sit on the {x}", "sit down on the {x}", "take a seat on the {x}",
+            "go rest on the {x}"),
+    "sit_look": ("sit on the {x} and look at the {y}", "take a seat on the {x} and watch the {y}",
+                 "sit down on the {x} facing the {y} and look at it"),
+    "watch": ("turn on the {x}, sit on the {y} and watch it",
+              "switch on the {x} and watch it from the {y}",
+              "watch the {x}: turn it on and sit down on the {y}"),
+}
+"""Phrase kind -> its phrasings ({slot}: a spoken object name)."""
+STEPS: dict[str, tuple[tuple[str, tuple[str, ...]], ...]] = {
+    "walk_room": (("WALK", ("room",)),), "run_room": (("RUN", ("room",)),),
+    "switch_on": (("WALK", ("x",)), ("SWITCHON", ("x",))),
+    "switch_off": (("WALK", ("x",)), ("SWITCHOFF", ("x",))),
+    "fetch": (("WALK", ("x",)), ("GRAB", ("x",)), ("WALK", ("y",)), ("PUTBACK", ("x", "y"))),
+    "fetch_open": (("WALK", ("x",)), ("OPEN", ("c",)), ("GRAB", ("x",)), ("WALK", ("y",)),
+                   ("PUTBACK", ("x", "y"))),
+    "fetch_open_close": (("WALK", ("x",)), ("OPEN", ("c",)), ("GRAB", ("x",)),
+                         ("CLOSE", ("c",)), ("WALK", ("y",)), ("PUTBACK", ("x", "y"))),
+    "grab": (("WALK", ("x",)), ("GRAB", ("x",))),
+    "grab_open": (("WALK", ("x",)), ("OPEN", ("c",)), ("GRAB", ("x",))),
+    "touch": (("WALK", ("x",)), ("TOUCH", ("x",))),
+    "open": (("WALK", ("x",)), ("OPEN", ("x",))),
+    "open_close": (("WALK", ("x",)), ("OPEN", ("x",)), ("CLOSE", ("x",))),
+    "close": (("WALK", ("x",)), ("CLOSE", ("x",))),
+    "sit": (("WALK", ("x",)), ("SIT", ("x",))),
+    "sit_look": (("WALK", ("x",)), ("SIT", ("x",)), ("LOOKAT", ("y",))),
+    "watch": (("WALK", ("x",)), ("SWITCHON", ("x",)), ("WALK", ("y",)), ("SIT", ("y",)),
+              ("LOOKAT", ("x",))),
+}
+"""Phrase kind -> its steps (action, slots)."""
+STAND_UP = r"(?: then stand up| and get up again| then get back up)?"
+JOIN = r"(?:, and then |, then | and |\. after that, |\. next, )"
+START = r"(?:first |please )?"
+
+
+@cache
+def _patterns() -> list[tuple[str, re.Pattern[str]]]:
+    out = []
+    for kind, phrasings in PHRASES.items():
+        for text in phrasings:
+            regex = re.escape(text).replace(r"\{", "{").replace(r"\}", "}")
+            regex = re.sub(r"\{(\w+)\}", lambda m: _O.format(m.group(1)), regex)
+            out.append((kind, re.compile(f"{regex}(?P<up>{STAND_UP})(?={JOIN}|$)")))
+    # the most specific phrasing first: "take the {x} from the {c}" before "take the {x}"
+    return sorted(out, key=lambda kp: -len(re.sub(r"\(\?P<\w+>[^)]*\)", "", kp[1].pattern)))
+
+
+def _parse(text: str, at: int) -> list[tuple[str, dict[str, str]]] | None:
+    """Tasks of text[at:], one phrase then a connective or the end (backtracking)."""
+    for kind, pattern in _patterns():
+        m = pattern.match(text, at)
+        if m is None:
+            continue
+        end = m.end()
+        if end == len(text):
+            return [(kind, m.groupdict())]
+        join = re.compile(JOIN).match(text, end)
+        rest = _parse(text, join.end()) if join else None
+        if rest is not None:
+            return [(kind, m.groupdict()), *rest]
+    return None
+
+
+def parse(description: str) -> Program:
+    """The program the description's phrases say; the empty program if it parses not."""
+    text = description.strip().lower().rstrip(".")
+    start = re.compile(START).match(text)
+    tasks = _parse(text, start.end() if start else 0) or []
+    keys = []
+    for kind, slots in tasks:
+        names = {k.rstrip("2"): v.replace(" ", "_") for k, v in slots.items() if v and k != "up"}
+        keys += [(a, tuple((names[s], 1) for s in args)) for a, args in STEPS[kind]]
+        if slots.get("up"):
+            keys.append(("STANDUP", ()))
+    return Program(tuple(key_step(k) for k in keys))

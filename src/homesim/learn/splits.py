@@ -1,0 +1,63 @@
+"""The evaluation splits, declared in one place.
+
+    stratified: 70/10/20 train/dev/test by program, stratified by activity
+        (`ActivityDataset.split`), then every test program whose steps equal a training
+        program's is removed from the test split (a copy would be scored as a retrieval).
+    leave-activities-out: whole activities go to train, dev or test (shuffled by seed, each
+        activity to the split furthest below its share of programs), so no test activity
+        is seen in training; the title no longer names a known activity.
+
+`SPLITS` names them; `make_split(name, examples, seed)` builds one. The same seed gives the
+same split.
+"""
+
+from __future__ import annotations
+
+import random
+from collections import Counter
+
+from homesim.errors import HomesimError
+from homesim.learn.data import SPLIT_FRACTIONS, Example, Splits, split
+from homesim.program.metrics import step_tokens
+
+SPLITS = ("stratified", "leave-activities-out")
+
+
+def steps_of(example: Example) -> tuple:
+    """The example's steps as comparable tokens (action, object classes)."""
+    return tuple(step_tokens(example.program))
+
+
+def stratified(examples: list[Example], seed: int, name: str = "") -> Splits:
+    """Stratified split with train-duplicate test programs removed."""
+    parts = split(name, examples, seed)
+    seen = {steps_of(e) for e in parts.train}
+    test = [e for e in parts.test if steps_of(e) not in seen]
+    return Splits(parts.name, parts.train, parts.dev, test)
+
+
+def leave_activities_out(examples: list[Example], seed: int, name: str = "") -> Splits:
+    """Whole activities per split, in the shares of `SPLIT_FRACTIONS` (by programs)."""
+    sizes = Counter(e.activity for e in examples)
+    activities = sorted(sizes)
+    random.Random(seed).shuffle(activities)
+    chosen: list[set[str]] = [set(), set(), set()]
+    counts = [0, 0, 0]
+    dealt = 0
+    for activity in activities:
+        dealt += sizes[activity]
+        deficits = [share * dealt - c for share, c in zip(SPLIT_FRACTIONS, counts, strict=True)]
+        k = max(range(3), key=lambda j: (deficits[j], -j))
+        chosen[k].add(activity)
+        counts[k] += sizes[activity]
+    train, dev, test = ([e for e in examples if e.activity in part] for part in chosen)
+    return Splits(name, train, dev, test)
+
+
+def make_split(split_name: str, examples: list[Example], seed: int, name: str = "") -> Splits:
+    """The split called `split_name` (one of `SPLITS`) of `examples`."""
+    if split_name == "stratified":
+        return stratified(examples, seed, name)
+    if split_name == "leave-activities-out":
+        return leave_activities_out(examples, seed, name)
+    raise HomesimError(f"unknown split {split_name!r}: choose from {', '.join(SPLITS)}")
