@@ -13,7 +13,6 @@ from typing import Any
 import numpy as np
 
 from homesim.dataset.layout import Layout, dumps, read_json
-from homesim.dataset.manifest import read_manifest
 from homesim.dataset.read import decode_video, shard_paths
 from homesim.dataset.verify import iter_episodes
 from homesim.files import write_text
@@ -50,12 +49,11 @@ def card_stats(root: str | Path, programs: ActivityDataset) -> CardStats:
     """Counts from the manifest and config; Table 1(a) and histograms from `programs`
     (the made episodes' programs, one per episode)."""
     layout = Layout(root)
-    info = read_json(layout.config_path)
-    config = info["config"]
-    rows = read_manifest(layout.manifest_path)
+    config = read_json(layout.config_path)["config"]
+    rows = layout.finished_rows()
     made = [r for r in rows if r["status"] == "ok"]
     frames = sum(r["num_frames"] for r in made)
-    size = sum(s["bytes"] for s in info.get("shards", []))  # on disk, tar headers included
+    size = sum(s["bytes"] for s in layout.finished_shards())  # on disk, with tar headers
     s = summarize(programs)
     return CardStats(
         episodes=len(rows), made=len(made), failed=len(rows) - len(made),
@@ -95,13 +93,14 @@ def _sheet_frame(key: str, meta: dict[str, Any], video: bytes) -> tuple[str, np.
 
 
 def write_card(root: str | Path, out: str | Path, seed: int = 0) -> list[Path]:
-    """Write stats.json, actions.png, objects.png and contact_sheet.png into `out`."""
+    """Write stats.json, actions.png, objects.png and contact_sheet.png into `out` (for a
+    run still going or stopped: over the shards finished so far)."""
     from homesim.knowledge.stats_plots import plot_counts
     from homesim.render.sheet import contact_sheet
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    rows = [r for r in read_manifest(Layout(root).manifest_path) if r["status"] == "ok"]
+    rows = [r for r in Layout(root).finished_rows() if r["status"] == "ok"]
     chosen = random.Random(seed).sample([r["key"] for r in rows],
                                         min(SHEET_EPISODES, len(rows)))
     programs, frames = scan(root, set(chosen))

@@ -28,6 +28,7 @@ import numpy as np
 
 from homesim.dataset import encode
 from homesim.dataset.episode import ARRAYS
+from homesim.dataset.layout import Layout
 from homesim.dataset.verify import iter_episodes
 
 MAPS = ("depth", "class", "instance", "flow")
@@ -90,12 +91,13 @@ def _first_map(wanted: set[str]) -> str | None:
 
 
 def shard_paths(source: str | Path | Iterable[str | Path]) -> list[Path]:
-    """The shards of a data set folder (from its dataset.json), or the given tar paths."""
+    """The finished shards of a data set folder (all of them once the run is complete), or
+    the given tar paths."""
     if isinstance(source, (str, Path)):
         root = Path(source)
         if root.is_dir():
-            info = json.loads((root / "dataset.json").read_text(encoding="utf-8"))
-            return [root / "shards" / s["name"] for s in info.get("shards", [])]
+            layout = Layout(root)
+            return [layout.shards / s["name"] for s in layout.finished_shards()]
         return [root]
     return [Path(p) for p in source]
 
