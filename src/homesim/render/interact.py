@@ -17,7 +17,6 @@ import numpy as np
 from homesim.render.agent import AgentShape
 from homesim.render.ik import ArmIK, crouched
 from homesim.render.layout import Box, Layout
-from homesim.render.navigation import LEG_LEVEL, PASSABLE
 from homesim.render.poses import Pose, standing
 
 TOUCH = 0.01
@@ -25,6 +24,10 @@ TOUCH = 0.01
 BODY_RADIUS = 0.16
 """Metres: the agent's footprint when it steps up to furniture (narrower than the 0.25 m
 the path planner keeps while walking)."""
+PASSABLE = frozenset({"floor", "ceiling", "door", "doorjamb", "rug", "character"})
+"""Classes of parts the body may overlap when it steps close to reach."""
+LEG_LEVEL = (0.08, 1.2)
+"""Heights (m) between which a part blocks the body."""
 STEP = 0.05
 """Metres between the standing points tried on the way to an object."""
 CROUCH = (0.0, 0.2, 0.35)
@@ -71,15 +74,16 @@ class ReachPlanner:
 
     def __init__(self, layout: Layout, ik: ArmIK, shape: AgentShape):
         self.ik, self.shape = ik, shape
-        self.floors = [(f.lo[:2], f.hi[:2]) for f in layout.floors]
+        self.walk = layout.walk
         self.obstacles = [(b.lo[:2], b.hi[:2]) for p in layout.parts
                           if p.class_name not in PASSABLE and p.movable is None
                           for b in p.boxes
                           if b.hi[2] > LEG_LEVEL[0] and b.lo[2] < LEG_LEVEL[1]]
 
     def fits(self, xy: np.ndarray) -> bool:
-        """Whether the agent's footprint stands on floor, clear of furniture and walls."""
-        if not any(np.all(xy >= lo) and np.all(xy <= hi) for lo, hi in self.floors):
+        """Whether the agent can stand at `xy`: on (or a cell from) the floor model's
+        walkable floor, and its body clear of furniture and walls."""
+        if self.walk is None or not self.walk.reachable(float(xy[0]), float(xy[1])):
             return False
         for lo, hi in self.obstacles:
             d = np.maximum(np.maximum(lo - xy, xy - hi), 0.0)
