@@ -8,6 +8,7 @@ not Ray's start-up. The loader is timed with 2 workers against 0 workers in the 
 Goals (issue 14): 2 workers >= 1.8x the episodes/hour of 1; <= 100 KB per frame.
 
     python benchmarks/dataset.py [--n 4] [--width 320 --height 240 --fps 15]
+    python benchmarks/dataset.py --data DIR     # the loader only, on a data set made before
 """
 
 from __future__ import annotations
@@ -48,6 +49,15 @@ def clips_per_second(root: Path, workers: int, modalities: tuple[str, ...]) -> t
     return clips, clips / (time.perf_counter() - t0)
 
 
+def time_loader(root: Path) -> None:
+    """Clips/s with 2 DataLoader workers against 0, RGB only and every modality."""
+    for modalities in (("rgb",), ("rgb", "depth", "class", "instance", "flow")):
+        _, rate0 = clips_per_second(root, 0, modalities)
+        n2, rate2 = clips_per_second(root, 2, modalities)
+        print(f"loader, {'+'.join(modalities)}, 2 s clips: {rate2:.1f} clips/s with 2 "
+              f"workers, {rate0:.1f} clips/s with 0 ({n2} clips; ratio {rate2 / rate0:.2f}x)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=4, help="episodes per run")
@@ -55,7 +65,13 @@ def main() -> None:
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--fps", type=int, default=15)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--data", type=Path, help="time the loader only, on this data set")
     args = parser.parse_args()
+    if args.data:
+        print(f"load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+        time_loader(args.data)
+        print(f"load average after: {os.getloadavg()[0]:.1f}")
+        return
     config = DatasetConfig(n=args.n, seed=args.seed, width=args.width, height=args.height,
                            fps=args.fps, shard_size=2)
     print(f"load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
@@ -72,12 +88,7 @@ def main() -> None:
         print(f"bytes per frame on disk: {summary.bytes_per_frame / 1e3:.1f} KB (goal <= 100 KB); "
               f"{per_episode / 1e6:.1f} MB per episode -> {PAPER_EPISODES} episodes: "
               f"{per_episode * PAPER_EPISODES / 1e9:.1f} GB")
-        root = Path(tmp) / "w2"
-        every = ("rgb", "depth", "class", "instance", "flow")
-        _, rate0 = clips_per_second(root, 0, every)
-        n2, rate2 = clips_per_second(root, 2, every)
-        print(f"loader, every modality, 2 s clips: {rate2:.1f} clips/s with 2 workers, "
-              f"{rate0:.1f} clips/s with 0 ({n2} clips; ratio {rate2 / rate0:.2f}x)")
+        time_loader(Path(tmp) / "w2")
     print(f"load average after: {os.getloadavg()[0]:.1f}")
 
 

@@ -30,7 +30,8 @@ import numpy as np
 import torch
 from torch.utils.data import IterableDataset, get_worker_info
 
-from homesim.dataset.read import MAPS, read_episodes, shard_paths
+from homesim.dataset.read import MAPS, EncodedEpisode, shard_paths
+from homesim.dataset.verify import iter_episodes
 from homesim.errors import HomesimError
 
 _PER_FRAME = ("camera", "intrinsics", "world_to_cam", "joints3d", "joints2d",
@@ -72,38 +73,59 @@ class ActivityClips(IterableDataset):
         return shards if info is None else shards[info.id::info.num_workers]
 
     def __iter__(self) -> Iterator[dict[str, Any]]:
-        for episode in read_episodes(self.my_shards(), self.modalities):
-            if self.clip_seconds is None:
-                yield _episode_item(episode, self.modalities)
+        for shard in self.my_shards():
+            for key, members in iter_episodes(shard):
+                ep = EncodedEpisode(key, members)
+                if self.clip_seconds is None:
+                    item = _window(ep, self.modalities, 0, ep.num_frames, _RgbWindow(ep))
+                    item["meta"] = ep.meta
+                    yield item
+                else:
+                    yield from _clips(ep, self.modalities, self.clip_seconds,
+                                      self.clip_hop or self.clip_seconds)
+
+
+class _RgbWindow:
+    """Frames of the episode's video decoded in order, keeping only those still needed
+    (clips come in order): memory holds one clip, not the episode."""
+
+    def __init__(self, ep: EncodedEpisode):
+        self.frames_iter = ep.iter_rgb() if ep.video is not None else None
+        self.base = 0
+        self.frames: list[np.ndarray] = []
+
+    def get(self, a: int, b: int) -> np.ndarray:
+        assert self.frames_iter is not None  # asked for only when there is a video
+        while self.base < a:
+            if self.frames:
+                self.frames.pop(0)
             else:
-                yield from _clips(episode, self.modalities, self.clip_seconds,
-                                  self.clip_hop or self.clip_seconds)
+                next(self.frames_iter)
+            self.base += 1
+        while self.base + len(self.frames) < b:
+            self.frames.append(next(self.frames_iter))
+        return np.stack(self.frames[:b - a])
 
 
-def _episode_item(ep: dict[str, Any], modalities: tuple[str, ...]) -> dict[str, Any]:
-    meta = ep["meta"]
-    item = _slice(ep, modalities, 0, meta["num_frames"])
-    item["meta"] = meta
-    return item
-
-
-def _clips(ep: dict[str, Any], modalities: tuple[str, ...], seconds: float, hop: float
+def _clips(ep: EncodedEpisode, modalities: tuple[str, ...], seconds: float, hop: float
            ) -> Iterator[dict[str, Any]]:
-    fps = ep["meta"]["fps"]
+    fps = ep.meta["fps"]
     length, step = max(1, round(seconds * fps)), max(1, round(hop * fps))
-    total = ep["meta"]["num_frames"]
-    for start in range(0, total - length + 1, step):
-        yield _slice(ep, modalities, start, start + length)
+    video = _RgbWindow(ep)
+    for start in range(0, ep.num_frames - length + 1, step):
+        yield _window(ep, modalities, start, start + length, video)
 
 
-def _slice(ep: dict[str, Any], modalities: tuple[str, ...], a: int, b: int) -> dict[str, Any]:
-    meta = ep["meta"]
-    steps = ep["step"][a:b].astype(np.int64)
+def _window(ep: EncodedEpisode, modalities: tuple[str, ...], a: int, b: int,
+            video: _RgbWindow) -> dict[str, Any]:
+    """Frames [a, b) of an episode as a clip (see the module docstring)."""
+    meta = ep.meta
+    steps = ep.arrays["step"][a:b].astype(np.int64)
     shown = [int(s) for s in steps if s >= 0]
     texts = meta["steps"]
     main = Counter(shown).most_common(1)[0][0] if shown else -1
     item: dict[str, Any] = {
-        "key": ep["key"], "clip_start": a, "fps": meta["fps"],
+        "key": ep.key, "clip_start": a, "fps": meta["fps"],
         "step": torch.from_numpy(steps),
         "label": texts[main]["step"] if main >= 0 else "",
         "action": texts[main]["action"] if main >= 0 else "",
@@ -111,12 +133,9 @@ def _slice(ep: dict[str, Any], modalities: tuple[str, ...], a: int, b: int) -> d
         "program": meta["program"], "description": meta["description"],
     }
     for name in _PER_FRAME:
-        item[name] = torch.from_numpy(np.ascontiguousarray(ep[name][a:b]))
-    if "rgb" in modalities and "rgb" in ep:
-        item["rgb"] = torch.from_numpy(np.ascontiguousarray(ep["rgb"][a:b]))
-    if "gt_frames" in ep:
-        rows = np.flatnonzero((ep["gt_frames"] >= a) & (ep["gt_frames"] < b))
-        for name in (*MAPS, "flow_valid"):
-            if name in ep:
-                item[name] = torch.from_numpy(np.ascontiguousarray(ep[name][rows]))
+        item[name] = torch.from_numpy(np.ascontiguousarray(ep.arrays[name][a:b]))
+    if "rgb" in modalities:
+        item["rgb"] = torch.from_numpy(video.get(a, b))
+    for name, array in ep.decode_maps(modalities, a, b).items():
+        item[name] = torch.from_numpy(array)
     return item
