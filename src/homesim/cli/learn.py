@@ -239,7 +239,7 @@ def table(
     data: Annotated[str, typer.Option(help="real, synthetic or both.")] = "both",
     seeds: Annotated[int, typer.Option(help="Seeds 0..N-1 (splits and training).")] = 5,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs (one set, seed 0).")] = 2000,
-    mle_epochs: Annotated[int, typer.Option(help="MLE epochs of the seq2seq model.")] = 25,
+    mle_epochs: Annotated[int, typer.Option(help="MLE epochs of the seq2seq model.")] = 12,
     model: Annotated[bool, typer.Option(help="Train and score the learned rows (real data); "
                                         "--no-model scores the baselines only.")] = True,
     markdown: Annotated[Path | None, typer.Option(help="Also write the tables here.")] = None,
