@@ -139,20 +139,23 @@ def rule_job(splits: Splits) -> Job:
     return ("Rule parser (upper bound)", lambda: [parse(e.description) for e in splits.test])
 
 
-def score_rows(splits: Splits, jobs: list[Job], report: Report | None = None
-               ) -> dict[str, dict]:
-    """Per-example scores of every row: LCS, executable here and elsewhere, repetition."""
-    rows: dict[str, dict] = {}
+def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
+               save: Callable[[], None] | None = None, report: Report | None = None) -> None:
+    """Per-example scores of every row not yet in `rows` (LCS, executes here and in the
+    other homes, repetition), calling `save` after each row."""
     for done, (name, job) in enumerate(jobs):
-        start = time.perf_counter()
-        preds = job()
-        rows[name] = {
-            "examples": [example_scores(p, e.program, executable(p, e), cross_home_rate(p, e))
-                         for p, e in zip(preds, splits.test, strict=True)],
-            "seconds": time.perf_counter() - start}
+        if name not in rows:
+            start = time.perf_counter()
+            preds = job()
+            rows[name] = {
+                "examples": [example_scores(p, e.program, executable(p, e),
+                                            cross_home_rate(p, e))
+                             for p, e in zip(preds, splits.test, strict=True)],
+                "seconds": time.perf_counter() - start}
+            if save:
+                save()
         if report:
             report(splits.name, done + 1, len(jobs), 0.0)
-    return rows
 
 
 def preload_vectors(splits: Splits, cache: Path) -> None:
@@ -167,13 +170,16 @@ def preload_vectors(splits: Splits, cache: Path) -> None:
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         report: Report | None = None) -> dict:
-    """Score every row of one run (cached in ``scores.json`` for the same spec)."""
+    """Score every row of one run; rows already in ``scores.json`` for the same spec are
+    kept (so baselines scored without the model are reused, and an interrupted run resumes).
+    """
     folder = spec.folder(out)
     cache = folder / "scores.json"
+    rows: dict[str, dict] = {}
     if cache.is_file():
-        data = json.loads(cache.read_text())
-        if data.get("spec") == spec.to_dict() and data.get("with_model") == with_model:
-            return data
+        old = json.loads(cache.read_text())
+        if old.get("spec") == spec.to_dict():
+            rows = old["rows"]
     splits = load_run_splits(spec)
     preload_vectors(splits, out / spec.dataset / "vectors.npz")
     t2p = mle_model(spec, splits, folder, device, report) if with_model else None
@@ -184,27 +190,17 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         jobs.append(rule_job(splits))
     unseen = StepVocab.build(e.program for e in splits.train).unseen_share(
         e.program for e in splits.test)
-    data = {"spec": spec.to_dict(), "with_model": with_model,
-            "n_train": len(splits.train), "n_dev": len(splits.dev), "n_test": len(splits.test),
-            "test_ids": [e.id for e in splits.test], "unseen_step_share": unseen,
-            "train_seconds": None if t2p is None else t2p.meta.get("seconds"),
-            "rows": score_rows(splits, jobs, report)}
-    folder.mkdir(parents=True, exist_ok=True)
-    write_text(cache, json.dumps(data) + "\n", force=True)
-    return data
+    data = {"spec": spec.to_dict(), "n_train": len(splits.train), "n_dev": len(splits.dev),
+            "n_test": len(splits.test), "test_ids": [e.id for e in splits.test],
+            "unseen_step_share": unseen,
+            "train_seconds": None if t2p is None else t2p.meta.get("seconds"), "rows": rows}
 
+    def save() -> None:
+        folder.mkdir(parents=True, exist_ok=True)
+        write_text(cache, json.dumps(data) + "\n", force=True)
 
-def block(runs: list[dict], model_row: str, baselines_to_beat: tuple[str, ...]) -> dict:
-    """The summary of one data set and split over its runs (one per seed)."""
-    from homesim.learn.summary import gaps, summarize_rows
-
-    def mean(key: str) -> float:
-        values = [r[key] for r in runs if r.get(key) is not None]
-        return round(sum(values) / len(values), 1) if values else 0.0
-
-    out = {"seeds": [r["spec"]["seed"] for r in runs], "rows": summarize_rows(runs),
-           "sizes": {"train": mean("n_train"), "dev": mean("n_dev"), "test": mean("n_test"),
-                     "unseen": sum(r["unseen_step_share"] for r in runs) / len(runs)}}
-    if model_row in runs[0]["rows"]:
-        out["gaps"] = gaps(runs, model_row, baselines_to_beat)
-    return out
+    score_rows(splits, jobs, rows, save, report)
+    ordered = {name: rows[name] for name, _ in jobs}  # the table's order
+    data["rows"] = {**ordered, **{k: v for k, v in rows.items() if k not in ordered}}
+    save()
+    return {**data, "rows": ordered}

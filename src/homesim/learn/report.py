@@ -64,11 +64,12 @@ def split_section(dataset: str, split: str, block: dict) -> list[str]:
              f"dev {sizes['dev']}, test {sizes['test']} programs (mean). "
              f"{100 * sizes['unseen']:.1f}% of test step tokens never occur in training "
              "(no decoder here can emit them).", "",
-             "| Method | " + " | ".join(h for _, h, _ in COLUMNS[:1]) + " | 95% CI | "
+             "| Method | Seeds | " + " | ".join(h for _, h, _ in COLUMNS[:1]) + " | 95% CI | "
              + " | ".join(h for _, h, _ in COLUMNS[1:]) + " |",
-             "|---|" + "---:|" * (len(COLUMNS) + 1)]
+             "|---|" + "---:|" * (len(COLUMNS) + 2)]
     for row, metrics in block["rows"].items():
-        cells = [_cell(metrics.get("steps"), 1.0), _ci(metrics["steps"])]
+        cells = [str(metrics["n_seeds"]), _cell(metrics.get("steps"), 1.0),
+                 _ci(metrics["steps"])]
         cells += [_cell(metrics.get(m), scale) for m, _, scale in COLUMNS[1:]]
         lines.append(f"| {row} | " + " | ".join(cells) + " |")
     lines.append("")
@@ -80,10 +81,11 @@ def _gap_lines(split: str, gaps: dict) -> list[str]:
     if not gaps:
         return []
     lines = [f"{MODEL_ROW} minus each baseline (paired, same test programs):", "",
-             "| Baseline | Steps LCS gap | 95% CI | Simulator % gap | Solved % gap |",
-             "|---|---:|---:|---:|---:|"]
+             "| Baseline | Seeds | Steps LCS gap | 95% CI | Simulator % gap | Solved % gap |",
+             "|---|---:|---:|---:|---:|---:|"]
     for baseline, g in gaps.items():
-        lines.append(f"| {baseline} | {_cell(g['steps'], 1.0)} | {_ci(g['steps'])} | "
+        lines.append(f"| {baseline} | {g['n_seeds']} | {_cell(g['steps'], 1.0)} | "
+                     f"{_ci(g['steps'])} | "
                      f"{_cell(g['simulator'], 100.0)} | {_cell(g['solved'], 100.0)} |")
     target, margin = GOALS.get(split, (None, 0.0))
     if target in gaps:
