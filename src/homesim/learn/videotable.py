@@ -122,11 +122,11 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
     _say(report, f"MLE: {len(train)} episodes, {seconds['mle']:.0f} s")
     for name, use_sim in (("pg_lcs", False), ("pg_lcs_sim", True)):
         start = time.perf_counter()
-        model = copy.deepcopy(v2p)
+        pg_model = copy.deepcopy(v2p)
         pg_cfg = TrainConfig(epochs=config.pg_epochs, batch_size=config.batch_size,
                              lr=config.pg_lr, seed=config.seed)
-        model.meta.update(model=name, history=train_pg(model, train, pg_cfg, use_sim))
-        model.save(out / f"{name}.pt")
+        pg_model.meta.update(model=name, history=train_pg(pg_model, train, pg_cfg, use_sim))
+        pg_model.save(out / f"{name}.pt")
         seconds[name] = time.perf_counter() - start
         _say(report, f"{PROGRAM_MODELS[name]}: {seconds[name]:.0f} s")
     summary = {"config": asdict(config), "episodes": {p: len(v) for p, v in parts.items()},
