@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,stats,render,serve,learn,agents
+EXTRAS ?= dev,stats,render,serve,learn,agents,dataset
 
 .PHONY: setup demo test lint bench clean
 WEB_BUILD := src/homesim/serve/static/index.html
