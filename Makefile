@@ -47,6 +47,7 @@ bench: setup
 	$(BIN)/python benchmarks/learn.py
 	$(BIN)/python benchmarks/repair.py
 	$(BIN)/python benchmarks/home_load.py
+	$(BIN)/python benchmarks/descriptions.py
 	$(BIN)/python benchmarks/parse.py
 	$(BIN)/python benchmarks/entry_points.py
 	$(BIN)/python benchmarks/serve_load.py

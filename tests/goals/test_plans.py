@@ -115,3 +115,11 @@ def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, 
     path.write_bytes(b"torn")
     assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 2
     assert plans.load_contexts(cache=False) and len(builds) == 3
+
+
+@pytest.mark.parametrize("name", ["LOOKAT_SHORT", "LOOKAT_MEDIUM", "LOOKAT_LONG", "SQUEEZE"])
+def test_every_action_of_eai_table_is_known(context, name):
+    """EAI's valid_actions include the timed LookAt variants: aliases, not hallucinations."""
+    s = score_plan("1_1", plan(WALK_TV, '"TURNTO": ["tv", "14"]', f'"{name}": ["tv", "14"]'),
+                   context)
+    assert s.error != "hallucination" and s.steps[0] == "[WALK] <tv> (1.14)"

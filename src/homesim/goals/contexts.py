@@ -69,21 +69,18 @@ def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
 
 
 def _build_contexts(wanted: set[str] | None) -> dict[str, TaskContext]:
-    from homesim.errors import DataError
     from homesim.goals.eai import eai_id, load_eai_goals
+    from homesim.knowledge.fetch import dataset_dir
     from homesim.knowledge.graphpairs import GraphPairReader
-    from homesim.knowledge.realdata import real_programs
 
     goals = load_eai_goals()
+    graphs = dataset_dir() / "graphs"  # the stored graphs of program fileN: fileN.json
     reader = GraphPairReader()
     out = {}
-    for item in real_programs():
-        if item.id not in goals or (wanted is not None and item.id not in wanted):
-            continue
-        if item.graph_path is None:
-            raise DataError(f"{item.source or item.id}: no stored graphs for this program")
-        home, objects = reader.read(item.graph_path)
-        out[eai_id(item.id)] = TaskContext(goals[item.id], home, objects)
+    for program in sorted(goals):
+        if wanted is None or program in wanted:
+            home, objects = reader.read(graphs / f"{program}.json")
+            out[eai_id(program)] = TaskContext(goals[program], home, objects)
     return out
 
 

@@ -91,13 +91,17 @@ class FloorPlan:
         """Whether (x, z) is on the home's walkable floor (`FloorModel`). A prepared home
         asks the home it was prepared from: the objects preparation adds are obstacles for
         `is_free`, and rarely change which floor can be walked to."""
+        return self.model().reachable(x, z)
+
+    def model(self) -> FloorModel:
+        """The floor model on a grid (of the home this one was prepared from, if any)."""
         if self._parent is not None:
-            return self._parent.reachable(x, z)
+            return self._parent.model()
         if self._model is None:
             with self._lock:
                 if self._model is None:
                     self._model = FloorModel(self.graph)
-        return self._model.reachable(x, z)
+        return self._model
 
     def is_free(self, room: int, x: float, z: float, size_x: float = AGENT_SIZE,
                 size_z: float = AGENT_SIZE, ignore: list[BoundingBox] | None = None) -> bool:
