@@ -147,11 +147,12 @@ def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
         if name not in rows:
             start = time.perf_counter()
             preds = job()
+            predicted = time.perf_counter() - start
             rows[name] = {
                 "examples": [example_scores(p, e.program, executable(p, e),
                                             cross_home_rate(p, e))
                              for p, e in zip(preds, splits.test, strict=True)],
-                "seconds": time.perf_counter() - start}
+                "predict_seconds": predicted, "seconds": time.perf_counter() - start}
             if save:
                 save()
         if report:
@@ -166,6 +167,15 @@ def preload_vectors(splits: Splits, cache: Path) -> None:
     examples = [*splits.train, *splits.dev, *splits.test]
     preload_sentence_vectors([t for e in examples for t in (e.title, e.description, e.activity)],
                              cache)
+
+
+def cached_run(spec: RunSpec, out: Path) -> dict | None:
+    """The scores a run already has (``scores.json`` for this spec), or None."""
+    cache = spec.folder(out) / "scores.json"
+    if not cache.is_file():
+        return None
+    data = json.loads(cache.read_text())
+    return data if data.get("spec") == spec.to_dict() and data.get("rows") else None
 
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
@@ -204,3 +214,19 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     data["rows"] = {**ordered, **{k: v for k, v in rows.items() if k not in ordered}}
     save()
     return {**data, "rows": ordered}
+
+
+def block(runs: list[dict], model_row: str, baselines_to_beat: tuple[str, ...]) -> dict:
+    """The summary of one data set and split over its runs (one per seed)."""
+    from homesim.learn.summary import gaps, summarize_rows
+
+    def mean(key: str) -> float:
+        values = [r[key] for r in runs if r.get(key) is not None]
+        return round(sum(values) / len(values), 1) if values else 0.0
+
+    out = {"seeds": [r["spec"]["seed"] for r in runs], "rows": summarize_rows(runs),
+           "sizes": {"train": mean("n_train"), "dev": mean("n_dev"), "test": mean("n_test"),
+                     "unseen": sum(r["unseen_step_share"] for r in runs) / len(runs)}}
+    if any(model_row in r["rows"] for r in runs):
+        out["gaps"] = gaps(runs, model_row, baselines_to_beat)
+    return out
