@@ -1,8 +1,9 @@
 import pytest
 
 from homesim.goals.check import GoalSet
+from homesim.goals.contexts import TaskContext, task_objects
 from homesim.goals.eai import TaskGoals
-from homesim.goals.plans import PlanReport, TaskContext, parse_plan, score_plan, task_objects
+from homesim.goals.plans import PlanReport, parse_plan, score_plan
 
 
 @pytest.fixture
@@ -102,7 +103,7 @@ def test_a_repeated_step_that_now_fails_is_additional(context, tiny_home):
 
 
 def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, context):
-    from homesim.goals import plans
+    from homesim.goals import contexts as plans
 
     builds = []
     monkeypatch.setattr(plans, "_build_contexts",
@@ -114,3 +115,11 @@ def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, 
     path.write_bytes(b"torn")
     assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 2
     assert plans.load_contexts(cache=False) and len(builds) == 3
+
+
+@pytest.mark.parametrize("name", ["LOOKAT_SHORT", "LOOKAT_MEDIUM", "LOOKAT_LONG", "SQUEEZE"])
+def test_every_action_of_eai_table_is_known(context, name):
+    """EAI's valid_actions include the timed LookAt variants: aliases, not hallucinations."""
+    s = score_plan("1_1", plan(WALK_TV, '"TURNTO": ["tv", "14"]', f'"{name}": ["tv", "14"]'),
+                   context)
+    assert s.error != "hallucination" and s.steps[0] == "[WALK] <tv> (1.14)"

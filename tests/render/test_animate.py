@@ -34,12 +34,15 @@ def animated():
     return g, scene, timeline
 
 
-def _hand_and_cup(scene, timeline, frame):
+def _in_hand(scene, timeline, frame, node=21, side="r"):
+    """An object's centre in the frame of the hand's body (constant while it is held)."""
     d = mujoco.MjData(scene.model)
     d.qpos[:] = timeline.qpos[frame]
     d.mocap_pos[:] = timeline.mocap[frame]
     mujoco.mj_kinematics(scene.model, d)
-    return d.site_xpos[scene.hand_sites["r"]], timeline.mocap[frame][scene.mocap[21]]
+    site = scene.hand_sites[side]
+    rot = d.xmat[scene.model.site_bodyid[site]].reshape(3, 3)
+    return rot.T @ (timeline.mocap[frame][scene.mocap[node]] - d.site_xpos[site])
 
 
 def test_steps_cover_the_timeline_in_order(animated):
@@ -55,9 +58,10 @@ def test_grabbed_cup_stays_in_the_right_hand_while_walking(animated):
     _, scene, tl = animated
     grab_end = tl.step_frames[1][1]
     put_start = tl.step_frames[6][0]
+    grip = _in_hand(scene, tl, grab_end)
+    assert np.linalg.norm(grip) < 0.15  # held close to the hand
     for f in range(grab_end, put_start, 3):
-        hand, cup = _hand_and_cup(scene, tl, f)
-        assert np.linalg.norm(hand - cup) < 1e-6
+        np.testing.assert_allclose(_in_hand(scene, tl, f), grip, atol=1e-6)
     walked = np.linalg.norm(tl.qpos[put_start][:2] - tl.qpos[grab_end][:2])
     assert walked > 1.0
 
@@ -126,12 +130,10 @@ def _run(program: str, fps: int = 10):
 def test_second_object_goes_to_the_left_hand():
     scene, tl = _run("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Grab] <apple> (24)\n"
                      "[Walk] <tv> (22)\n")
-    d = mujoco.MjData(scene.model)
-    d.qpos[:] = tl.qpos[-1]
-    mujoco.mj_kinematics(scene.model, d)
-    right, left = (d.site_xpos[scene.hand_sites[s]] for s in ("r", "l"))
-    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[21]], right, atol=1e-6)
-    np.testing.assert_allclose(tl.mocap[-1][scene.mocap[24]], left, atol=1e-6)
+    assert [(a.node, a.side) for a in tl.attaches] == [(21, "r"), (24, "l")]
+    for node, side in ((21, "r"), (24, "l")):
+        grip = _in_hand(scene, tl, -1, node, side)
+        np.testing.assert_allclose(_in_hand(scene, tl, -10, node, side), grip, atol=1e-6)
 
 
 def test_running_is_faster_than_walking():
@@ -167,3 +169,50 @@ def test_agent_stands_where_grounding_chose(box_home):
         assert np.linalg.norm(end - spot) < 0.06, (i, end, spot)
         moved += np.linalg.norm(plain.qpos[plain.step_frames[i][1]][:2] - spot) > 0.06
     assert moved  # without the spots render stands elsewhere: the test can fail
+
+
+def test_hand_touches_what_it_takes_even_from_a_far_spot(box_home):
+    """Grounding's spot 1 m from the table: the agent steps closer, the hand reaches the
+    cup's surface before the cup moves, and the cup does not jump when taken."""
+    from homesim.render.interact import TOUCH
+
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(PROGRAM), box_home, trace=True,
+                             reference=True)
+    far = (1.0 - 0.3 - 1.0, -1.0)  # 1 m from the table's -x edge (x = 0.7)
+    tl = Animator(scene, box_home, AGENTS["male1"], fps=10,
+                  standing={0: far, 1: far}).run(result)
+    (grab,) = tl.attaches
+    assert grab.node == 21 and grab.gap <= TOUCH
+    cup = scene.mocap[21]
+    start = tl.mocap[0][cup]
+    assert all(np.array_equal(tl.mocap[f][cup], start) for f in range(grab.frame + 1))
+    np.testing.assert_allclose(tl.mocap[grab.frame + 1][cup], start, atol=1e-9)  # no jump
+    walked = tl.qpos[grab.frame][:2] - np.array(far)
+    assert np.linalg.norm(walked) > 0.2  # it had to step closer
+
+
+def test_drink_brings_the_cup_to_the_mouth(box_home):
+    scene = build_scene(box_home, AGENTS["female1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(
+        "[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Drink] <cup> (21)\n"), box_home, trace=True,
+        reference=True)
+    tl = Animator(scene, box_home, AGENTS["female1"], fps=10).run(result)
+    drink = tl.interactions[-1]
+    assert drink.step == 2
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = tl.qpos[drink.peak]
+    mujoco.mj_kinematics(scene.model, d)
+    head = d.site("j:head").xpos
+    cup = tl.mocap[drink.peak][scene.mocap[21]]
+    assert np.linalg.norm(cup - head) < 0.2
+    assert cup[2] > head[2] - 0.2  # up at the face, not at the chest
+
+
+def test_fridge_door_swings_with_the_hand_on_its_handle(animated):
+    _, scene, tl = animated
+    opening = next(it for it in tl.interactions if it.step == 5)
+    hinge = scene.hinge_qpos[23]
+    angles = [tl.qpos[f][hinge] for f in range(opening.start, opening.peak + 1)]
+    assert angles[0] == 0.0 and abs(angles[-1] - scene.hinge_open[23]) < 1e-9
+    assert len({round(a, 3) for a in angles}) > 5  # it swings over several frames

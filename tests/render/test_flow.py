@@ -31,12 +31,14 @@ def test_flow_of_a_geom_moving_sideways_and_of_a_moving_camera():
     xmat = np.eye(3).reshape(1, 9)
     # The geom moves 0.2 m to world -y = image right: flow u = f * 0.2 / 4.
     xpos1 = np.array([[0.0, -0.2, 0.0]])
-    flow = optical_flow(depth, ids, k, w2c, k, w2c, xpos0, xmat, xpos1, xmat)
+    flow, valid = optical_flow(depth, ids, k, w2c, k, w2c, xpos0, xmat, xpos1, xmat)
+    u = np.arange(w) + flow[0, :, 0]
+    np.testing.assert_array_equal(valid, np.broadcast_to(u < w - 0.5, (h, w)))  # off the right
     np.testing.assert_allclose(flow[..., 0], k[0, 0] * 0.2 / 4.0, rtol=1e-5)
     np.testing.assert_allclose(flow[..., 1], 0.0, atol=1e-5)
     # Static geom, camera rises 0.1 m: the scene moves down the image by f * 0.1 / 4.
     w2c_up = _camera_looking_along_x([0, 0, 1.1])
-    flow = optical_flow(depth, ids, k, w2c, k, w2c_up, xpos0, xmat, xpos0, xmat)
+    flow, _ = optical_flow(depth, ids, k, w2c, k, w2c_up, xpos0, xmat, xpos0, xmat)
     np.testing.assert_allclose(flow[..., 1], k[1, 1] * 0.1 / 4.0, rtol=1e-5)
     np.testing.assert_allclose(flow[..., 0], 0.0, atol=1e-5)
 
@@ -49,9 +51,11 @@ def test_flow_is_zero_off_geometry_and_for_still_things():
     ids[:, :16] = 0
     x = np.zeros((1, 3))
     m = np.eye(3).reshape(1, 9)
-    flow = optical_flow(depth, ids, k, w2c, k, w2c, x, m, x, m)
+    flow, valid = optical_flow(depth, ids, k, w2c, k, w2c, x, m, x, m)
     assert flow.shape == (24, 32, 2) and flow.dtype == np.float32
     assert not flow.any()
+    assert valid.dtype == bool
+    np.testing.assert_array_equal(valid, ids >= 0)  # no point off geometry
 
 
 def test_rotating_geom_flow_matches_projection():
@@ -62,11 +66,32 @@ def test_rotating_geom_flow_matches_projection():
     c, s = np.cos(0.1), np.sin(0.1)
     rot = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])  # yaw 0.1 rad about the geom origin
     x0 = np.array([[3.0, 0.0, 1.0]])
-    flow = optical_flow(depth, ids, k, w2c, k, w2c, x0, np.eye(3).reshape(1, 9), x0,
-                        rot.reshape(1, 9))
+    flow, _ = optical_flow(depth, ids, k, w2c, k, w2c, x0, np.eye(3).reshape(1, 9), x0,
+                           rot.reshape(1, 9))
     pts = backproject(depth, k, w2c).reshape(-1, 3)
     moved = (pts - x0) @ rot.T + x0
     uv, _ = project(moved, k, w2c)
     u, v = np.meshgrid(np.arange(40), np.arange(30))
     expect = uv - np.stack([u, v], -1).reshape(-1, 2)
     np.testing.assert_allclose(flow.reshape(-1, 2), expect, atol=1e-4)
+
+
+def test_points_behind_or_beside_the_next_camera_have_no_valid_flow():
+    """The next camera stands 2 m ahead, inside the plane of points, looking the same way:
+    every point is behind it; a camera turned a little sees only part of them."""
+    w, h = 32, 24
+    k = intrinsics(w, h, 60.0)
+    w2c = _camera_looking_along_x([0, 0, 1])
+    depth = np.full((h, w), 1.0, np.float32)
+    ids = np.zeros((h, w), np.int32)
+    x, m = np.zeros((1, 3)), np.eye(3).reshape(1, 9)
+    ahead = _camera_looking_along_x([2.0, 0, 1])
+    flow, valid = optical_flow(depth, ids, k, w2c, k, ahead, x, m, x, m)
+    assert not valid.any()
+    assert np.abs(flow).max() > 0  # the flow is there, but not to be used
+    shifted = _camera_looking_along_x([0, 0.3, 1])  # 0.3 m to the left: the right side leaves
+    flow, valid = optical_flow(depth, ids, k, w2c, k, shifted, x, m, x, m)
+    uv = np.stack(np.meshgrid(np.arange(w), np.arange(h)), -1) + flow
+    inside = (uv[..., 0] >= -0.5) & (uv[..., 0] < w - 0.5)
+    assert 0 < valid.sum() < valid.size
+    np.testing.assert_array_equal(valid, inside)

@@ -1,9 +1,10 @@
 import math
 
 import numpy as np
+import pytest
 
-from homesim.render.agent import AGENTS
-from homesim.render.poses import blend, root_quat, sitting, standing, walk_cycle
+from homesim.render.agent import AGENTS, HINGES
+from homesim.render.poses import blend, root_quat, sitting, standing, walk_cycle, write_qpos
 
 
 def _rotate(q, v):
@@ -41,3 +42,42 @@ def test_walk_cycle_swings_the_legs_in_opposition():
     assert p.joints["l_hip_pitch"] == -p.joints["r_hip_pitch"] != 0
     run = walk_cycle(base, math.pi / 2, run=True)
     assert abs(run.joints["l_hip_pitch"]) > abs(p.joints["l_hip_pitch"])
+
+
+def _qpos_of(pose):
+    """qpos of a pose with the hinges in `HINGES` order after the free joint."""
+    addr = {n: 7 + i for i, n in enumerate(HINGES)}
+    qpos = np.zeros(7 + len(HINGES))
+    write_qpos(qpos, pose, addr)
+    return {n: qpos[a] for n, a in addr.items()}
+
+
+def test_grip_is_per_hand_blends_and_drives_the_fingers():
+    from homesim.render.agent import FINGER_CLOSED
+    from homesim.render.poses import gripping
+
+    base = standing(AGENTS["male2"], (0, 0), 0.0)
+    held = gripping(base, {"r": 21})
+    assert (held.grip("r"), held.grip("l")) == (1.0, 0.0)
+    assert blend(base, held, 0.5).grip("r") == pytest.approx(0.5)
+    assert base.with_grip("l", 3.0).grip("l") == 1.0  # clipped
+    q = _qpos_of(held)
+    for finger, (open_, closed) in FINGER_CLOSED.items():
+        assert q[f"r_{finger}"] == closed and q[f"l_{finger}"] == open_ < closed
+
+
+def test_skirt_follows_the_thighs_when_sitting_not_when_walking():
+    shape = AGENTS["female1"]
+    seat = sitting(shape, (0, 0), 0.0, 0.45)
+    walk = walk_cycle(standing(shape, (0, 0), 0.0), 1.0)
+    assert _qpos_of(seat)["skirt"] == pytest.approx(seat.joints["l_hip_pitch"])
+    assert _qpos_of(walk)["skirt"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_walk_cycle_bends_softly():
+    base = standing(AGENTS["male1"], (0, 0), 0.0)
+    phases = np.linspace(0, 2 * math.pi, 73)
+    knees = [walk_cycle(base, p).joints["l_knee"] for p in phases]
+    assert min(knees) > 0.0 and 0.7 < max(knees) < 1.1  # never locked straight, no 90 deg
+    elbows = [walk_cycle(base, p).joints["r_elbow"] for p in phases]
+    assert all(-0.6 < e < -0.2 for e in elbows)

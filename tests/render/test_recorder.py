@@ -40,6 +40,8 @@ def test_flow_of_a_known_agent_motion_seen_side_on(box_home, gl):
     np.testing.assert_allclose(first.flow[..., 1][on_agent], 0.0, atol=1e-3)
     assert not first.flow[~on_agent].any()  # walls and furniture stand still
     assert not first.cut and not frames[1].flow.any()  # the last frame has no successor
+    np.testing.assert_array_equal(first.flow_valid, first.depth > 0)  # all stay in view
+    assert not frames[1].flow_valid.any()
 
 
 def test_every_channel_has_its_shape_and_dtype(box_home, gl):
@@ -51,6 +53,7 @@ def test_every_channel_has_its_shape_and_dtype(box_home, gl):
     assert f.class_seg.shape == (48, 64) and f.class_seg.dtype == np.uint16
     assert f.instance_seg.shape == (48, 64) and f.instance_seg.dtype == np.int32
     assert f.flow.shape == (48, 64, 2) and f.flow.dtype == np.float32
+    assert f.flow_valid.shape == (48, 64) and f.flow_valid.dtype == bool
     assert f.intrinsics.shape == (3, 3) and f.world_to_cam.shape == (4, 4)
     assert f.joints3d.shape == (16, 3) and f.joints2d.shape == (16, 2)
     assert f.joints_visible.dtype == bool

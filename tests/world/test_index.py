@@ -4,7 +4,6 @@ import gc
 import sys
 import threading
 import weakref
-from importlib import resources
 
 import pytest
 
@@ -12,7 +11,7 @@ from homesim.errors import HomesimError
 from homesim.ground import prepare_and_ground, standing, unground
 from homesim.sim import execute
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.homes import load_home
+from homesim.world.homes import load_builtin, load_home
 from homesim.world.vocab import CLOSE
 
 
@@ -54,8 +53,7 @@ def programs(real_data):
 def test_eight_threads_share_one_cached_home(programs):
     """Threads that prepare, ground and execute on one `load_home` home (and its shared
     floor plans, filled while they run) get exactly the single-thread answers."""
-    with resources.as_file(resources.files("homesim.world.builtin") / "scene1.json.gz") as f:
-        fresh = EnvironmentGraph.load(f)  # a private copy, not the cached one
+    fresh = load_builtin("scene1")  # a private copy, not the cached one
     jobs = [(p, seed) for p in programs for seed in (0, 1)]
     expected = [_run(fresh, p, seed) for p, seed in jobs]
     assert sum(e[0] != "failed" for e in expected) >= len(jobs) // 2

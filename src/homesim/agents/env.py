@@ -11,7 +11,8 @@ A step that cannot run (bad text, an unknown node, a failed precondition) change
 nothing; ``info["reason"]`` says why. Reward: 1 when the goal holds after a step (the
 episode then terminates), else 0 (``failure_penalty`` for a step that could not run).
 The episode is truncated after ``max_steps`` actions. ``info`` also holds ``ok``, the
-``step`` as parsed, what it ``changed`` and ``success``.
+``step`` as parsed, what it ``changed`` and ``success``. `history` keeps the `StepRecord`
+of every step that ran in this episode (what a `TraceGoal` is judged on).
 
 >>> env = HomeEnv("scene1_trimmed", goal=StateGoal(states=((42, "ON"),)))
 >>> obs, info = env.reset(seed=0)
@@ -30,12 +31,12 @@ from typing import Any
 import gymnasium as gym
 from gymnasium import spaces
 
-from homesim.agents.goal import Goal, StateGoal
+from homesim.agents.goal import Goal, StateGoal, TraceGoal
 from homesim.agents.observation import CHARSET, MAX_TEXT, observe
 from homesim.errors import HomesimError
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.model import Step
-from homesim.sim.execute import run_step
+from homesim.sim.execute import StepRecord, run_step
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
 
@@ -54,7 +55,9 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
 
     Args:
         home: an environment graph or the name of a built-in home.
-        goal: a `Goal` (``goal(state) -> bool``); None: no goal, reward 0, never terminates.
+        goal: a `Goal` (``goal(state) -> bool``) or a `TraceGoal` (judged on the steps
+            that ran: `TaskGoal` for the goals of `homesim.goals`); None: no goal, reward
+            0, never terminates.
         max_steps: actions per episode before truncation.
         failure_penalty: reward of a step that could not run (0 by default).
         render_mode: None or ``"ansi"`` (`render` returns the observation text).
@@ -92,6 +95,7 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
         })
         self.state = SimState(home)
         self.steps = 0
+        self.history: list[StepRecord] = []
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
               ) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -101,6 +105,7 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
             self.goal = options["goal"]
         self.state = SimState(self.home)
         self.steps = 0
+        self.history = []
         return self._observe(), {"ok": True, "reason": None, "success": self._success()}
 
     def step(self, action: str) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
@@ -111,9 +116,12 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
         if step is not None and reason is None:
             reason = run_step(self.state, step, step.nodes)
         ok = reason is None
+        changes = self.state.changes_since(mark)
+        if ok and step is not None:
+            self.history.append(StepRecord(self.steps - 1, step, step.nodes, True, None,
+                                           changes))
         success = self._success()
         reward = 1.0 if success else (0.0 if ok else self.failure_penalty)
-        changes = self.state.changes_since(mark)
         info = {"ok": ok, "reason": reason, "step": None if step is None else str(step),
                 "changed": changes.describe(self.state.label) if ok else "",
                 "success": success}
@@ -135,7 +143,11 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
         return observe(self.state, self.goal_text())
 
     def _success(self) -> bool:
-        return self.goal is not None and bool(self.goal(self.state))
+        if self.goal is None:
+            return False
+        if isinstance(self.goal, TraceGoal):
+            return bool(self.goal.on_trace(self.home, self.history))
+        return bool(self.goal(self.state))
 
     def _parse(self, action: str) -> tuple[Step | None, str | None]:
         """The step `action` names, or why it names none (one line)."""

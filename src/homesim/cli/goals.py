@@ -123,7 +123,8 @@ def plans(
     force: Annotated[bool, typer.Option(help="Replace --out if it exists.")] = False,
 ) -> None:
     """Score plans with EAI's metrics; print the table, write per-plan reasons."""
-    from homesim.goals.plans import load_contexts, score_plans
+    from homesim.goals.contexts import load_contexts
+    from homesim.goals.plans import score_plans
 
     if out is not None:
         check_target(out, force)

@@ -16,7 +16,7 @@ import typer
 from rich.markup import escape
 
 from homesim import __version__
-from homesim.cli import data, goals, homes, learn, render, run, serve, synth
+from homesim.cli import data, dataset, goals, homes, learn, render, run, serve, synth
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
 
@@ -30,6 +30,7 @@ app = typer.Typer(
 app.command("run")(run.run)
 app.command("serve")(serve.serve)
 app.add_typer(data.app, name="data")
+app.add_typer(dataset.app, name="dataset")
 app.command("render")(render.render)
 app.command("synth")(synth.synth)
 app.add_typer(learn.app, name="learn")

@@ -26,22 +26,21 @@ Task success: every goal of the program (`homesim.goals.eai`) holds on the run's
 
 from __future__ import annotations
 
-import hashlib
 import json
-import pickle
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from operator import itemgetter
-from pathlib import Path
 from typing import Any
 
 from homesim.errors import DataError, ProgramError
 from homesim.goals.check import GoalReport, Trajectory, check_goals
-from homesim.goals.eai import TaskGoals
+from homesim.goals.contexts import TaskContext, load_contexts
 from homesim.program.actions import lookup_action
 from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
+
+__all__ = ["PlanReport", "PlanScore", "TaskContext", "load_contexts", "parse_plan",
+           "score_plan", "score_plans"]
 
 GRAMMAR_KINDS = ("format", "hallucination", "arity")
 RUNTIME_KINDS = ("wrong_order", "missing_step", "affordance", "additional_step")
@@ -54,47 +53,6 @@ _ALREADY = {
 }
 _AFFORDANCE = re.compile(r"cannot be |cannot receive|has no switch|has no plug|is not a person|"
                          r"is not clothes|is not food|cannot put .* on or in itself")
-
-
-@dataclass(frozen=True)
-class TaskContext:
-    """What scoring a plan for one program needs.
-
-    Attributes:
-        goals: the program's goals.
-        home: its initial graph.
-        objects: (class name, node id) of the objects a plan may name.
-    """
-
-    goals: TaskGoals
-    home: EnvironmentGraph
-    objects: frozenset[tuple[str, int]]
-
-
-def task_objects(init: dict, final: dict) -> frozenset[tuple[str, int]]:
-    """(class name, id) of the nodes whose dict or edges differ between two graph dicts
-    (state and property lists compared as sets, as EAI sorts them first)."""
-    edge = itemgetter("from_id", "relation_type", "to_id")
-    before = {n["id"]: n for n in init["nodes"]}
-    after = {n["id"]: n for n in final["nodes"]}
-    ids = before.keys() ^ after.keys()
-    for node_id, a in before.items():
-        b = after.get(node_id)
-        if b is not None and a != b and _differ(a, b):
-            ids.add(node_id)
-    for x, _, y in set(map(edge, init["edges"])) ^ set(map(edge, final["edges"])):
-        ids |= {x, y}
-    names = {i: n["class_name"] for i, n in after.items()}
-    names.update({i: n["class_name"] for i, n in before.items()})
-    return frozenset((names[i], i) for i in ids if i in names)
-
-
-def _differ(a: dict, b: dict) -> bool:
-    lists = ("states", "properties")
-    if any(set(a.get(k, ())) != set(b.get(k, ())) for k in lists):
-        return True
-    return {k: v for k, v in a.items() if k not in lists} != {
-        k: v for k, v in b.items() if k not in lists}
 
 
 @dataclass
@@ -364,75 +322,6 @@ def score_plans(plans: Iterable[dict[str, Any]], contexts: dict[str, TaskContext
                             "(EAI identifiers look like '27_2')")
         scores.append(score_plan(identifier, record.get("llm_output", ""), context))
     return PlanReport(scores)
-
-
-def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
-                  ) -> dict[str, TaskContext]:
-    """`TaskContext` of every annotated program of the real data set (or of `ids`, EAI
-    identifiers), keyed by EAI identifier.
-
-    Parsing and indexing 342 homes takes most of the time of scoring plans, so the full
-    set is kept as a pickle beside the data (`_cache_path`), keyed by the data's manifest,
-    the goal file and the source of the modules whose objects it holds: any change to
-    them builds it again. `cache` False neither reads nor writes it.
-    """
-    if ids is not None:
-        wanted = {f"file{i}" for i in ids}
-        return _build_contexts(wanted)
-    path = _cache_path() if cache else None
-    if path is not None and path.exists():
-        try:
-            with path.open("rb") as f:
-                return pickle.load(f)  # our own file, written below
-        except Exception:
-            pass
-    contexts = _build_contexts(None)
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(".tmp")
-        with tmp.open("wb") as f:
-            pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
-        tmp.replace(path)
-    return contexts
-
-
-def _build_contexts(wanted: set[str] | None) -> dict[str, TaskContext]:
-    from homesim.goals.eai import eai_id, load_eai_goals
-    from homesim.knowledge.realdata import real_programs
-
-    goals = load_eai_goals()
-    out = {}
-    for item in real_programs():
-        if item.id not in goals or (wanted is not None and item.id not in wanted):
-            continue
-        init, final = item.graph_dicts()
-        home = EnvironmentGraph.from_dict(init, f"{item.graph_path}:init_graph")
-        out[eai_id(item.id)] = TaskContext(goals[item.id], home, task_objects(init, final))
-    return out
-
-
-def _cache_path() -> Path | None:
-    """``<data root>/eai-contexts/<key>.pickle``; None when the data is not fetched."""
-    import homesim.goals.check
-    import homesim.goals.eai
-    import homesim.goals.formula
-    import homesim.program.model
-    import homesim.world.graph
-    import homesim.world.index
-    from homesim.goals.eai import GOALS_FILE
-    from homesim.knowledge.fetch import data_root, dataset_dir
-
-    directory = dataset_dir()
-    inputs = [directory / "MANIFEST.json", directory / GOALS_FILE, Path(__file__)]
-    inputs += [Path(m.__file__) for m in (  # type: ignore[arg-type]
-        homesim.goals.check, homesim.goals.eai, homesim.goals.formula,
-        homesim.program.model, homesim.world.graph, homesim.world.index)]
-    digest = hashlib.sha256()
-    for source in inputs:
-        if not source.is_file():
-            return None
-        digest.update(source.read_bytes())
-    return data_root() / "eai-contexts" / f"{digest.hexdigest()[:16]}.pickle"
 
 
 def gold_plan(context_program: Any) -> str:

@@ -1,14 +1,14 @@
 """Where the agent stands to interact with an object: free floor next to it.
 
-The floor of a room is the union of the footprints of its floor tiles (or the room's box
-when it has none). Obstacles are the boxes that reach into the agent's body height
-(furniture, appliances, things on the floor); walls are left out because their boxes
-(corner pieces are 2.5 m cubes) cover floor that is free, and the floor tiles already
-end where the walls stand. The agent is a square of side `AGENT_SIZE` on the floor.
+The floor model is `homesim.world.floor`'s, the one the renderer walks on: the floor of a
+room is the union of its floor tiles, obstacles are the boxes that reach into the agent's
+body height, the agent is a square of side `AGENT_SIZE`, and the home's walkable floor is
+the largest region of free floor joined through doorways.
 
 A standing spot for an object is the first spot, on rings of growing distance around
-the object's footprint, where the agent's square lies on the floor of the object's room
-and overlaps no obstacle. Spots are (x, z) in metres (Unity frame, y up).
+the object's footprint, where the agent's square lies on the floor of the object's room,
+overlaps no obstacle and is on the walkable floor (not in a pocket the agent cannot walk
+into). Spots are (x, z) in metres (Unity frame, y up).
 """
 
 from __future__ import annotations
@@ -21,13 +21,13 @@ import weakref
 from collections.abc import Iterator
 from typing import Any, cast
 
+from homesim.world.floor import AGENT_SIZE, FloorModel, room_floor
 from homesim.world.graph import BoundingBox, EnvironmentGraph
-from homesim.world.vocab import CHARACTER_CLASS, INSIDE
 
 Spot = tuple[float, float]
 
-AGENT_SIZE = 0.4
-"""Side (m) of the agent's square footprint."""
+__all__ = ["AGENT_SIZE", "FloorPlan", "Spot", "has_geometry", "note_prepared",
+           "square_distance"]
 _RINGS = (0.25, 0.45, 0.7, 1.0)
 """Distances (m) from the object's footprint edge to the agent's centre, tried in turn."""
 _FLOOR_RINGS = (0.05, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -35,10 +35,6 @@ _FLOOR_RINGS = (0.05, 0.2, 0.4, 0.6, 0.8, 1.0)
 _DIRECTIONS = 16
 _COMPOSITE = 2.5
 """A box wider than this (m) is taken for a composite piece (L-shaped counter or sofa)."""
-_BODY_LOW, _BODY_HIGH = 0.1, 1.5
-"""Boxes lower than this (rugs) or starting above that (shelves on walls) do not block."""
-_NOT_OBSTACLES = frozenset({"Rooms", "Floor", "Floors", "Ceiling", "Walls", "Doors",
-                            "Characters", "Windows"})
 
 
 def has_geometry(graph: EnvironmentGraph) -> bool:
@@ -64,6 +60,7 @@ class FloorPlan:
         self._parent = parent
         self._changed = changed_rooms
         self._rect_cache: dict[int, tuple[Any, tuple[list[_Rect], list[_Rect]]]] = {}
+        self._model: FloorModel | None = None
         # A plan from `for_graph` is shared by threads: its lazy tables fill under a lock.
         self._lock = threading.RLock()
 
@@ -86,24 +83,25 @@ class FloorPlan:
     def _own_room_parts(self, room: int) -> tuple[list[BoundingBox], list[BoundingBox]]:
         floors = self._floors.get(room)
         if floors is None:
-            g = self.graph
-            floors, obstacles = [], []
-            for nid in _contents(g, room):
-                node = g.nodes[nid]
-                box = node.bounding_box
-                if box is None:
-                    continue
-                if node.class_name == "floor":
-                    floors.append(box)
-                elif (node.category not in _NOT_OBSTACLES and node.class_name != CHARACTER_CLASS
-                      and box.center[1] + box.size[1] / 2 > _BODY_LOW
-                      and box.center[1] - box.size[1] / 2 < _BODY_HIGH):
-                    obstacles.append(box)
-            room_box = g.nodes[room].bounding_box
-            if not floors and room_box is not None:
-                floors = [room_box]
+            floors, obstacles = room_floor(self.graph, room)
             self._floors[room], self._obstacles[room] = floors, obstacles
         return floors, self._obstacles[room]
+
+    def reachable(self, x: float, z: float) -> bool:
+        """Whether (x, z) is on the home's walkable floor (`FloorModel`). A prepared home
+        asks the home it was prepared from: the objects preparation adds are obstacles for
+        `is_free`, and rarely change which floor can be walked to."""
+        return self.model().reachable(x, z)
+
+    def model(self) -> FloorModel:
+        """The floor model on a grid (of the home this one was prepared from, if any)."""
+        if self._parent is not None:
+            return self._parent.model()
+        if self._model is None:
+            with self._lock:
+                if self._model is None:
+                    self._model = FloorModel(self.graph)
+        return self._model
 
     def is_free(self, room: int, x: float, z: float, size_x: float = AGENT_SIZE,
                 size_z: float = AGENT_SIZE, ignore: list[BoundingBox] | None = None) -> bool:
@@ -196,7 +194,8 @@ class FloorPlan:
                         and abs(box.center[0] - o.center[0]) * 2 < o.size[0]
                         and abs(box.center[2] - o.center[2]) * 2 < o.size[2]]
                 spot = next((s for s in self._ring_spots(box)
-                             if self.is_free(room, *s, ignore=skip)), None)
+                             if self.is_free(room, *s, ignore=skip) and self.reachable(*s)),
+                            None)
         self._spots[node_id] = spot
         return spot
 
@@ -224,7 +223,8 @@ class FloorPlan:
                     candidates.append((f.center[0] + fx * f.size[0],
                                        f.center[2] + fz * f.size[2]))
         candidates.sort(key=lambda s: (square_distance((s[0], 0.0, s[1]), (cx, 0.0, cz)), s))
-        return next((s for s in candidates if self.is_free(room, *s)), None)
+        return next((s for s in candidates if self.is_free(room, *s) and self.reachable(*s)),
+                    None)
 
 
 _Rect = tuple[float, float, float, float, BoundingBox]
@@ -305,8 +305,3 @@ def square_distance(a: tuple[float, ...], b: tuple[float, ...]) -> float:
 def _rect(box: BoundingBox) -> _Rect:
     hx, hz = box.size[0] / 2, box.size[2] / 2
     return (box.center[0] - hx, box.center[0] + hx, box.center[2] - hz, box.center[2] + hz, box)
-
-
-def _contents(graph: EnvironmentGraph, room: int) -> Iterator[int]:
-    """Ids of the nodes directly INSIDE a room."""
-    return iter(graph.sources(room, INSIDE))

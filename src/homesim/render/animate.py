@@ -15,6 +15,7 @@ import itertools
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -23,12 +24,14 @@ from homesim.program.actions import ACTIONS
 from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK
-from homesim.render.layout import SEAT_HEIGHT, Box
+from homesim.render.interact import TOUCH, ReachPlanner, box_gap, surface_point
+from homesim.render.layout import SEAT_HEIGHT, Box, room_of_point
 from homesim.render.navigation import build_grid, plan_path
 from homesim.render.poses import (
     Pose,
     blend,
     carrying,
+    gripping,
     lying,
     sitting,
     standing,
@@ -48,9 +51,53 @@ STRIDE = 1.3  # metres per gait cycle (two steps)
 TURN_SPEED = 3.0  # rad/s
 AT_SPOT = 0.05
 """An agent this close (m) to its step's standing spot does not walk to it."""
+HEAD_RADIUS = 0.065
+"""The head's radius as a share of the agent's height (as `agent.agent_mjcf` draws it)."""
+GRAVITY = 9.81
+SWING_SECONDS = 1.0
+"""How long a door or an appliance's front takes to swing open or closed."""
+HANDLE_SLIP = 0.03
+"""Metres: the hand lets go of a swinging handle once the arm cannot follow it closer."""
 
 Standing = Mapping[int, tuple[float, float]]
 """Step index -> (x, z) standing spot chosen by grounding (Unity frame = MuJoCo x, y)."""
+
+
+@dataclass(frozen=True)
+class Attach:
+    """A hand taking an object: the frame (the last before the object moves with the
+    hand) and the distance between the hand and the object's box then (metres)."""
+
+    frame: int
+    node: int
+    side: str
+    gap: float
+
+
+@dataclass(frozen=True)
+class Interaction:
+    """The hands acting on objects in one step: the frames from the start of the reach to
+    the hand's return, and the frame of the effect (`peak`: grab, put, switch, swing).
+    `nodes` are the step's objects (the one acted on first); `room` the room it happens
+    in (the acted-on object's, else the agent's); `side` the hand."""
+
+    step: int
+    nodes: tuple[int, ...]
+    side: str
+    start: int
+    peak: int
+    end: int
+    room: int | None
+
+
+class Reached(NamedTuple):
+    """A reach done: the pose at its end, the pose it started from, its first frame and
+    the frame the hand arrived."""
+
+    pose: Pose
+    rest: Pose
+    start: int
+    peak: int
 
 
 @dataclass
@@ -63,6 +110,9 @@ class Timeline:
     screens: list[frozenset[int]] = field(default_factory=list)  # screen node ids on
     step_frames: list[tuple[int, int]] = field(default_factory=list)  # [start, end]
     focus: list[int] = field(default_factory=list)  # per step: the node it acts on, or -1
+    attaches: list[Attach] = field(default_factory=list)  # objects taken (gap: hand-box)
+    releases: list[Attach] = field(default_factory=list)  # put down (gap: how far it moved)
+    interactions: list[Interaction] = field(default_factory=list)
 
     def __len__(self) -> int:
         return len(self.qpos)
@@ -76,10 +126,14 @@ class Animator:
     """
 
     def __init__(self, scene: SceneModel, graph: EnvironmentGraph, shape: AgentShape,
-                 fps: int = 30, seed: int = 0, standing: Standing | None = None):
+                 fps: float = 30, seed: int = 0, standing: Standing | None = None):
+        # fps may be fractional: the activity dataset animates at fps / speed, so every
+        # motion takes 1/speed of its time (homesim.dataset).
         self.scene, self.graph, self.shape, self.fps = scene, graph, shape, fps
         self.rng = np.random.default_rng(seed)
         self.ik = ArmIK(scene)
+        self.planner = ReachPlanner(scene.layout, self.ik, shape)
+        self.step_index = -1
         self.grid = build_grid(scene.layout)
         self.data = mujoco.MjData(scene.model)
         self.qpos = scene.model.qpos0.copy()
@@ -102,6 +156,7 @@ class Animator:
         for side in props.held:
             if pose.tilt == 0.0 and side not in self.reaching:
                 pose = carrying(pose, side)
+        pose = gripping(pose, props.held)  # hands close on what they hold
         write_qpos(self.qpos, pose, self.scene.joint_qpos)
         for n, angle in props.hinge_angle.items():
             self.qpos[self.scene.hinge_qpos[n]] = angle
@@ -114,11 +169,16 @@ class Animator:
         tl.screens.append(frozenset(props.screens))
 
     def _carry(self) -> None:
-        """Move held objects to the hands of the pose just written."""
+        """Move held objects with the hands of the pose just written (each keeps where
+        the hand took it: its grip offset in the hand's frame)."""
         self.data.qpos[:] = self.qpos
         mujoco.mj_kinematics(self.scene.model, self.data)
+        m = self.scene.model
         for side, n in self.props.held.items():
-            self.props.move(n, self.data.site_xpos[self.scene.hand_sites[side]])
+            site = self.scene.hand_sites[side]
+            rot = self.data.xmat[m.site_bodyid[site]].reshape(3, 3)
+            grip = self.props.grip.get(side, np.zeros(3))
+            self.props.move(n, self.data.site_xpos[site] + rot @ grip)
 
     def hold(self, seconds: float, pose: Pose | None = None) -> None:
         for _ in range(max(1, round(seconds * self.fps))):
@@ -187,19 +247,80 @@ class Animator:
                 self.emit(walk_cycle(pose, phase, run))
 
     def reach(self, side: str, point: np.ndarray, seconds: float = 0.6,
-              at_peak=None, during=None, back: bool = True) -> None:
-        """Reach `point` with a hand, call `at_peak()`, and come back."""
-        self.turn_to(point)
+              at_peak=None, during=None, back: bool = True, step: bool = True,
+              nodes: tuple[int, ...] = (), hold: float = 0.15,
+              grip: np.ndarray | None = None, seed: Mapping[str, float] | None = None
+              ) -> Reached:
+        """Reach `point` with a hand, call `at_peak()`, hold `hold` seconds and come back.
+
+        Standing, the agent first steps toward the point until the hand can touch it
+        (`ReachPlanner`: on the way, crouching for low points; `step=False` stays put
+        and moves the arm only).
+        `nodes`: the objects acted on, recorded as an `Interaction` of the step. `grip`:
+        bring the point held at this offset from the hand (a held object's centre) to
+        `point` rather than the hand. `seed`: joint angles the arm's IK starts from."""
+        if self.posture == "stand" and step:
+            plan = self.planner.plan(self.pose.xy, side, point, grip)
+            self.step_to(plan.pose.xy, point)
+            reached = plan.pose
+        else:
+            if self.posture == "stand":
+                self.turn_to(point)
+            reached, _ = self.ik.reach(self.pose.with_joints(**(seed or {})), side, point,
+                                       grip, lean=step)
         rest = self.pose
         self.reaching = frozenset({side})
-        reached, _ = self.ik.reach(rest, side, point)
+        start = len(self.timeline)
         self.move_to(reached, seconds, during)
+        peak = len(self.timeline) - 1
         if at_peak is not None:
             at_peak()
-        self.hold(0.15, reached)
+        self.hold(hold, reached)
         if back:
             self.move_to(rest, seconds * 0.8)
-        self.reaching = frozenset()
+            self.reaching = frozenset()
+        if nodes:
+            self.note_interaction(nodes, side, start, peak)
+        return Reached(reached, rest, start, peak)
+
+    def note_interaction(self, nodes: tuple[int, ...], side: str, start: int,
+                         peak: int) -> None:
+        """Record the frames of a hands-on action of the current step."""
+        props = self.props
+        first = nodes[0]
+        room = None if first in props.held.values() and len(nodes) == 1 else \
+            self.graph.room_of(nodes[-1] if len(nodes) > 1 else first)
+        if room is None or room not in self.scene.layout.room_floors:
+            room = room_of_point(self.scene.layout, self.pose.xy)
+        self.timeline.interactions.append(Interaction(
+            self.step_index, nodes, side, start, peak, len(self.timeline) - 1, room))
+
+    def step_to(self, xy: np.ndarray, face: np.ndarray) -> None:
+        """A few steps to `xy` (straight when the way is clear), then face `face`."""
+        xy = np.asarray(xy, float)
+        if float(np.linalg.norm(xy - self.pose.xy)) > 0.01:
+            if self.planner.clear_line(self.pose.xy, xy):
+                path = [self.pose.xy.copy(), xy]
+            else:  # round the furniture on the grid, then step onto the point
+                try:
+                    path = plan_path(self.grid, self.pose.xy,
+                                     Box(np.r_[xy, 0.0], np.zeros(3)), 0.0)
+                except ExecutionError:  # no way on the grid: straight there
+                    path = [self.pose.xy.copy()]
+                path.append(xy)
+            self.follow(path, run=False)
+            self.move_to(standing(self.shape, self.pose.xy, self.pose.yaw), 0.2)
+        d = face[:2] - self.pose.xy
+        yaw = math.atan2(d[1], d[0])
+        if abs((yaw - self.pose.yaw + math.pi) % (2 * math.pi) - math.pi) > 1e-3:
+            target = Pose(self.pose.x, self.pose.y, self.pose.z, yaw, self.pose.tilt,
+                          self.pose.joints)
+            diff = abs((yaw - self.pose.yaw + math.pi) % (2 * math.pi) - math.pi)
+            self.move_to(target, max(0.1, diff / TURN_SPEED))
+
+    def shoulder(self, side: str) -> np.ndarray:
+        """World position of a shoulder in the current pose."""
+        return self.ik.site(self.pose, f"j:{side}_shoulder")
 
     def sit(self, seat: Box) -> None:
         self.walk(seat, reach=0.5)
@@ -236,7 +357,7 @@ class Animator:
             side = self.props.free_side()
             hand = self.ik.hand(looking, side)
             aim = hand + 0.6 * (target - hand) / max(np.linalg.norm(target - hand), 1e-3)
-            self.reach(side, aim, 0.5)
+            self.reach(side, aim, 0.5, step=False)
         else:
             self.hold(1.0)
         self.move_to(rest.with_joints(neck_yaw=0.0, neck_pitch=0.0), 0.3)
@@ -275,6 +396,7 @@ class Animator:
         for i, rec in enumerate(result.trace):
             first = len(self.timeline)
             spot = self.standing.get(i)
+            self.step_index = i
             self.spot = None if spot is None else np.array(spot, float)
             animation_for(rec.step.action.key)(self, rec)
             self.timeline.step_frames.append((first, len(self.timeline) - 1))
@@ -380,33 +502,64 @@ def stand_up(anim: Animator, rec: StepRecord) -> None:
 
 @animation("use_held")
 def use_held(anim: Animator, rec: StepRecord) -> None:
-    """Drink, eat or read: bring the object (held, or at hand) up to the face."""
+    """Drink or eat: bring the held object to the mouth; read: hold it before the eyes.
+    An object not held is touched where it is."""
     target = _target(rec)
     if target is None:
         return idle(anim, rec)
-    props, pose = anim.props, anim.pose
-    side = props.side_holding(target) or props.free_side()
-    head = np.r_[pose.xy, pose.z + 0.62 * anim.shape.height]
+    props = anim.props
+    side = props.side_holding(target)
+    if side is None:
+        _touch(anim, target, {})
+        return
+    sign = 1.0 if side == "l" else -1.0
+    bent = {f"{side}_sh_pitch": -1.0, f"{side}_elbow": -2.3, f"{side}_sh_yaw": 0.0,
+            f"{side}_sh_roll": 0.3 * sign}  # forearm folded up before the chest
+    anim.reach(side, _face_spot(anim, target, rec.step.action.key), 0.7, step=False,
+               nodes=(target,), hold=0.8, grip=props.grip.get(side), seed=bent)
+
+
+def _face_spot(anim: Animator, obj: int, action: str) -> np.ndarray:
+    """Where a held object's centre goes to be drunk or eaten (its rim at the lips) or
+    read (before the eyes)."""
+    pose = anim.pose
+    head = anim.ik.site(pose, "j:head")
     fwd = np.array([math.cos(pose.yaw), math.sin(pose.yaw), 0.0])
-    anim.reach(side, head + 0.25 * fwd - np.array([0, 0, 0.1]), 0.6)
+    up = np.array([0.0, 0.0, 1.0])
+    if action == "READ":
+        return head + 0.35 * fwd - 0.2 * up
+    head_r = HEAD_RADIUS * anim.shape.height
+    half = anim.props.half_of(obj)
+    mouth = head + 0.9 * head_r * fwd - 0.45 * head_r * up
+    return mouth + (float(max(half[:2])) + 0.01) * fwd - 0.5 * half[2] * up
 
 
 @animation("let_go")
 def let_go(anim: Animator, rec: StepRecord) -> None:
-    """Drop a held object on the floor in front of the agent."""
+    """Drop a held object: it falls to the floor in front of the agent."""
     obj = _target(rec)
     props = anim.props
     side = None if obj is None else props.side_holding(obj)
     if obj is None or side is None:
         anim.hold(0.5)
         return
-    spot = anim.forward(0.4)
-    half = props.half_of(obj)
 
-    def drop() -> None:
+    def release() -> None:
         del props.held[side]
-        props.move(obj, spot + np.r_[0, 0, half[2]])
-    anim.reach(side, spot + np.r_[0, 0, 0.5], 0.5, at_peak=drop)
+        props.grip.pop(side, None)
+    done = anim.reach(side, anim.forward(0.4) + np.r_[0, 0, 0.6], 0.5, at_peak=release,
+                      back=False, step=False, nodes=(obj,), hold=0.0)
+    start = props.mocap[anim.scene.mocap[obj]].copy() if obj in anim.scene.mocap else None
+    if start is not None:
+        floor = props.half_of(obj)[2]
+        fall = max(start[2] - floor, 0.0)
+        n = max(1, math.ceil(math.sqrt(2 * fall / GRAVITY) * anim.fps))
+        for i in range(1, n + 1):
+            t = i / n
+            props.move(obj, np.r_[start[:2], start[2] - fall * t * t])
+            anim.emit(done.pose)
+    anim.move_to(done.rest, 0.4)
+    anim.reaching = frozenset()
 
 
 @animation("reach")
@@ -425,27 +578,48 @@ def reach(anim: Animator, rec: StepRecord) -> None:
     if nodes[0] in anim.props.hinge_angle and nodes[0] in states:
         _swing(anim, nodes[0], states[nodes[0]][1])
         return
-    point = anim.props.handle_point(nodes[0], anim.pose.xy)
-    anim.reach(anim.props.free_side(), point, 0.6,
-               at_peak=lambda: anim.props.apply_states(states))
+    _touch(anim, nodes[0], states, nodes)
+
+
+def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> None:
+    """Put a free hand on the object's surface (the point nearest the shoulder); the
+    step's state changes (switching on...) happen when it arrives."""
+    props = anim.props
+    side = props.free_side()
+    point = surface_point(props.box_of(node), anim.shoulder(side))
+    anim.reach(side, point, 0.6, at_peak=lambda: props.apply_states(states),
+               nodes=nodes or (node,))
 
 
 def _grab(anim: Animator, ch: Changes) -> bool:
-    """Reach for what the step put in a hand, if anything; True if it did."""
+    """Reach for what the step put in a hand, if anything; True if it did. The object is
+    taken when the hand touches its surface and rides there (no jump into the palm)."""
     grabbed = {rel: b for a, rel, b in ch.added if rel in (HOLDS_RH, HOLDS_LH)}
     if not grabbed:
         return False
     rel, obj = next(iter(grabbed.items()))
     side = "r" if rel == HOLDS_RH else "l"
+    props = anim.props
+    box = props.box_of(obj)
 
     def attach() -> None:
-        anim.props.held[side] = obj
-    anim.reach(side, anim.props.box_of(obj).center, 0.6, at_peak=attach)
+        hand, rot = anim.ik.hand_frame(anim.pose, side)
+        gap = box_gap(box, hand)
+        center = box.center
+        if gap > TOUCH:  # out of the arm's reach after all: it comes to the hand
+            center = box.center + hand - np.clip(hand, box.lo, box.hi)
+            props.move(obj, center)
+        props.held[side] = obj
+        props.grip[side] = rot.T @ (center - hand)
+        anim.timeline.attaches.append(Attach(len(anim.timeline) - 1, obj, side, gap))
+    anim.reach(side, surface_point(box, anim.shoulder(side)), 0.6, at_peak=attach,
+               nodes=(obj,))
     return True
 
 
 def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
-    """Put down what the step took out of a hand, if anything; True if it did."""
+    """Put down what the step took out of a hand, if anything; True if it did. The hand
+    brings the object onto the destination's top (or inside it) and lets go there."""
     released = {b for a, rel, b in ch.removed if rel in (HOLDS_RH, HOLDS_LH)}
     if not released:
         return False
@@ -457,25 +631,43 @@ def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
     final = props.placement(obj, rel, where, anim.pose.xy)
 
     def put() -> None:
+        carried = props.mocap[anim.scene.mocap[obj]].copy() if obj in anim.scene.mocap \
+            else final
         props.held.pop(side, None)
-        props.move(obj, final)
-    anim.reach(side, final + np.r_[0, 0, 0.05], 0.6, at_peak=put)
+        props.grip.pop(side, None)
+        landed = props.landing(obj, where, final, carried)
+        props.move(obj, landed)
+        anim.timeline.releases.append(Attach(len(anim.timeline) - 1, obj, side,
+                                             float(np.linalg.norm(landed - carried))))
+    anim.reach(side, final, 0.6, at_peak=put, nodes=(obj, where), grip=props.grip.get(side))
     return True
 
 
 def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
-    """Take the handle and swing a door open or closed."""
+    """Take the handle and swing a door open or closed, the hand on the handle as long
+    as the arm can follow it."""
     props = anim.props
     start = props.hinge_angle[target]
     goal = props.scene.hinge_open[target] if S_OPEN in after else 0.0 \
         if S_CLOSED in after else start
-
-    def swing(t: float) -> None:
-        props.hinge_angle[target] = start + (goal - start) * t
-    point = props.handle_point(target, anim.pose.xy)
     side = props.free_side()
-    anim.reach(side, point, 0.4)
-    anim.reach(side, point, 0.6, during=swing)
+    local = props.handle_local(target, anim.pose.xy)
+    done = anim.reach(side, props.handle_world(target, local, start), 0.5, back=False,
+                      hold=0.1)
+    pose, holding = done.pose, True
+    n = max(1, round(SWING_SECONDS * anim.fps))
+    for i in range(1, n + 1):
+        angle = start + (goal - start) * (0.5 - 0.5 * math.cos(math.pi * i / n))
+        props.hinge_angle[target] = angle
+        if holding:
+            follow, err = anim.ik.reach(pose, side, props.handle_world(target, local, angle))
+            holding = err <= HANDLE_SLIP
+            pose = follow if holding else pose
+        anim.emit(pose)
+    peak = len(anim.timeline) - 1
+    anim.move_to(done.rest, 0.5)
+    anim.reaching = frozenset()
+    anim.note_interaction((target,), side, done.start, peak)
 
 
 ANIMATIONS: dict[str, Animation] = {key: MOTIONS[a.motion] for key, a in ACTIONS.items()

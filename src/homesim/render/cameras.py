@@ -28,6 +28,8 @@ class CameraSpec:
     xaxis: np.ndarray  # image right
     yaxis: np.ndarray  # image up
     fovy: float  # degrees
+    shot: int = -1  # a close-up of this interaction (`Timeline.interactions` index); -1: none
+    step: int = -1  # the program step that interaction belongs to (-1: a room camera)
 
     @property
     def forward(self) -> np.ndarray:

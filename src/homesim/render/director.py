@@ -38,15 +38,28 @@ class Director:
     since_probe: int = 0
 
     def candidates(self, agent_xy: np.ndarray) -> list[int]:
+        """The room cameras of the agent's room (all room cameras if it has none)."""
         room = room_of_point(self.scene.layout, agent_xy)
-        cams = [i for i, c in enumerate(self.scene.cameras) if c.room_id == room]
-        return cams or list(range(len(self.scene.cameras)))
+        cams = [i for i in self.room_cameras() if self.scene.cameras[i].room_id == room]
+        return cams or self.room_cameras()
+
+    def room_cameras(self) -> list[int]:
+        """Indices of the fixed cameras (not close-ups of interactions)."""
+        return [i for i, c in enumerate(self.scene.cameras) if c.shot < 0]
+
+    def force(self, camera: int) -> int:
+        """Film this frame with a given camera (a close-up of an interaction)."""
+        if camera != self.current:
+            self.current, self.held = camera, 0
+        self.since_probe = 0
+        return camera
 
     def choose(self, agent_pos: np.ndarray, score_now: float | None, probe) -> int:
         """The camera for this frame. `score_now`: the current camera's last view score."""
         self.held += 1
         self.since_probe += 1
-        if self.current >= 0 and score_now is not None:
+        on_shot = self.current >= 0 and self.scene.cameras[self.current].shot >= 0
+        if self.current >= 0 and score_now is not None and not on_shot:
             cam = self.scene.cameras[self.current]
             in_range = np.linalg.norm(cam.pos - agent_pos) <= MAX_RANGE
             if score_now > 0 and (self.held < MIN_HOLD or self.since_probe < RETRY
@@ -55,7 +68,7 @@ class Director:
         self.since_probe = 0
         best, best_share = self._best(self.candidates(agent_pos[:2]), agent_pos, probe)
         if best_share <= 0.0:  # e.g. in a doorway: look from every room
-            best, best_share = self._best(range(len(self.scene.cameras)), agent_pos, probe)
+            best, best_share = self._best(self.room_cameras(), agent_pos, probe)
         if best != self.current:
             self.current, self.held = best, 0
         return self.current

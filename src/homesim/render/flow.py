@@ -12,6 +12,9 @@ import math
 
 import numpy as np
 
+NEAR = 1e-3
+"""Metres: a point closer to (or behind) the next camera than this has no valid flow."""
+
 
 def intrinsics(width: int, height: int, fovy_deg: float) -> np.ndarray:
     """3x3 pinhole matrix for a MuJoCo camera (square pixels, centred principal point)."""
@@ -50,24 +53,29 @@ def backproject(depth: np.ndarray, k: np.ndarray, w2c: np.ndarray) -> np.ndarray
 
 def optical_flow(depth: np.ndarray, geom_ids: np.ndarray, k0: np.ndarray, w2c0: np.ndarray,
                  k1: np.ndarray, w2c1: np.ndarray, xpos0: np.ndarray, xmat0: np.ndarray,
-                 xpos1: np.ndarray, xmat1: np.ndarray) -> np.ndarray:
-    """Forward flow (H, W, 2) in pixels from frame t to t+1.
+                 xpos1: np.ndarray, xmat1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Forward flow (H, W, 2) in pixels from frame t to t+1, and its validity (H, W) bool.
 
     Each pixel's 3D point (from `depth` at t) is carried with the geom it lies on: into
     the geom's frame at t (`xpos0`, `xmat0`: (ngeom, 3), (ngeom, 9)), back out with its
     pose at t+1, then projected with the camera at t+1. Pixels on no geom (id -1) get 0.
     Only pixels that can move are computed: all of them when the camera moves, else
     those on geoms whose pose changed (the rest have exactly zero flow).
+
+    A pixel's flow is valid when it lies on a geom and its point at t+1 is in front of
+    the next camera (depth > `NEAR`) and projects inside the image (pixel centres at
+    integers: -0.5 <= u < W - 0.5). Occlusion at t+1 is not checked.
     """
     h, w = depth.shape
     flow = np.zeros((h * w, 2), np.float32)
-    moved = np.any(xpos0 != xpos1, axis=1) | np.any(xmat0 != xmat1, axis=1)
     ids = geom_ids.reshape(-1)
+    valid = ids >= 0
+    moved = np.any(xpos0 != xpos1, axis=1) | np.any(xmat0 != xmat1, axis=1)
     same_camera = np.array_equal(k0, k1) and np.array_equal(w2c0, w2c1)
     movable = np.concatenate([[False], moved if same_camera else np.ones_like(moved)])
     sel = np.flatnonzero(movable[ids + 1])
     if len(sel) == 0:
-        return flow.reshape(h, w, 2)
+        return flow.reshape(h, w, 2), valid.reshape(h, w)
     u = (sel % w).astype(np.float64)
     v = (sel // w).astype(np.float64)
     z = depth.reshape(-1)[sel].astype(np.float64)
@@ -81,6 +89,8 @@ def optical_flow(depth: np.ndarray, geom_ids: np.ndarray, k0: np.ndarray, w2c0: 
         r1 = xmat1.reshape(-1, 3, 3)[gg]
         local = np.einsum("nji,nj->ni", r0, pts[gm] - xpos0[gg])  # R0^T (p - x0)
         pts[gm] = np.einsum("nij,nj->ni", r1, local) + xpos1[gg]
-    uv1, _ = project(pts, k1, w2c1)
+    uv1, z1 = project(pts, k1, w2c1)
     flow[sel] = (uv1 - np.stack([u, v], axis=-1)).astype(np.float32)
-    return flow.reshape(h, w, 2)
+    valid[sel] = (z1 > NEAR) & (uv1[:, 0] >= -0.5) & (uv1[:, 0] < w - 0.5) \
+        & (uv1[:, 1] >= -0.5) & (uv1[:, 1] < h - 0.5)
+    return flow.reshape(h, w, 2), valid.reshape(h, w)

@@ -6,7 +6,9 @@ Layout of a recording folder (see docs/render.md)::
                        cameras, class and instance legends, joint names, units
     video.mp4          RGB, H.264 (yuv420p)
     frames/000000.npz  depth (H,W) float32 m; class (H,W) uint16; instance (H,W) int32
-                       (graph node ids); flow (H,W,2) float32 px to the next frame
+                       (graph node ids); flow (H,W,2) float32 px to the next frame;
+                       flow_valid (H,W) bool (in front of the next camera, on screen,
+                       no cut after this frame)
     frames.npz         per-frame arrays: camera (T,) int16, intrinsics (T,3,3),
                        world_to_cam (T,4,4), joints3d (T,J,3), joints2d (T,J,2),
                        joints_visible (T,J) bool, cut (T,) bool
@@ -26,7 +28,8 @@ from homesim.errors import DataError
 from homesim.files import write_text
 from homesim.render.recorder import FrameTruth
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+"""2: frames carry `flow_valid`."""
 ZIP_LEVEL = 1
 """Deflate level of the frame files: level 1 is ~3x faster than numpy's default 6 and
 the files are ~3x larger; writing must keep up with rendering."""
@@ -42,6 +45,20 @@ def write_npz(path: Path, arrays: dict[str, np.ndarray]) -> None:
     tmp.replace(path)
 
 
+def open_video(path: Path, width: int, height: int, fps: int):
+    """An H.264 (yuv420p) MP4 writer: ``send(rgb)`` each (H, W, 3) uint8 frame, then
+    ``close()``. The index is at the front of the file (``+faststart``), so a browser can
+    play it while it downloads."""
+    import imageio_ffmpeg
+
+    video = imageio_ffmpeg.write_frames(
+        str(path), (width, height), fps=fps, codec="libx264", pix_fmt_out="yuv420p",
+        quality=7, macro_block_size=1, ffmpeg_log_level="error",
+        output_params=["-preset", "veryfast", "-movflags", "+faststart"])
+    video.send(None)
+    return video
+
+
 class RecordingWriter:
     """Streams frames into a recording folder; `close(meta)` finishes it.
 
@@ -50,15 +67,9 @@ class RecordingWriter:
     """
 
     def __init__(self, out_dir: str | Path, width: int, height: int, fps: int):
-        import imageio_ffmpeg
-
         self.out = Path(out_dir)
         (self.out / "frames").mkdir(parents=True, exist_ok=True)
-        self._video = imageio_ffmpeg.write_frames(
-            str(self.out / "video.mp4"), (width, height), fps=fps, codec="libx264",
-            pix_fmt_out="yuv420p", quality=7, macro_block_size=1,
-            ffmpeg_log_level="error", output_params=["-preset", "veryfast"])
-        self._video.send(None)
+        self._video = open_video(self.out / "video.mp4", width, height, fps)
         self._pool = ThreadPoolExecutor(max_workers=1)
         self._pending: list[Future] = []
         self._per_frame: dict[str, list] = {k: [] for k in (
@@ -69,7 +80,7 @@ class RecordingWriter:
         self._video.send(np.ascontiguousarray(f.rgb))
         write_npz(self.out / "frames" / f"{f.index:06d}.npz", {
             "depth": f.depth, "class": f.class_seg, "instance": f.instance_seg,
-            "flow": f.flow})
+            "flow": f.flow, "flow_valid": f.flow_valid})
 
     def add(self, f: FrameTruth) -> None:
         # Frames are written in order by the single worker (video and frame files); at
@@ -147,7 +158,7 @@ class Recording:
         return {int(k): v["class"] for k, v in self.meta["instances"].items()}
 
     def frame(self, i: int) -> dict[str, np.ndarray]:
-        """Dense ground truth of frame `i`: depth, class, instance, flow."""
+        """Dense ground truth of frame `i`: depth, class, instance, flow, flow_valid."""
         if not 0 <= i < self.num_frames:
             raise DataError(f"{self.path}: frame {i} out of range 0..{self.num_frames - 1}")
         with np.load(self.path / "frames" / f"{i:06d}.npz") as z:

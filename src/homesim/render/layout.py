@@ -4,7 +4,8 @@ Frames: the graph's boxes are in Unity's frame (y up, metres). Everything in
 `homesim.render` uses MuJoCo's frame (z up): ``(x, y, z)_mujoco = (x, z, y)_unity``.
 Boxes are axis-aligned and stored as (centre, half size).
 
-This module is pure geometry (no mujoco), so navigation and tests can use it alone.
+This module is pure geometry (no mujoco), so navigation and tests can use it alone. The
+walk grid comes from the floor model (`homesim.world.floor`), not from the parts.
 """
 
 from __future__ import annotations
@@ -15,13 +16,17 @@ from typing import Any
 
 import numpy as np
 
+from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
+from homesim.world.floor import FloorModel
 from homesim.world.graph import EnvironmentGraph, Node
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
 
 WALL_THICKNESS = 0.1
 """Metres; corner walls (2.5 m cubes) become slabs this thick on the room's edge."""
 PANEL_THICKNESS = 0.04
+"""Metres of a hinged front inside its box: the door leaf and, in front of it, the handle."""
+LEAF_THICKNESS = 0.025
 HINGED_CLASSES = frozenset({
     "fridge", "cabinet", "kitchencabinet", "kitchencabinets", "closet", "microwave",
     "washingmachine", "dishwasher", "stove", "oven", "bathroomcabinet", "closetdrawer",
@@ -78,6 +83,7 @@ class Hinge:
     panel: Box  # in the hinge body's frame (origin at the pivot), closed position
     open_angle: float  # radians about +z when OPEN
     is_open: bool
+    shapes: list[Shape] = field(default_factory=list)  # drawn, in the hinge body's frame
 
 
 @dataclass
@@ -87,8 +93,10 @@ class Part:
     node_id: int
     class_name: str
     rgba: RGBA
-    boxes: list[Box] = field(default_factory=list)  # static geometry
+    boxes: list[Box] = field(default_factory=list)  # what it occupies (navigation, cameras)
+    shapes: list[Shape] = field(default_factory=list)  # what is drawn (static), MuJoCo frame
     movable: Box | None = None  # a free object (mocap body): grabbable things
+    movable_shapes: list[Shape] = field(default_factory=list)  # drawn, body frame
     hinge: Hinge | None = None
     screen: Box | None = None  # a thin emissive panel: tv, computer
     lamp: bool = False
@@ -105,6 +113,8 @@ class Layout:
     floors: list[Box]
     room_floors: dict[int, Box]  # bounds of each room's floor tiles
     start: np.ndarray  # the character's start position on the floor (x, y)
+    walk: FloorModel | None = None
+    """Where the agent may walk: the floor model grounding uses (MuJoCo x, y = Unity x, z)."""
 
     def part(self, node_id: int) -> Part | None:
         return next((p for p in self.parts if p.node_id == node_id), None)
@@ -186,8 +196,13 @@ def _front_axis(box: Box, toward: np.ndarray) -> tuple[int, float]:
 
 
 def _hollow(box: Box, axis: int, sign: float, t: float = 0.03) -> tuple[list[Box], Hinge]:
-    """Five carcass slabs and a front door hinged on its left edge."""
-    lo, hi = box.lo, box.hi
+    """Five carcass slabs and a front door hinged on its left edge, all inside the box:
+    the front `PANEL_THICKNESS` holds the door leaf and its handle."""
+    lo, hi = box.lo.copy(), box.hi.copy()
+    if sign > 0:
+        hi[axis] -= PANEL_THICKNESS
+    else:
+        lo[axis] += PANEL_THICKNESS
     slabs = []
     for ax in range(3):
         for s in (-1.0, 1.0):
@@ -200,13 +215,12 @@ def _hollow(box: Box, axis: int, sign: float, t: float = 0.03) -> tuple[list[Box
                 plo[ax] = hi[ax] - t
             slabs.append(Box.from_bounds(plo, phi))
     side = 1 - axis
-    face = box.center[axis] + sign * (box.half[axis] + PANEL_THICKNESS / 2)
+    face = box.center[axis] + sign * (box.half[axis] - PANEL_THICKNESS + LEAF_THICKNESS / 2)
     pivot = box.center.copy()
     pivot[axis] = face
-    pivot[side] = lo[side]
-    pivot[2] = box.center[2]
+    pivot[side] = box.lo[side]
     half = np.empty(3)
-    half[axis] = PANEL_THICKNESS / 2
+    half[axis] = LEAF_THICKNESS / 2
     half[side] = box.half[side]
     half[2] = box.half[2]
     offset = np.zeros(3)
@@ -218,6 +232,36 @@ def _hollow(box: Box, axis: int, sign: float, t: float = 0.03) -> tuple[list[Box
         open_angle = -open_angle
     hinge = Hinge(pivot, Box(offset, half), open_angle, False)
     return slabs, hinge
+
+
+def _handle(panel: Box, axis: int, sign: float, depth: float) -> Shape:
+    """A vertical bar handle in front of a door leaf, near its free edge (hinge frame)."""
+    side = 1 - axis
+    c = panel.center.copy()
+    c[side] = panel.center[side] + panel.half[side] - min(0.06, panel.half[side] * 0.3)
+    c[axis] += sign * (panel.half[axis] + depth / 2)
+    tall = min(0.3, panel.half[2] * 0.6)
+    c[2] = min(c[2] + panel.half[2] * 0.2, panel.center[2] + panel.half[2] - tall)
+    half = np.full(3, 0.01)
+    half[axis] = depth / 2
+    half[2] = tall
+    return Shape("box", c, half, "chrome")
+
+
+def _window(panel: Box, axis: int, sign: float) -> Shape:
+    """A dark glass pane on the front of a door leaf (microwave, oven, washer)."""
+    c = panel.center.copy()
+    c[axis] += sign * (panel.half[axis] - 0.002)
+    half = panel.half * 0.7
+    half[axis] = 0.003
+    c[1 - axis] -= panel.half[1 - axis] * 0.1
+    return Shape("box", c, half, "glass_dark")
+
+
+_WINDOWED = frozenset({"microwave", "stove", "oven", "washingmachine"})
+_CARCASS_ROLE = {"fridge": "white", "washingmachine": "white", "dishwasher": "white",
+                 "stove": "metal", "oven": "metal", "microwave": "black", "garbagecan": "metal"}
+"""Material of a hinged object's body; others are wood."""
 
 
 def _seat(box: Box, axis: int, sign: float) -> list[Box]:
@@ -234,22 +278,39 @@ def _seat(box: Box, axis: int, sign: float) -> list[Box]:
     return [Box.from_bounds(lo, seat_hi), Box.from_bounds(back_lo, back_hi)]
 
 
-def _door(box: Box, jambs: list[Box]) -> Hinge | None:
-    if not jambs:
-        return None
-    jamb = min(jambs, key=lambda j: float(np.hypot(*(j.center[:2] - box.center[:2]))))
+def door_leaf(jamb: Box) -> Box:
+    """The closed door leaf of a door frame: between its posts, as tall as the opening.
+
+    The built-in homes' door boxes are these leaves (`tools/convert_homes.py` sets them:
+    VirtualHome's are 0.93 x 0.93 x 1.0 placeholders), so the door is drawn from its box."""
     along = 0 if jamb.half[0] >= jamb.half[1] else 1
-    across = 1 - along
-    pivot = jamb.center.copy()
-    pivot[along] = jamb.lo[along] + 0.05
-    pivot[2] = jamb.lo[2] + jamb.half[2] - 0.02
     half = np.empty(3)
     half[along] = jamb.half[along] - 0.06
-    half[across] = PANEL_THICKNESS / 2
+    half[1 - along] = LEAF_THICKNESS / 2
     half[2] = jamb.half[2] - 0.02
+    center = jamb.center.copy()
+    center[2] = jamb.lo[2] + half[2]
+    return Box(center, half)
+
+
+def _is_leaf(box: Box) -> bool:
+    return min(box.half[0], box.half[1]) <= 0.05 and box.half[2] > 0.6
+
+
+def _door(box: Box, jambs: list[Box]) -> Hinge | None:
+    """A room door hinged on one edge of its leaf: the node's box when it is a leaf, else
+    the leaf of the nearest door frame."""
+    if not _is_leaf(box):
+        if not jambs:
+            return None
+        box = door_leaf(min(jambs, key=lambda j: float(np.hypot(*(j.center[:2]
+                                                                   - box.center[:2])))))
+    along = 0 if box.half[0] >= box.half[1] else 1
+    pivot = box.center.copy()
+    pivot[along] = box.lo[along]
     offset = np.zeros(3)
-    offset[along] = half[along]
-    return Hinge(pivot, Box(offset, half), np.pi / 2, False)
+    offset[along] = box.half[along]
+    return Hinge(pivot, Box(offset, box.half.copy()), np.pi / 2, False)
 
 
 @dataclass
@@ -260,17 +321,34 @@ class _Home:
     rooms: dict[int, Box]
     tiles: dict[int, list[Box]]
     jambs: list[Box]
+    seed: int = 0
 
     def toward(self, room: int | None, fallback: Any) -> Any:
         """A point inside the room (its centre), to tell an object's front from its back."""
         return self.rooms[room].center if room in self.rooms else fallback
 
+    def front(self, node: Node, box: Box) -> tuple[int, float]:
+        """The side of a node's box that faces its room."""
+        room = self.graph.room_of(node.id)
+        return _front_axis(box, self.toward(room, box.center + np.array([0.0, 1.0, 0.0])))
 
-def build_layout(graph: EnvironmentGraph) -> Layout:
-    """All parts of a home with geometry. Raises nothing: nodes without boxes are skipped."""
+    def model(self, node: Node, box: Box, front: tuple[int, float] | None = None
+              ) -> list[Shape]:
+        """The node's model fitted to its box, its variant chosen by the seed (objects of
+        a class in the same room look alike)."""
+        room = self.graph.room_of(node.id) or 0
+        variant = variant_of(node.class_name, self.seed, room)
+        return fit_model(node.class_name, node.category, box.center, box.half,
+                         front or self.front(node, box), variant)
+
+
+def build_layout(graph: EnvironmentGraph, seed: int = 0) -> Layout:
+    """All parts of a home with geometry; `seed` picks model variants. Raises nothing:
+    nodes without boxes are skipped."""
     home = _Home(graph, {r.id: b for r in graph.rooms() if (b := to_mujoco(r)) is not None},
                  _room_floor_tiles(graph),
-                 [b for n in graph.nodes_of_class("doorjamb") if (b := to_mujoco(n)) is not None])
+                 [b for n in graph.nodes_of_class("doorjamb") if (b := to_mujoco(n)) is not None],
+                 seed)
     parts: list[Part] = []
     floors: list[Box] = []
     seen: set[tuple] = set()
@@ -292,7 +370,7 @@ def build_layout(graph: EnvironmentGraph) -> Layout:
         part.is_on = S_ON in node.states
         parts.append(part)
     return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
-                  _room_floors(home.tiles), _start(graph))
+                  _room_floors(home.tiles), _start(graph), FloorModel(graph))
 
 
 def _start(graph: EnvironmentGraph) -> np.ndarray:
@@ -331,11 +409,22 @@ def _kind(node: Node, box: Box) -> str:
 
 
 Shaper = Callable[[Part, Node, Box, _Home], bool]
-"""Fills a part's boxes (hinge, screen, lamp); False drops the part."""
+"""Fills a part's boxes and shapes (hinge, screen, lamp); False drops the part."""
+
+
+def _slab_shapes(boxes: list[Box], role: str) -> list[Shape]:
+    return [Shape("box", b.center.copy(), np.maximum(b.half, 1e-3), role) for b in boxes]
+
+
+def _room_role(kind: str, node: Node, home: _Home) -> str:
+    room = home.graph.room_of(node.id)
+    return kind if room is None else f"{kind}@{room}"
 
 
 def _flat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
     part.boxes.append(_flat(box))
+    role = "ceiling" if node.class_name == "ceiling" else _room_role("floor", node, home)
+    part.shapes = _slab_shapes(part.boxes, role)
     return True
 
 
@@ -343,6 +432,7 @@ def _wall(part: Part, node: Node, box: Box, home: _Home) -> bool:
     room = home.graph.room_of(node.id)
     for slab in _wall_slabs(box, [] if room is None else home.tiles.get(room, [])):
         part.boxes.extend(_cut_doorways(slab, home.jambs))
+    part.shapes = _slab_shapes(part.boxes, _room_role("wall", node, home))
     return True
 
 
@@ -355,58 +445,119 @@ def _doorjamb(part: Part, node: Node, box: Box, home: _Home) -> bool:
         else:
             lo[along] = hi[along] - 0.06
         part.boxes.append(Box.from_bounds(lo, hi))
+    part.shapes = _slab_shapes(part.boxes, "white")
     return True
 
 
 def _door_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    part.hinge = _door(box, home.jambs)
-    return part.hinge is not None
-
-
-def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    toward = home.toward(home.graph.room_of(node.id), [*box.center, 0, 1, 0])
-    part.boxes, part.hinge = _hollow(box, *_front_axis(box, toward))
+    part.hinge = h = _door(box, home.jambs)
+    if h is None:
+        return False
+    along = 0 if h.panel.half[0] >= h.panel.half[1] else 1
+    knob = h.panel.center.copy()
+    knob[along] += h.panel.half[along] * 0.8
+    knob[2] = 1.0 - h.pivot[2]  # a metre above the floor
+    knob_half = np.full(3, 0.025)
+    knob_half[1 - along] = h.panel.half[1 - along]  # the leaf is thinner: the knob shows
+    leaf_half = h.panel.half.copy()
+    leaf_half[1 - along] *= 0.6
+    h.shapes = [Shape("box", h.panel.center.copy(), leaf_half, "wood"),
+                Shape("box", knob, knob_half, "chrome")]
     return True
 
 
+def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    axis, sign = home.front(node, box)
+    part.boxes, part.hinge = _hollow(box, axis, sign)
+    role = _CARCASS_ROLE.get(node.class_name, "wood")
+    part.shapes = _slab_shapes(part.boxes, role)
+    h = part.hinge
+    h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), role),
+                _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
+    if node.class_name in _WINDOWED:
+        h.shapes.append(_window(h.panel, axis, sign))
+    if node.class_name in ("stove", "oven"):  # the top gives way to the hot plates
+        part.shapes = [Shape(s.kind, s.center - [0, 0, 0.004], s.half, s.role)
+                       if s.center[2] - s.half[2] > box.center[2] else s for s in part.shapes]
+        part.shapes += _burners(box)
+    return True
+
+
+def _burners(box: Box) -> list[Shape]:
+    """Four hot plates on a stove's top, inside its box."""
+    out = []
+    r = float(min(box.half[0], box.half[1])) * 0.25
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            c = box.center + np.array([sx * box.half[0] * 0.45, sy * box.half[1] * 0.45,
+                                       box.half[2] - 0.006])
+            out.append(Shape("cylinder", c, np.array([r, r, 0.006]), "black"))
+    return out
+
+
 def _enclosure(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    toward = home.toward(home.graph.room_of(node.id), box.center + np.array([0.0, 1.0, 0.0]))
-    slabs, _ = _hollow(box, *_front_axis(box, toward))
+    slabs, _ = _hollow(box, *home.front(node, box))
     part.boxes = [b for b in slabs if b.hi[2] < box.hi[2] - 1e-6 or b.half[2] > 0.1]
+    part.shapes = _slab_shapes(part.boxes, "white")
     return True
 
 
 def _seat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    toward = home.toward(home.graph.room_of(node.id), box.center + np.array([0.0, 1.0, 0.0]))
-    part.boxes = _seat(box, *_front_axis(box, toward))
+    front = home.front(node, box)
+    part.boxes = _seat(box, *front)
+    part.shapes = home.model(node, box, front)
     return True
 
 
 def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
     part.movable = _flat(box, 0.01)
+    room = home.graph.room_of(node.id) or 0
+    variant = variant_of(node.class_name, home.seed, room)
+    part.movable_shapes = local_model(node.class_name, node.category, part.movable.half,
+                                      variant)
     return True
 
 
 def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    """A plain box; screens get a thin panel on the side facing the room, lamps light."""
+    """The class's model; screens get their panel, lamps light."""
     part.boxes.append(_flat(box))
     cls = node.class_name
+    front = _facing_seat(node, box, home) if cls in SCREEN_CLASSES else home.front(node, box)
+    part.shapes = home.model(node, _flat(box), front)
     if cls in SCREEN_CLASSES:
-        part.screen = _screen(box, home.toward(home.graph.room_of(node.id),
-                                               [*box.center, 0, 1, 0]))
+        screen = next((s for s in part.shapes if s.role == "screen"), None)
+        if screen is None:
+            screen = _screen(box, front)
+            part.shapes.append(screen)
+        part.screen = Box(screen.center, screen.half)
+    else:
+        part.shapes = [s if s.role != "screen" else Shape(s.kind, s.center, s.half,
+                                                         "screen_dark", s.axis)
+                       for s in part.shapes]
     if cls in LAMP_CLASSES or node.category == "Lamps":
         part.lamp = True
     return True
 
 
-def _screen(box: Box, toward: Any) -> Box:
-    thin = 0 if box.half[0] < box.half[1] else 1
-    sign = 1.0 if toward[thin] >= box.center[thin] else -1.0
+def _facing_seat(node: Node, box: Box, home: _Home) -> tuple[int, float]:
+    """A screen faces the nearest sofa of its room (else the room's middle)."""
+    room = home.graph.room_of(node.id)
+    seats = [b for n in home.graph.nodes_of_class("sofa") if home.graph.room_of(n.id) == room
+             and (b := to_mujoco(n)) is not None]
+    if not seats:
+        return home.front(node, box)
+    seat = min(seats, key=lambda b: float(np.hypot(*(b.center[:2] - box.center[:2]))))
+    return _front_axis(box, seat.center)
+
+
+def _screen(box: Box, front: tuple[int, float]) -> Shape:
+    """A thin panel on the front face, inside the box."""
+    axis, sign = front
     c = box.center.copy()
-    c[thin] += sign * (box.half[thin] + 0.006)
+    c[axis] += sign * (box.half[axis] - 0.004)
     half = box.half * 0.9
-    half[thin] = 0.005
-    return Box(c, half)
+    half[axis] = 0.004
+    return Shape("box", c, half, "screen")
 
 
 _SHAPERS: dict[str, Shaper] = {

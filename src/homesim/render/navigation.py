@@ -1,9 +1,11 @@
-"""Paths for the agent: a 2D occupancy grid of the home and A* on it.
+"""Paths for the agent: A* on the home's walk grid, the floor model grounding uses.
 
-Cells are free where a floor tile lies and nothing stands at leg height (walls,
-furniture), after growing obstacles by the agent's radius. Door frames and doors
-are passable. Paths are shortened by line of sight, so the agent walks straight
-segments around furniture and through doorways.
+The grid is the walkable floor of `homesim.world.floor.FloorModel`: the cells where
+grounding would let the agent stand (its square on a room's floor, clear of obstacles)
+and doorways' passages, joined into one walkable region (pockets left out). Grounding
+chooses standing spots on that region, so the agent walks to them on the floor they were
+chosen on. Paths are shortened by line of sight, so the agent walks
+straight segments around furniture and through doorways.
 """
 
 from __future__ import annotations
@@ -15,13 +17,17 @@ import numpy as np
 
 from homesim.errors import ExecutionError
 from homesim.render.layout import Box, Layout
+from homesim.world.floor import CELL
 
-CELL = 0.1
-"""Grid resolution, metres."""
-AGENT_RADIUS = 0.25
+__all__ = ["CELL", "LEG_LEVEL", "PASSABLE", "Grid", "astar", "build_grid", "goal_cells",
+           "plan_path", "smooth"]
+
 PASSABLE = frozenset({"floor", "ceiling", "door", "doorjamb", "rug", "character"})
+"""Parts the body passes through (`homesim.render.interact` steps up to furniture among
+the others; walking uses the floor model, not parts)."""
 LEG_LEVEL = (0.08, 1.2)
-"""Things between these heights (metres) block walking."""
+"""Parts between these heights (metres) are in the body's way when it steps up to
+furniture (`homesim.render.interact`)."""
 
 
 @dataclass
@@ -49,47 +55,23 @@ class Grid:
         return int(idx[k][0]), int(idx[k][1])
 
     def line_free(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Whether every cell under the segment a-b (sampled each half cell) is free."""
         n = int(np.ceil(np.linalg.norm(b - a) / (CELL / 2))) + 1
-        return all(self.free[self.cell(a + t * (b - a))] for t in np.linspace(0.0, 1.0, n))
-
-
-def _mark(grid: np.ndarray, origin: np.ndarray, box: Box, value: bool, grow: float) -> None:
-    lo = np.floor((box.lo[:2] - grow - origin) / CELL + 0.5).astype(int)
-    hi = np.ceil((box.hi[:2] + grow - origin) / CELL - 0.5).astype(int)
-    lo = np.maximum(lo, 0)
-    hi = np.minimum(hi, np.array(grid.shape) - 1)
-    if np.all(hi >= lo):
-        grid[lo[0]:hi[0] + 1, lo[1]:hi[1] + 1] = value
+        t = np.linspace(0.0, 1.0, n)[:, None]
+        ij = np.round((a + t * (b - a) - self.origin) / CELL).astype(int)
+        ij = np.clip(ij, 0, np.array(self.free.shape) - 1)
+        return bool(self.free[ij[:, 0], ij[:, 1]].all())
 
 
 def build_grid(layout: Layout) -> Grid:
-    """The occupancy grid of a home's layout."""
-    lo = np.min([f.lo[:2] for f in layout.floors], axis=0)
-    hi = np.max([f.hi[:2] for f in layout.floors], axis=0)
-    shape = tuple(np.ceil((hi - lo) / CELL).astype(int) + 1)
-    free = np.zeros(shape, bool)
-    origin = lo + CELL / 2
-    for f in layout.floors:
-        _mark(free, origin, Box(f.center, f.half - CELL / 2), True, 0.0)
-    for part in layout.parts:
-        if part.class_name in PASSABLE or part.movable is not None:
-            continue
-        boxes = list(part.boxes)
-        for box in boxes:
-            if box.hi[2] > LEG_LEVEL[0] and box.lo[2] < LEG_LEVEL[1]:
-                _mark(free, origin, box, False, AGENT_RADIUS)
-    # Door frames: keep the opening between the posts walkable.
-    for part in layout.parts:
-        if part.class_name == "doorjamb" and len(part.boxes) == 2:
-            a, b = part.boxes
-            opening = Box.from_bounds(np.minimum(a.hi, b.hi) * 0 + np.minimum(a.lo, b.lo),
-                                      np.maximum(a.hi, b.hi))
-            along = 0 if opening.half[0] >= opening.half[1] else 1
-            inner = opening.half.copy()
-            inner[along] -= 0.12
-            inner[1 - along] += 0.35
-            _mark(free, origin, Box(opening.center, inner), True, 0.0)
-    return Grid(origin, free)
+    """The occupancy grid of a home's layout: its walk grid (the floor model)."""
+    walk = layout.walk
+    if walk is None:
+        raise ExecutionError("the home has no floor to walk on (no rooms with boxes)")
+    free = np.zeros(walk.shape, bool)
+    for j, a, b, _ in walk.main_runs():
+        free[a:b + 1, j] = True
+    return Grid(np.array(walk.origin, float), free)
 
 
 _STEPS = [(1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),

@@ -20,6 +20,10 @@ from homesim.world.graph import EnvironmentGraph
 from homesim.world.vocab import ON, S_OFF, S_ON
 
 _CEILING_LAMPS = ("ceilinglamp", "walllamp")
+HANDLE_HEIGHT = 1.0
+"""Metres: where a hand takes a door or a tall appliance's front (lower fronts: their top)."""
+HANDLE_OUT = 0.02
+"""Metres: a handle stands this far out of its panel."""
 
 
 class Props:
@@ -36,6 +40,9 @@ class Props:
             if (b := to_mujoco(node)) is not None:
                 self.boxes[node.id] = b
         self.held: dict[str, int] = {}  # side -> node id
+        # side -> the held object's centre in the frame of the hand's body (set when it is
+        # taken, so it rides where the hand touched it: no jump into the palm)
+        self.grip: dict[str, np.ndarray] = {}
         self.lit = {n for n, p in self.parts() if p.lamp and p.is_on}
         self.screens = {n for n, p in self.parts() if p.screen is not None and p.is_on}
         # Room id -> lit; None stands for "outside every room" (a switch there may be used).
@@ -80,20 +87,39 @@ class Props:
     def free_side(self) -> str:
         return "r" if "r" not in self.held else "l"
 
-    def handle_point(self, node_id: int, agent_xy: np.ndarray) -> np.ndarray:
-        """Where a hand goes to open, close or switch something."""
-        box = self.box_of(node_id)
-        p = box.center.copy()
+    def handle_local(self, node_id: int, agent_xy: np.ndarray) -> np.ndarray:
+        """Where a hand takes a hinged front, in its hinge body's frame (closed): on its
+        handle or knob (the model's chrome part) where it has one, else near the free
+        edge at about 1 m; on the face toward the agent."""
         part = self.scene.layout.part(node_id)
-        if part is not None and part.hinge is not None:
-            h = part.hinge
-            p = h.pivot + 1.8 * h.panel.center
-            p[2] = min(max(h.pivot[2], 0.5), 1.3)
-        if p[2] > 1.7:
-            p[2] = 1.7
-        near = np.clip(agent_xy, box.lo[:2], box.hi[:2])  # the side facing the agent
-        p[:2] = 0.5 * p[:2] + 0.5 * near
+        if part is None or part.hinge is None:
+            raise ExecutionError(f"node {node_id} has no hinged front")
+        h = part.hinge
+        thin = int(np.argmin(h.panel.half[:2]))
+        side = 1.0 if agent_xy[thin] >= h.pivot[thin] + h.panel.center[thin] else -1.0
+        handles = [sh for sh in getattr(h, "shapes", ()) if sh.role == "chrome"]
+        if handles:
+            grip = handles[-1]
+            p = np.array(grip.center, float)
+            p[thin] += side * float(grip.half[thin])
+            return p
+        p = 1.8 * h.panel.center  # the panel's centre lies half way to its free edge
+        p[thin] = h.panel.center[thin] + side * (h.panel.half[thin] + HANDLE_OUT)
+        margin = min(0.08, 0.5 * h.panel.half[2])
+        lo = h.panel.center[2] - h.panel.half[2] + margin
+        hi = h.panel.center[2] + h.panel.half[2] - margin
+        p[2] = float(np.clip(HANDLE_HEIGHT - h.pivot[2], lo, hi))
         return p
+
+    def handle_world(self, node_id: int, local: np.ndarray, angle: float) -> np.ndarray:
+        """A point of a hinged front (hinge-frame `local`) with the front swung to `angle`."""
+        part = self.scene.layout.part(node_id)
+        if part is None or part.hinge is None:
+            raise ExecutionError(f"node {node_id} has no hinged front")
+        h = part.hinge
+        c, s = np.cos(angle), np.sin(angle)
+        return h.pivot + np.array([c * local[0] - s * local[1], s * local[0] + c * local[1],
+                                   local[2]])
 
     def placement(self, obj: int, rel: str, dest: int, agent_xy: np.ndarray) -> np.ndarray:
         """Where an object ends up when put ON or INSIDE a destination."""
@@ -105,6 +131,20 @@ class Props:
         xy = 0.5 * (box.center[:2] + jitter) + 0.5 * near
         z = box.hi[2] + half[2] if rel == ON else box.lo[2] + 0.05 + half[2]
         return np.r_[xy, z]
+
+    def landing(self, obj: int, dest: int, final: np.ndarray,
+                carried: np.ndarray) -> np.ndarray:
+        """Where a put object comes to rest when let go at `carried`: at the height of
+        `final` (on the destination's top or its floor inside), across the destination
+        where it was carried (kept within the destination's footprint). Put on or in
+        something held, it stays where it was let go."""
+        if dest in self.held.values():
+            return np.asarray(carried, float).copy()
+        box = self.box_of(dest)
+        half = self.half_of(obj)
+        lo = box.lo[:2] + np.minimum(half[:2], box.half[:2])
+        hi = box.hi[:2] - np.minimum(half[:2], box.half[:2])
+        return np.r_[np.clip(carried[:2], lo, hi), final[2]]
 
     def move(self, obj: int, position: np.ndarray) -> None:
         """Set a movable object's position (others stay where they are)."""

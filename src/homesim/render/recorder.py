@@ -19,6 +19,7 @@ from homesim.render.flow import intrinsics, optical_flow, project, world_to_cam
 from homesim.render.gl import mujoco
 from homesim.render.renderer import Renderer
 from homesim.render.scene import BACKGROUND, SceneModel
+from homesim.render.shots import shot_frames
 
 
 @dataclass
@@ -32,6 +33,7 @@ class FrameTruth:
     class_seg: np.ndarray  # uint16 class index (0 background)
     instance_seg: np.ndarray  # int32 graph node id (0 background)
     flow: np.ndarray  # (H, W, 2) float32 pixels to the next frame (u, v)
+    flow_valid: np.ndarray  # bool: the pixel's point is seen in front of the next camera
     intrinsics: np.ndarray  # (3, 3)
     world_to_cam: np.ndarray  # (4, 4) OpenCV convention
     joints3d: np.ndarray  # (J, 3) world metres
@@ -95,12 +97,15 @@ class SceneState:
         if self._mocap:
             d.mocap_pos[:] = tl.mocap[i]
         lit = tl.lamps[i]
+        lights: dict[int, bool] = {}  # a room's light is on when any of its lamps is
         for n, mat in self.scene.lamp_mat.items():
             on = n in lit
             m.mat_emission[mat] = 0.9 if on else 0.0
             lid = self._light_ids.get(n, -1)
             if lid >= 0:
-                m.light_active[lid] = on
+                lights[lid] = lights.get(lid, False) or on
+        for lid, on in lights.items():
+            m.light_active[lid] = on
         screen_off, screen_on = self.scene.screen_mats
         for n, g in self.scene.screen_geom.items():
             m.geom_matid[g] = screen_on if n in tl.screens[i] else screen_off
@@ -118,6 +123,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     w, h = renderer.width, renderer.height
     ks = [intrinsics(w, h, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
+    shots = shot_frames(scene, timeline)
     node_lut = np.concatenate([[BACKGROUND], scene.geom_node]).astype(np.int32)
     class_lut = np.concatenate([[0], scene.geom_class]).astype(np.uint16)
     visible = None
@@ -127,6 +133,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         agent = d.xpos[scene.model.body("agent").id].copy()
         if fixed_camera is not None:
             cam = fixed_camera
+        elif shots[i] >= 0:  # a close-up of the interaction under way
+            cam = director.force(shots[i])
         else:
             cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: view_score(
                 renderer, d, scene, c, ks, f))
@@ -150,18 +158,25 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         depth[~seen] = 0.0
         truth = FrameTruth(
             i, cam, rgb, depth, class_lut[ids + 1], instance,
-            np.zeros((h, w, 2), np.float32), ks[cam], w2c, joints, uv, inside & unhidden, False)
+            np.zeros((h, w, 2), np.float32), np.zeros((h, w), bool), ks[cam], w2c, joints, uv,
+            inside & unhidden, False)
         pending = (truth, ids, poses)
     if pending is not None:
         truth = pending[0]
-        yield _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
+        last = _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
+        last.flow_valid[:] = False  # no next frame to flow to
+        yield last
 
 
 def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> FrameTruth:
+    """Complete frame t with the flow to t+1 (camera `cam1`, geom poses `poses1`)."""
     truth, ids, (xpos0, xmat0) = pending
-    truth.flow = optical_flow(truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1,
-                              xpos0, xmat0, poses1[0], poses1[1])
+    truth.flow, truth.flow_valid = optical_flow(
+        truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1, xpos0, xmat0,
+        poses1[0], poses1[1])
     truth.cut = cam1 != truth.camera
+    if truth.cut:  # across a cut the flow is no visual correspondence
+        truth.flow_valid[:] = False
     return truth
 
 
@@ -178,9 +193,17 @@ def iter_still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     body = scene.model.body("agent").id
     ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
+    shots = shot_frames(scene, timeline)
     for i in frames:
         d = state.apply(i)
         director = Director(scene)  # a fresh choice per frame: no continuity needed
-        cam = director.choose(d.xpos[body].copy(), None,
-                              lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
+        cam = shots[i] if shots[i] >= 0 else director.choose(
+            d.xpos[body].copy(), None,
+            lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
         yield i, renderer.rgb(d, cam)
+
+
+def shot_camera(scene: SceneModel, timeline: Timeline, frame: int) -> int | None:
+    """The close-up camera that films `frame` (an interaction under way), if any."""
+    cam = shot_frames(scene, timeline)[frame]
+    return None if cam < 0 else cam

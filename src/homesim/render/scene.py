@@ -8,6 +8,7 @@ mocap slot of each movable object, the qpos address of each hinge.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -16,7 +17,9 @@ from homesim.errors import HomesimError
 from homesim.render.agent import HINGES, JOINTS, AgentShape, agent_mjcf
 from homesim.render.cameras import CameraSpec, room_cameras
 from homesim.render.gl import mujoco
-from homesim.render.layout import Box, Layout, build_layout
+from homesim.render.layout import Layout, Part, build_layout
+from homesim.render.materials import Look
+from homesim.render.models import Shape
 from homesim.world.graph import EnvironmentGraph
 
 BACKGROUND = 0
@@ -31,9 +34,60 @@ def _rgba(c) -> str:
     return " ".join(f"{float(x):.3f}" for x in c)
 
 
-def _box_geom(name: str, box: Box, rgba, extra: str = "") -> str:
-    return (f'<geom name="{name}" type="box" pos="{_v(box.center)}" '
-            f'size="{_v(np.maximum(box.half, 1e-3))}" rgba="{_rgba(rgba)}" {extra}/>')
+_AXIS_EULER = {0: ' euler="0 1.5708 0"', 1: ' euler="1.5708 0 0"', 2: ""}
+"""Turns MuJoCo's z-aligned cylinders and capsules to run along x or y."""
+
+
+def _shape_geom(name: str, s: Shape, material: str, rgba, origin=None) -> str:
+    center = s.center if origin is None else s.center - origin
+    turn = _AXIS_EULER[s.axis] if s.kind in ("cylinder", "capsule") else ""
+    color = "" if rgba is None else f' rgba="{_rgba(rgba)}"'
+    return (f'<geom name="{name}" type="{s.kind}" pos="{_v(center)}" '
+            f'size="{_v(s.mjcf_size())}"{turn} material="{material}"{color}/>')
+
+
+LIGHT_HEIGHT = 2.35
+"""Metres: the ceiling light of each room hangs here, pointing down."""
+
+
+def _part_geoms(part: Part, look: Look) -> list[str]:
+    """The MJCF of one part: static shapes, a mocap body, a hinged door."""
+    n = part.node_id
+    out = []
+
+    def geom(name: str, s: Shape, origin=None) -> str:
+        if s.role == "glow" and part.lamp:
+            return _shape_geom(name.replace(":", ":g", 1), s, f"lamp{n}", None, origin)
+        if s.role == "screen" and part.screen is not None:
+            return _shape_geom(f"n{n}:screen", s, "screen_off", None, origin)
+        mat, rgba = look.material(s.role, part.rgba)
+        return _shape_geom(name, s, mat, rgba, origin)
+
+    for k, s in enumerate(part.shapes):
+        out.append(geom(f"n{n}:{k}", s))
+    if part.movable is not None:
+        out.append(f'<body name="m{n}" mocap="true" pos="{_v(part.movable.center)}">'
+                   + "".join(geom(f"n{n}:m{k}", s) for k, s in enumerate(part.movable_shapes))
+                   + "</body>")
+    if part.hinge is not None:
+        h = part.hinge
+        out.append(f'<body name="h{n}" pos="{_v(h.pivot)}">'
+                   f'<joint name="hinge{n}" type="hinge" axis="0 0 1"/>'
+                   + "".join(geom(f"n{n}:d{k}", s) for k, s in enumerate(h.shapes))
+                   + "</body>")
+    return out
+
+
+def _room_lights(layout: Layout) -> list[str]:
+    """One ceiling light per room (its lamps and switch turn it on and off)."""
+    out = []
+    for rid, box in sorted(layout.room_floors.items()):
+        x, y = box.center[:2]
+        out.append(f'<light name="room{rid}" pos="{x:.3f} {y:.3f} {LIGHT_HEIGHT}" '
+                   'dir="0 0 -1" directional="false" cutoff="75" exponent="2" '
+                   'diffuse="0.55 0.52 0.46" specular="0.15 0.15 0.15" '
+                   'attenuation="1 0.05 0.02" castshadow="false"/>')
+    return out
 
 
 @dataclass
@@ -51,7 +105,8 @@ class SceneModel:
     hinge_qpos: dict[int, int] = field(default_factory=dict)  # node id -> qpos address
     hinge_open: dict[int, float] = field(default_factory=dict)  # node id -> open angle
     lamp_mat: dict[int, int] = field(default_factory=dict)  # node id -> material id
-    lamp_light: dict[int, int] = field(default_factory=dict)  # node id -> light id
+    lamp_light: dict[int, int] = field(default_factory=dict)  # node id -> its room's light
+    room_light: dict[int, int] = field(default_factory=dict)  # room id -> light id
     screen_geom: dict[int, int] = field(default_factory=dict)  # node id -> geom id
     screen_mats: tuple[int, int] = (-1, -1)  # (off, on) material ids
     joint_qpos: dict[str, int] = field(default_factory=dict)  # agent hinge -> qpos address
@@ -76,52 +131,32 @@ class SceneModel:
 
 
 def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
-               max_size: tuple[int, int] = (640, 480)) -> str:
-    """The MJCF text of a home with the agent standing at its start position."""
-    assets = [
-        '<texture name="tv_image" type="2d" builtin="gradient" rgb1="0.1 0.5 0.95" '
-        'rgb2="0.95 0.5 0.1" width="64" height="64"/>',
-        '<material name="screen_off" rgba="0.02 0.02 0.03 1" specular="0.6" shininess="0.8"/>',
-        '<material name="screen_on" texture="tv_image" rgba="1 1 1 1" emission="1"/>',
-    ]
+               max_size: tuple[int, int] = (640, 480), look: Look | None = None
+               ) -> tuple[str, dict[str, bytes]]:
+    """The MJCF text of a home with the agent standing at its start position, and the
+    texture files it reads (pass both to `mujoco.MjModel.from_xml_string`)."""
+    look = look or Look(0, layout.room_names)
+    assets, files = look.assets()
     body = []
     for part in layout.parts:
-        n = part.node_id
-        for k, box in enumerate(part.boxes):
-            body.append(_box_geom(f"n{n}:{k}", box, part.rgba))
-        if part.movable is not None:
-            body.append(f'<body name="m{n}" mocap="true" pos="{_v(part.movable.center)}">'
-                        + _box_geom(f"n{n}:m", Box(np.zeros(3), part.movable.half), part.rgba)
-                        + "</body>")
-        if part.hinge is not None:
-            h = part.hinge
-            body.append(f'<body name="h{n}" pos="{_v(h.pivot)}">'
-                        f'<joint name="hinge{n}" type="hinge" axis="0 0 1"/>'
-                        + _box_geom(f"n{n}:door", h.panel, part.rgba) + "</body>")
-        if part.screen is not None:
-            # No rgba on the screen: its colour comes from the material swapped at runtime.
-            body.append(f'<geom name="n{n}:screen" type="box" pos="{_v(part.screen.center)}" '
-                        f'size="{_v(part.screen.half)}" material="screen_off"/>')
         if part.lamp:
-            assets.append(f'<material name="lamp{n}" rgba="{_rgba(part.rgba)}" emission="0"/>')
-            top = max((b.hi[2] for b in part.boxes), default=2.4)
-            center = part.boxes[0].center if part.boxes else np.zeros(3)
-            body.append(f'<light name="light{n}" pos="{center[0]:.3f} {center[1]:.3f} '
-                        f'{min(top, 2.4) - 0.2:.3f}" dir="0 0 -1" directional="false" '
-                        'diffuse="0.45 0.42 0.35" specular="0 0 0" attenuation="1 0.15 0.05" '
-                        'castshadow="false" active="false"/>')
+            assets.append(f'<material name="lamp{part.node_id}" rgba="1 0.96 0.85 1" '
+                          'emission="0" specular="0"/>')
+        body.extend(_part_geoms(part, look))
+    body.extend(_room_lights(layout))
     for cam in cameras:
         body.append(f'<camera name="{cam.name}" pos="{_v(cam.pos)}" '
                     f'xyaxes="{_v(cam.xaxis)} {_v(cam.yaxis)}" fovy="{cam.fovy:.2f}"/>')
     width, height = max_size
-    return f"""<mujoco model="home">
+    xml = f"""<mujoco model="home">
   <compiler angle="radian"/>
   <statistic extent="20" center="0 0 1"/>
   <visual>
     <global offwidth="{width}" offheight="{height}"/>
-    <quality shadowsize="0" offsamples="0" numquads="1" numslices="12" numstacks="8"/>
-    <map znear="0.002" zfar="3"/>
-    <headlight ambient="0.38 0.38 0.38" diffuse="0.45 0.45 0.45" specular="0.05 0.05 0.05"/>
+    <quality shadowsize="{SHADOW_SIZE}" offsamples="0" numquads="1" numslices="12"
+             numstacks="6"/>
+    <map znear="0.002" zfar="3" shadowclip="6" shadowscale="0.6"/>
+    <headlight ambient="0.3 0.3 0.3" diffuse="0.3 0.3 0.3" specular="0.05 0.05 0.05"/>
   </visual>
   <default><geom contype="0" conaffinity="0"/></default>
   <asset>{"".join(assets)}</asset>
@@ -130,6 +165,11 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
 {chr(10).join(body)}
   </worldbody>
 </mujoco>"""
+    return xml, files
+
+
+SHADOW_SIZE = 1024
+"""Pixels per side of the shadow map of the light of the camera's room."""
 
 
 def _material_lamps(model, layout: Layout) -> dict[int, int]:
@@ -141,19 +181,33 @@ def _material_lamps(model, layout: Layout) -> dict[int, int]:
     return out
 
 
+def _lamp_lights(scene: SceneModel, graph: EnvironmentGraph) -> None:
+    """Each room's light, and the light each lamp turns on: its room's (several lamps
+    share one; the recorder lights it when any of them is on)."""
+    m = scene.model
+    for rid in scene.layout.room_floors:
+        scene.room_light[rid] = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_LIGHT, f"room{rid}")
+    for part in scene.layout.parts:
+        room = graph.room_of(part.node_id)
+        if part.lamp and room in scene.room_light:
+            scene.lamp_light[part.node_id] = scene.room_light[room]
+
+
 def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
-                max_size: tuple[int, int] = (640, 480)) -> SceneModel:
-    """Compile a home with geometry into a `SceneModel` (cameras randomised by `seed`)."""
-    layout = build_layout(graph)
+                max_size: tuple[int, int] = (640, 480),
+                shots: Sequence[CameraSpec] = ()) -> SceneModel:
+    """Compile a home with geometry into a `SceneModel` (cameras randomised by `seed`;
+    `shots`: close-up cameras added after the room cameras, see `homesim.render.shots`)."""
+    layout = build_layout(graph, seed)
     if not layout.floors:
         raise HomesimError("the home has no floor boxes: rendering needs a home with 3D "
                            "geometry (e.g. --home scene1, not scene1_trimmed)")
     if graph.character_id is None:
         raise HomesimError("the home has no character node to animate")
-    cameras = room_cameras(layout, seed)
-    xml = scene_mjcf(layout, cameras, agent, max_size)
+    cameras = room_cameras(layout, seed) + list(shots)
+    xml, files = scene_mjcf(layout, cameras, agent, max_size, Look(seed, layout.room_names))
     try:
-        model = mujoco.MjModel.from_xml_string(xml)
+        model = mujoco.MjModel.from_xml_string(xml, files)
     except ValueError as e:  # a bug of ours, but say where
         raise HomesimError(f"could not compile the scene model: {e}") from None
     # Lamps and screens: attach materials to their geoms now that ids are known.
@@ -177,8 +231,6 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
         geom_class[g] = class_index[cls]
         if name.endswith(":screen"):
             screen_geom[nid] = g
-        elif nid in lamp_mat:
-            model.geom_matid[g] = lamp_mat[nid]
     scene = SceneModel(model, layout, cameras, char, classes, geom_node, geom_class,
                        lamp_mat=lamp_mat, screen_geom=screen_geom)
     obj = mujoco.mjtObj
@@ -191,8 +243,7 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
         if part.hinge is not None:
             scene.hinge_qpos[n] = int(model.jnt_qposadr[model.joint(f"hinge{n}").id])
             scene.hinge_open[n] = part.hinge.open_angle
-        if part.lamp:
-            scene.lamp_light[n] = mujoco.mj_name2id(model, obj.mjOBJ_LIGHT, f"light{n}")
+    _lamp_lights(scene, graph)
     if model.jnt_qposadr[model.joint("a:root").id] != 0:
         raise AssertionError("the agent's free joint must come first in qpos")
     scene.joint_qpos = {h: int(model.jnt_qposadr[model.joint(f"a:{h}").id]) for h in HINGES}

@@ -7,6 +7,11 @@ converted from the VirtualHome release by ``tools/convert_homes.py``, which fixe
 fault of the release: in scene1 the character's INSIDE edge named bathroom 1 while its box
 (and its CLOSE edges) are in bedroom 67; the edge now follows the box, so ``homesim run``
 and the rendered video agree (`character_room_problem` checks every built-in home).
+
+Each home ships as a column file (``<name>.columns.json.gz``, `homesim.world.columns`),
+which loads about 4x faster than its VirtualHome JSON; ``tools/pack_homes.py`` writes
+them from the JSON (``<name>.json.gz``, kept in the source tree, not in the wheel), and a
+test checks that both give exactly the same graph. A home with only its JSON still loads.
 """
 
 from __future__ import annotations
@@ -16,17 +21,35 @@ from functools import lru_cache
 from importlib import resources
 
 from homesim.errors import GraphError
+from homesim.world.columns import SUFFIX, read_columns
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.vocab import INSIDE
 
 _PACKAGE = "homesim.world.builtin"
+_JSON = ".json.gz"
 
 
 def home_names() -> list[str]:
     """Names of the built-in homes, e.g. ``["scene1", "scene1_trimmed", ...]``."""
-    names = [p.name.removesuffix(".json.gz") for p in resources.files(_PACKAGE).iterdir()
-             if p.name.endswith(".json.gz")]
+    names = {p.name.removesuffix(SUFFIX).removesuffix(_JSON)
+             for p in resources.files(_PACKAGE).iterdir() if p.name.endswith(_JSON)}
     return sorted(names)
+
+
+def load_builtin(name: str) -> EnvironmentGraph:
+    """A built-in home read afresh (not cached): from its column file, else its JSON."""
+    names = home_names()
+    if name not in names:
+        close = difflib.get_close_matches(name, names, n=1)
+        hint = f" (did you mean {close[0]}?)" if close else ""
+        raise GraphError(f"unknown home {name!r}{hint}; built-in homes: {', '.join(names)}")
+    folder = resources.files(_PACKAGE)
+    columns = folder / f"{name}{SUFFIX}"
+    if columns.is_file():
+        with resources.as_file(columns) as path:
+            return read_columns(path)
+    with resources.as_file(folder / f"{name}{_JSON}") as path:
+        return EnvironmentGraph.load(path)
 
 
 GENERATED_PREFIX = "gen-"
@@ -56,13 +79,7 @@ def load_home(name: str) -> EnvironmentGraph:
         from homesim.world.procedural import generate_home
 
         return generate_home(int(name.removeprefix(GENERATED_PREFIX)))
-    names = home_names()
-    if name not in names:
-        close = difflib.get_close_matches(name, names, n=1)
-        hint = f" (did you mean {close[0]}?)" if close else ""
-        raise GraphError(f"unknown home {name!r}{hint}; built-in homes: {', '.join(names)}")
-    with resources.as_file(resources.files(_PACKAGE) / f"{name}.json.gz") as path:
-        return EnvironmentGraph.load(path)
+    return load_builtin(name)
 
 
 def rooms_holding_box(graph: EnvironmentGraph, node_id: int) -> list[int]:

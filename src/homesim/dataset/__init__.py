@@ -1,0 +1,15 @@
+"""The VirtualHome Activity video data set: randomised episodes rendered with ground truth
+into WebDataset shards, resumable, scaled out on Ray, streamed by a PyTorch loader.
+
+Glossary:
+    episode: one program animated once in one randomised home (`EpisodeSpec`): a WebDataset
+        sample ``ep-NNNNNN`` with its video, per-frame maps, arrays and json.
+    shard: a tar of consecutive episodes (``shards/shard-NNNNNN.tar``).
+    manifest: ``episodes.parquet``, one row per episode (status, reason, checksum...).
+    clip: a fixed-length window of an episode (default 2 s) with its step labels.
+"""
+
+from homesim.dataset.generate import Summary, generate_dataset, replay_episode
+from homesim.dataset.spec import DatasetConfig, EpisodeSpec
+
+__all__ = ["DatasetConfig", "EpisodeSpec", "Summary", "generate_dataset", "replay_episode"]

@@ -1,0 +1,142 @@
+"""What a data set is made of: its options (`DatasetConfig`) and each episode's random
+choices (`EpisodeSpec`), drawn from the seed and recorded so that an episode can be
+rendered again exactly (`homesim dataset replay`).
+
+Every episode draws from its own stream, ``random.Random("homesim-episode-SEED-INDEX")``,
+so an episode's choices do not depend on which episodes ran before it, in what order or
+on which worker: resuming and scaling out give the same episodes.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+from homesim.errors import HomesimError
+
+AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
+"""The four agents of `homesim.render.agent.AGENTS` (a test keeps the two equal)."""
+
+DEFAULT_HOMES: tuple[str, ...] = (
+    "scene1", "scene2", "scene3", "scene4", "scene5", "gen-0", "gen-1", "gen-2", "gen-3",
+    "gen-4")
+"""The five apartments and five generated homes (`homesim.world.procedural`)."""
+
+MODALITIES: tuple[str, ...] = ("rgb", "depth", "class", "instance", "flow")
+"""Per-frame images an episode can hold; pose, cameras and step spans are always kept."""
+
+SPEED_RANGE = (0.8, 1.25)
+"""Action speed factor drawn per episode: every motion takes 1/speed of its time."""
+
+MAX_MOVES = 6
+"""At most this many objects are moved to other allowed places per episode."""
+
+FORMAT = "homesim-activity/1"
+
+
+@dataclass(frozen=True)
+class DatasetConfig:
+    """The options of ``homesim dataset generate``: a run restarted with the same config
+    continues; a different config in the same folder is refused."""
+
+    programs: str = "synth"  # "synth" or a program file / folder / JSONL data set
+    n: int = 200
+    seed: int = 0
+    width: int = 320
+    height: int = 240
+    fps: int = 15
+    modalities: tuple[str, ...] = MODALITIES
+    gt_stride: int = 1  # dense maps (depth, class, instance, flow) every k-th frame
+    homes: tuple[str, ...] = DEFAULT_HOMES
+    shard_size: int = 8  # episodes per shard
+    format: str = FORMAT
+
+    def __post_init__(self) -> None:
+        unknown = [m for m in self.modalities if m not in MODALITIES]
+        if unknown:
+            raise HomesimError(f"unknown modality {unknown[0]!r}; choose from "
+                               f"{', '.join(MODALITIES)}")
+        if self.n < 1 or self.gt_stride < 1 or self.shard_size < 1:
+            raise HomesimError("--n, --gt-stride and --shard-size must be at least 1")
+        if not self.homes:
+            raise HomesimError("no homes to choose from")
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["modalities"], d["homes"] = list(self.modalities), list(self.homes)
+        return d
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> DatasetConfig:
+        names = {f.name for f in fields(cls)}
+        d = {k: v for k, v in data.items() if k in names}
+        d["modalities"], d["homes"] = tuple(d["modalities"]), tuple(d["homes"])
+        return cls(**d)
+
+    @property
+    def num_shards(self) -> int:
+        return -(-self.n // self.shard_size)
+
+
+@dataclass(frozen=True)
+class EpisodeSpec:
+    """Everything that decides one episode: with the config's size, fps and modalities
+    it renders to the same bytes every time."""
+
+    index: int
+    program_id: str
+    program: str  # the program's text: title, description, steps (`parse_program`)
+    home: str
+    agent: str
+    render_seed: int  # cameras (positions, angles, fields of view) and render details
+    ground_seed: int  # preparation and grounding: which instances the program acts on
+    placement_seed: int  # which objects move where, and the agent's start
+    moves: int  # how many objects to try to move
+    speed: float  # action speed factor
+    extra: dict[str, Any] = field(default_factory=dict, compare=False)
+
+    @property
+    def key(self) -> str:
+        """The episode's WebDataset key (``ep-000042``)."""
+        return episode_key(self.index)
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d.pop("extra")
+        return d
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> EpisodeSpec:
+        names = {f.name for f in fields(cls)} - {"extra"}
+        missing = names - set(data)
+        if missing:
+            raise HomesimError(f"episode spec lacks {sorted(missing)[0]!r}")
+        return cls(**{k: data[k] for k in names})
+
+
+def episode_key(index: int) -> str:
+    return f"ep-{index:06d}"
+
+
+def draw_spec(config: DatasetConfig, index: int, program_id: str, program: str
+              ) -> EpisodeSpec:
+    """The random choices of episode `index` (its own stream; see the module docstring)."""
+    rng = random.Random(f"homesim-episode-{config.seed}-{index}")
+    home = rng.choice(config.homes)
+    agent = rng.choice(AGENT_NAMES)
+    seeds = [rng.randrange(2**31) for _ in range(3)]
+    moves = rng.randint(0, MAX_MOVES)
+    speed = round(rng.uniform(*SPEED_RANGE), 3)
+    return EpisodeSpec(index, program_id, program, home, agent, seeds[0], seeds[1], seeds[2],
+                       moves, speed)
+
+
+def plan_episodes(config: DatasetConfig, programs: Sequence[tuple[str, str]]
+                  ) -> list[EpisodeSpec]:
+    """One spec per episode; program i of `programs` (id, text) goes to episode i, cycling
+    when there are fewer programs than episodes."""
+    if not programs:
+        raise HomesimError(f"{config.programs}: no programs")
+    return [draw_spec(config, i, *programs[i % len(programs)]) for i in range(config.n)]

@@ -1,0 +1,147 @@
+"""Hands on objects: where a hand touches, where the agent stands to reach it.
+
+A reach aims at a point on the object's surface (the point of its box nearest the
+shoulder, or a door's handle). When grounding's standing spot leaves it out of the arm's
+reach, `ReachPlanner` finds where to stand instead, on the same floor model
+(`homesim.world.floor`): on the straight line toward the object while the floor is
+walkable, else around it; crouching for low points, leaning (the IK bends the spine) for
+far ones.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from homesim.render.agent import AgentShape
+from homesim.render.ik import ArmIK, crouched
+from homesim.render.layout import Box, Layout
+from homesim.render.poses import Pose, standing
+
+TOUCH = 0.01
+"""Metres: a hand this close to an object's surface touches it (grab, press, open)."""
+STEP = 0.05
+"""Metres between the standing points tried on the way to an object."""
+CROUCH = (0.0, 0.2, 0.35)
+"""Pelvis drops (metres) tried, in order, for points below `LOW`."""
+LOW = 0.75
+"""Metres: points lower than this may be reached crouching."""
+COMFORT_LEAN = 0.5
+"""Radians of spine pitch: the agent steps closer rather than bow more than this."""
+AROUND = (0.35, 0.5, 0.65)
+"""Metres from the target (horizontally) of the standing points tried around it when the
+way straight to it is blocked."""
+MAX_AROUND = 24
+"""At most this many of those are tried (nearest to the agent first)."""
+
+
+def box_gap(box: Box, point: np.ndarray) -> float:
+    """Distance from a point to a box (0 inside it)."""
+    d = np.maximum(np.abs(np.asarray(point, float) - box.center) - box.half, 0.0)
+    return float(np.linalg.norm(d))
+
+
+def surface_point(box: Box, toward: np.ndarray, inset: float = 0.004) -> np.ndarray:
+    """The point of a box nearest `toward`, `inset` metres inside its surface (the box's
+    centre when `toward` is inside it)."""
+    toward = np.asarray(toward, float)
+    p = np.clip(toward, box.lo, box.hi)
+    d = toward - p
+    n = float(np.linalg.norm(d))
+    if n < 1e-9:
+        return box.center.copy()
+    inner = np.minimum(box.half, inset)
+    return np.clip(p - inset * d / n, box.lo + inner, box.hi - inner)
+
+
+@dataclass(frozen=True)
+class ReachPlan:
+    """A reach: the pose at its end (standing where it must, crouched if low) and the
+    distance the hand stays from its target point."""
+
+    pose: Pose
+    gap: float  # metres
+
+
+class ReachPlanner:
+    """Finds a standing point from which a hand reaches a target point."""
+
+    def __init__(self, layout: Layout, ik: ArmIK, shape: AgentShape):
+        self.ik, self.shape = ik, shape
+        self.walk = layout.walk
+
+    def fits(self, xy: np.ndarray) -> bool:
+        """Whether the agent may stand at `xy`: the nearest cell of the floor model
+        (`homesim.world.floor`, the one grounding's spots come from) is walkable."""
+        if self.walk is None:
+            return False
+        return self.walk.walkable(*self.walk.index(float(xy[0]), float(xy[1])))
+
+    def reach_from(self, xy: np.ndarray, side: str, point: np.ndarray,
+                   grip: np.ndarray | None = None) -> ReachPlan:
+        """The best reach of `point` standing at `xy`, facing it (crouching if low);
+        `grip`: with the point held at this offset from the hand (see `ArmIK.reach`)."""
+        d = point[:2] - xy
+        yaw = math.atan2(d[1], d[0]) if np.hypot(*d) > 1e-6 else 0.0
+        base = standing(self.shape, xy, yaw)
+        best: ReachPlan | None = None
+        for drop in CROUCH if point[2] < LOW else CROUCH[:1]:
+            reached, _ = self.ik.reach(crouched(base, self.shape, drop), side, point, grip)
+            gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
+            if best is None or gap < best.gap - 1e-4:
+                best = ReachPlan(reached, gap)
+            if gap <= TOUCH:
+                break
+        assert best is not None
+        return best
+
+    def plan(self, start_xy: np.ndarray, side: str, point: np.ndarray,
+             grip: np.ndarray | None = None) -> ReachPlan:
+        """Where to stand to reach `point`: the first point on the way from `start_xy`
+        toward it (every `STEP` metres, while the body fits) from which the hand touches
+        it without bowing more than `COMFORT_LEAN` (else the first from which it touches
+        at all); else the nearest point around it (`AROUND`) from which it does; else the
+        point tried from which the hand comes closest."""
+        d = point[:2] - start_xy
+        dist = float(np.hypot(*d))
+        tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
+        best = self.reach_from(start_xy, side, point, grip)
+        touching = best if best.gap <= TOUCH else None
+        for xy in tries:
+            if touching is not None and _lean(touching) <= COMFORT_LEAN:
+                return touching
+            if not self.fits(xy):
+                break
+            plan = self.reach_from(xy, side, point, grip)
+            if plan.gap <= TOUCH and (touching is None or _lean(plan) < _lean(touching)):
+                touching = plan
+            if plan.gap < best.gap - 1e-3:
+                best = plan
+        if touching is not None:
+            return touching
+        for xy in self.around(start_xy, point)[:MAX_AROUND]:
+            plan = self.reach_from(xy, side, point, grip)
+            if plan.gap < best.gap - 1e-3:
+                best = plan
+            if plan.gap <= TOUCH:
+                break
+        return best
+
+    def around(self, start_xy: np.ndarray, point: np.ndarray) -> list[np.ndarray]:
+        """Points where the body fits around `point` (`AROUND` distances, 16 directions),
+        nearest to `start_xy` first."""
+        spots = [point[:2] + r * np.array([math.cos(a), math.sin(a)])
+                 for r in AROUND for a in np.linspace(0.0, 2 * math.pi, 16, endpoint=False)]
+        spots = [xy for xy in spots if self.fits(xy)]
+        return sorted(spots, key=lambda xy: float(np.hypot(*(xy - start_xy))))
+
+    def clear_line(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Whether the body fits all along the segment a-b (checked every 5 cm)."""
+        n = max(2, int(np.ceil(np.linalg.norm(b - a) / 0.05)) + 1)
+        return all(self.fits(a + t * (b - a)) for t in np.linspace(0.0, 1.0, n)[1:])
+
+
+def _lean(plan: ReachPlan) -> float:
+    return plan.pose.joints.get("spine_pitch", 0.0)
