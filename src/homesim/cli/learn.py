@@ -320,6 +320,9 @@ def rules(
     ] = None,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs to generate.")] = 2000,
     seed: Annotated[int, typer.Option(help="Seed of the generated programs.")] = 0,
+    descriptions: Annotated[str, typer.Option(
+        help="Description style of the generated programs: templates or people.")
+    ] = "templates",
 ) -> None:
     """Score the hand-written rule parser of the synthetic phrasings on every program: how
     invertible the description text is (1.0: the text says the program outright)."""
@@ -327,7 +330,11 @@ def rules(
     from homesim.learn.rules import parse
     from homesim.program.metrics import lcs_steps
 
-    examples = synthetic_examples(synth_n, seed, file)
+    from homesim.synth.grammar import STYLES
+
+    if descriptions not in STYLES:
+        raise HomesimError(f"--descriptions {descriptions}: choose {' or '.join(STYLES)}")
+    examples = synthetic_examples(synth_n, seed, file, style=descriptions)
     start = time.perf_counter()
     scores = [lcs_steps(parse(e.description), e.program) for e in examples]
     seconds = time.perf_counter() - start
