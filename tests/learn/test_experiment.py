@@ -37,3 +37,11 @@ def test_table_command_summarises_cached_runs(tmp_path, capsys):
     assert "| Rule parser (upper bound) | 1 | 1.000 ± 0.000 |" in text
     assert main(["learn", "rules", "--synth-n", "30"]) == 0
     assert "rule parser: steps LCS 1.000 on 30 programs" in capsys.readouterr().out
+
+
+def test_real_runs_do_not_depend_on_the_synthetic_size():
+    stored = RunSpec("real", "stratified", 0, synth_n=5000).to_dict()
+    assert RunSpec("real", "stratified", 0, synth_n=2000).matches(stored)
+    assert not RunSpec("real", "stratified", 1, synth_n=5000).matches(stored)
+    synthetic = RunSpec("synthetic", "stratified", 0, synth_n=5000).to_dict()
+    assert not RunSpec("synthetic", "stratified", 0, synth_n=2000).matches(synthetic)

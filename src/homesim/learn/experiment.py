@@ -49,6 +49,16 @@ class RunSpec:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def matches(self, stored: dict | None) -> bool:
+        """Whether `stored` (a saved `to_dict`) describes this run; the synthetic-set size
+        does not matter for real data."""
+        if not isinstance(stored, dict):
+            return False
+        mine = self.to_dict()
+        if self.dataset == "real":
+            stored, mine = {**stored, "synth_n": None}, {**mine, "synth_n": None}
+        return stored == mine
+
 
 SYNTH_SEED = 0
 """The synthetic programs are one generated set (this seed); each run's seed splits them."""
@@ -76,7 +86,7 @@ def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
     path = folder / "mle.pt"
     if path.is_file():
         t2p = Text2Prog.load(path, device)
-        if t2p.meta.get("spec") == spec.to_dict():
+        if spec.matches(t2p.meta.get("spec")):
             return t2p
     start = time.perf_counter()
     t2p = Text2Prog.create(splits.train, spec.seed, embeddings=spec.embeddings, device=device)
@@ -175,7 +185,7 @@ def cached_run(spec: RunSpec, out: Path) -> dict | None:
     if not cache.is_file():
         return None
     data = json.loads(cache.read_text())
-    return data if data.get("spec") == spec.to_dict() and data.get("rows") else None
+    return data if spec.matches(data.get("spec")) and data.get("rows") else None
 
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
@@ -188,7 +198,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     rows: dict[str, dict] = {}
     if cache.is_file():
         old = json.loads(cache.read_text())
-        if old.get("spec") == spec.to_dict():
+        if spec.matches(old.get("spec")):
             rows = old["rows"]
     splits = load_run_splits(spec)
     preload_vectors(splits, out / spec.dataset / "vectors.npz")
