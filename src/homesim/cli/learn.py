@@ -329,7 +329,6 @@ def rules(
     from homesim.learn.data import synthetic_examples
     from homesim.learn.rules import parse
     from homesim.program.metrics import lcs_steps
-
     from homesim.synth.grammar import STYLES
 
     if descriptions not in STYLES:
