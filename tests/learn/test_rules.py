@@ -12,3 +12,8 @@ def test_the_more_specific_phrase_wins_and_unknown_text_gives_nothing():
     assert [s.action.key for s in p.steps] == ["WALK", "OPEN", "GRAB", "WALK", "SIT"]
     assert [r.name for s in p.steps for r in s.args][:2] == ["hanger", "dresser"]
     assert len(parse("Make a cup of tea for grandma.")) == 0
+
+
+def test_known_pieces_of_unknown_text_still_parse():
+    p = parse("I am bored. Grab the cup, then I dance a little.")
+    assert [s.action.key for s in p.steps] == ["WALK", "GRAB"]

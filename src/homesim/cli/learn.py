@@ -265,6 +265,9 @@ def table(
     force: Annotated[bool, typer.Option(help="Replace the markdown file if it exists.")] = False,
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     device: DeviceOption = "auto",
+    only_cached: Annotated[bool, typer.Option(
+        help="Compute nothing: summarise the runs and rows already scored under OUT.")
+    ] = False,
 ) -> None:
     """The honest evaluation: every baseline and model, both splits, mean ± sd over seeds
     with bootstrap intervals (docs/learn.md). Learned rows are trained on real data only."""
@@ -274,7 +277,7 @@ def table(
         raise HomesimError(f"--seeds must be at least 1, got {seeds}")
     if markdown is not None:
         check_target(markdown, force)
-    from homesim.learn.experiment import RunSpec, block, run
+    from homesim.learn.experiment import RunSpec, block
     from homesim.learn.report import GOALS, MODEL_ROW, evaluation_markdown
     from homesim.learn.splits import SPLITS
 
@@ -283,21 +286,39 @@ def table(
     for name in datasets:
         with_model = model and name == "real"
         for split in SPLITS if name == "real" else ("stratified",):
-            runs = []
-            for seed in range(seeds):
-                spec = RunSpec(name, split, seed, synth_n, mle_epochs)
-                with _bar() as bar:
-                    runs.append(run(spec, out, device, with_model,
-                                    _Reporter(bar, f"{name} {split} seed {seed}")))
+            specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in range(seeds)]
+            runs = _runs(specs, out, device, with_model, only_cached)
+            if not runs:
+                console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
+                continue
             beat = tuple(dict.fromkeys((GOALS[split][0], "Title-medoid", "NN (description)")))
             blocks.setdefault(name, {})[split] = block(runs, MODEL_ROW, beat)
             console.print(_summary_table(name, split, blocks[name][split]))
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        write_text(markdown, evaluation_markdown(blocks, _machine(device), _versions(), seconds),
-                   force=force)
+        text = evaluation_markdown(blocks, _machine(device), _versions(),
+                                   None if only_cached else seconds)
+        write_text(markdown, text, force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
+
+
+def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool
+          ) -> list[dict]:
+    """Each spec's run: scored now (reusing what is cached), or only what is cached."""
+    from homesim.learn.experiment import cached_run, run
+
+    runs = []
+    for spec in specs:
+        if only_cached:
+            found = cached_run(spec, out)
+            if found is not None:
+                runs.append(found)
+            continue
+        with _bar() as bar:
+            runs.append(run(spec, out, device, with_model,
+                            _Reporter(bar, f"{spec.dataset} {spec.split} seed {spec.seed}")))
+    return runs
 
 
 def _summary_table(dataset: str, split: str, summary: dict) -> Table:
@@ -309,3 +330,32 @@ def _summary_table(dataset: str, split: str, summary: dict) -> Table:
                       *(f"{100 * m[k]['mean']:.1f}" for k in
                         ("simulator", "elsewhere", "solved", "repetition")))
     return table
+
+
+@app.command("rules")
+def rules(
+    file: Annotated[Path | None, typer.Option(
+        help="A data set JSONL (e.g. from 'homesim synth'); default: generate --synth-n.")
+    ] = None,
+    synth_n: Annotated[int, typer.Option(help="Synthetic programs to generate.")] = 2000,
+    seed: Annotated[int, typer.Option(help="Seed of the generated programs.")] = 0,
+    descriptions: Annotated[str, typer.Option(
+        help="Description style of the generated programs: templates or people.")
+    ] = "templates",
+) -> None:
+    """Score the hand-written rule parser of the synthetic phrasings on every program: how
+    invertible the description text is (1.0: the text says the program outright)."""
+    from homesim.learn.data import synthetic_examples
+    from homesim.learn.rules import parse
+    from homesim.program.metrics import lcs_steps
+    from homesim.synth.grammar import STYLES
+
+    if descriptions not in STYLES:
+        raise HomesimError(f"--descriptions {descriptions}: choose {' or '.join(STYLES)}")
+    examples = synthetic_examples(synth_n, seed, file, style=descriptions)
+    start = time.perf_counter()
+    scores = [lcs_steps(parse(e.description), e.program) for e in examples]
+    seconds = time.perf_counter() - start
+    exact = sum(s == 1.0 for s in scores)
+    console.print(f"rule parser: steps LCS {sum(scores) / max(1, len(scores)):.3f} on "
+                  f"{len(scores)} programs, {exact} exact; parsing took {seconds:.1f} s")

@@ -49,6 +49,16 @@ class RunSpec:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def matches(self, stored: dict | None) -> bool:
+        """Whether `stored` (a saved `to_dict`) describes this run; the synthetic-set size
+        does not matter for real data."""
+        if not isinstance(stored, dict):
+            return False
+        mine = self.to_dict()
+        if self.dataset == "real":
+            stored, mine = {**stored, "synth_n": None}, {**mine, "synth_n": None}
+        return stored == mine
+
 
 SYNTH_SEED = 0
 """The synthetic programs are one generated set (this seed); each run's seed splits them."""
@@ -76,7 +86,7 @@ def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
     path = folder / "mle.pt"
     if path.is_file():
         t2p = Text2Prog.load(path, device)
-        if t2p.meta.get("spec") == spec.to_dict():
+        if spec.matches(t2p.meta.get("spec")):
             return t2p
     start = time.perf_counter()
     t2p = Text2Prog.create(splits.train, spec.seed, embeddings=spec.embeddings, device=device)
@@ -147,11 +157,12 @@ def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
         if name not in rows:
             start = time.perf_counter()
             preds = job()
+            predicted = time.perf_counter() - start
             rows[name] = {
                 "examples": [example_scores(p, e.program, executable(p, e),
                                             cross_home_rate(p, e))
                              for p, e in zip(preds, splits.test, strict=True)],
-                "seconds": time.perf_counter() - start}
+                "predict_seconds": predicted, "seconds": time.perf_counter() - start}
             if save:
                 save()
         if report:
@@ -168,6 +179,15 @@ def preload_vectors(splits: Splits, cache: Path) -> None:
                              cache)
 
 
+def cached_run(spec: RunSpec, out: Path) -> dict | None:
+    """The scores a run already has (``scores.json`` for this spec), or None."""
+    cache = spec.folder(out) / "scores.json"
+    if not cache.is_file():
+        return None
+    data = json.loads(cache.read_text())
+    return data if spec.matches(data.get("spec")) and data.get("rows") else None
+
+
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         report: Report | None = None) -> dict:
     """Score every row of one run; rows already in ``scores.json`` for the same spec are
@@ -178,7 +198,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     rows: dict[str, dict] = {}
     if cache.is_file():
         old = json.loads(cache.read_text())
-        if old.get("spec") == spec.to_dict():
+        if spec.matches(old.get("spec")):
             rows = old["rows"]
     splits = load_run_splits(spec)
     preload_vectors(splits, out / spec.dataset / "vectors.npz")
@@ -204,3 +224,19 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     data["rows"] = {**ordered, **{k: v for k, v in rows.items() if k not in ordered}}
     save()
     return {**data, "rows": ordered}
+
+
+def block(runs: list[dict], model_row: str, baselines_to_beat: tuple[str, ...]) -> dict:
+    """The summary of one data set and split over its runs (one per seed)."""
+    from homesim.learn.summary import gaps, summarize_rows
+
+    def mean(key: str) -> float:
+        values = [r[key] for r in runs if r.get(key) is not None]
+        return round(sum(values) / len(values), 1) if values else 0.0
+
+    out = {"seeds": [r["spec"]["seed"] for r in runs], "rows": summarize_rows(runs),
+           "sizes": {"train": mean("n_train"), "dev": mean("n_dev"), "test": mean("n_test"),
+                     "unseen": sum(r["unseen_step_share"] for r in runs) / len(runs)}}
+    if any(model_row in r["rows"] for r in runs):
+        out["gaps"] = gaps(runs, model_row, baselines_to_beat)
+    return out

@@ -12,6 +12,7 @@ intervals. The bootstrap has its own seed: same runs, same intervals.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -70,14 +71,14 @@ def summarize_gap(per_seed: list[list[dict]], baseline: list[list[dict]] | None,
             "lo": float(lo), "hi": float(hi), "seeds": full}
 
 
-def summarize_rows(runs: list[dict]) -> dict[str, dict[str, dict]]:
+def summarize_rows(runs: list[dict]) -> dict[str, dict[str, Any]]:
     """Row -> metric -> summary over the runs (one per seed) of one data set and split.
 
     A row missing from some runs (a model not trained for every seed) is summarised over
     the runs that have it; ``n_seeds`` says how many.
     """
     names = list(dict.fromkeys(row for r in runs for row in r["rows"]))
-    out: dict[str, dict] = {}
+    out: dict[str, dict[str, Any]] = {}
     for row in names:
         per_seed = [r["rows"][row]["examples"] for r in runs if row in r["rows"]]
         out[row] = {m: summarize(per_seed, m) for m in METRICS
@@ -90,7 +91,7 @@ def gaps(runs: list[dict], row: str, baselines: tuple[str, ...],
          metrics: tuple[str, ...] = ("steps", "simulator", "solved")) -> dict[str, dict]:
     """Baseline -> metric -> paired summary of `row` minus that baseline, over the runs
     that have both."""
-    out = {}
+    out: dict[str, dict[str, Any]] = {}
     for b in baselines:
         both = [r for r in runs if row in r["rows"] and b in r["rows"]]
         if both:
