@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,stats,render,serve,learn,agents
+EXTRAS ?= dev,stats,render,serve,learn,agents,dataset
 
 .PHONY: setup demo test lint bench clean
 WEB_BUILD := src/homesim/serve/static/index.html
@@ -48,6 +48,7 @@ bench: setup
 	$(BIN)/python benchmarks/learn.py
 	$(BIN)/python benchmarks/repair.py
 	$(BIN)/python benchmarks/home_load.py
+	$(BIN)/python benchmarks/descriptions.py
 	$(BIN)/python benchmarks/parse.py
 	$(BIN)/python benchmarks/entry_points.py
 	$(BIN)/python benchmarks/serve_load.py

@@ -1,12 +1,18 @@
-"""Procedural homes: generation time, validity, determinism, and the 518 real programs.
+"""Procedural homes: generation time, validity, determinism, the 518 real programs, render.
 
-For each seed: generate the home (time it; load a built-in home as the reference in the
-same run), check it (`check_home`), generate again and compare bytes; then run the 518
-real programs (ungrounded, as in benchmarks/grounding.py) through `homesim.run_program`
-and count the executable ones and the objects preparation added. The built-in homes
-(full, with boxes) are measured the same way for comparison.
+For each seed: generate the home (time it, wall clock and CPU time of the process: on a
+shared machine the wall clock mostly measures waiting; load a built-in home as the
+reference in the same run), check it (`check_home`), generate again and compare bytes;
+then run the 518 real programs (ungrounded, as in benchmarks/grounding.py) through
+`homesim.run_program` and count the executable ones and the objects preparation added. The built-in homes
+(full, with boxes) are measured the same way for comparison. In the homes of
+`--render-seeds` (and the built-in ones), two typical real programs (the first that
+watches TV from the sofa, the first that grabs a glass to drink) are grounded and
+rendered with `render_keyframes` (small frames: what can fail is walking to the
+standing spots grounding chose); the count of renders that succeed is printed.
 
     nice python benchmarks/homes.py [--seeds 0-99] [--programs 518] [--workers 2]
+                                    [--render-seeds 0-19]
 """
 
 from __future__ import annotations
@@ -19,7 +25,41 @@ import statistics
 import time
 
 
-def _measure(name: str, limit: int) -> dict:
+def _typical_programs() -> list:
+    """The first real program that watches TV from the sofa and the first that grabs a
+    glass to drink, ungrounded."""
+    from homesim.ground import unground
+    from homesim.knowledge import real_programs
+
+    programs = [unground(rp.program) for rp in real_programs()]
+    texts = [str(p) for p in programs]
+    watch = next(k for k, t in enumerate(texts) if "[Watch] <television>" in t and "[Sit]" in t)
+    grab = next(k for k, t in enumerate(texts) if "[Grab] <water_glass>" in t)
+    return [programs[watch], programs[grab]]
+
+
+def _renders(graph) -> tuple[int, list[str]]:
+    """How many of the typical programs render in a home, and why the others did not."""
+    from homesim import run_program
+    from homesim.errors import HomesimError
+    from homesim.render import render_keyframes
+
+    ok, why = 0, []
+    for program in _typical_programs():
+        run = run_program(program, graph)
+        if not run.executable or run.grounding is None:
+            why.append(f"{program.title}: not executable ({run.message})")
+            continue
+        try:
+            render_keyframes(run.grounding.program, run.graph, width=64, height=48,
+                             standing=run.grounding.standing)
+            ok += 1
+        except HomesimError as e:
+            why.append(f"{program.title}: {e}")
+    return ok, why
+
+
+def _measure(name: str, limit: int, render: bool) -> dict:
     from homesim import run_program
     from homesim.ground import unground
     from homesim.knowledge import real_programs
@@ -29,18 +69,20 @@ def _measure(name: str, limit: int) -> dict:
     row: dict = {"home": name}
     if name.startswith("gen-"):
         seed = int(name[4:])
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         graph = generate_home(seed)
         row["gen_s"] = time.perf_counter() - t0
+        row["cpu_s"] = time.process_time() - c0
         again = generate_home(seed)
         row["same_bytes"] = (gzip.compress(json.dumps(graph.to_dict()).encode(), mtime=0)
                              == gzip.compress(json.dumps(again.to_dict()).encode(), mtime=0))
         row["problems"] = len(check_home(graph))
     else:
         load_home.cache_clear()
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         graph = load_home(name)
         row["gen_s"] = time.perf_counter() - t0
+        row["cpu_s"] = time.process_time() - c0
     rooms = graph.rooms()
     row["objects"] = len(graph)
     row["area"] = sum(r.bounding_box.size[0] * r.bounding_box.size[2] for r in rooms)
@@ -50,8 +92,10 @@ def _measure(name: str, limit: int) -> dict:
         run = run_program(p, graph)
         ok += run.executable
         added += len(run.prepared.added) if run.prepared else 0
-    row["rate"] = ok / len(programs)
-    row["added"] = added / len(programs)
+    row["rate"] = ok / max(1, len(programs))  # --programs 0: time and check homes only
+    row["added"] = added / max(1, len(programs))
+    if render:
+        row["renders"], row["render_problems"] = _renders(graph)
     return row
 
 
@@ -60,13 +104,16 @@ def main() -> None:
     parser.add_argument("--seeds", default="0-99")
     parser.add_argument("--programs", type=int, default=518)
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--render-seeds", default="0-19",
+                        help="seeds whose homes render the two typical programs ('' none)")
     args = parser.parse_args()
-    lo, _, hi = args.seeds.partition("-")
-    seeds = range(int(lo), int(hi or lo) + 1)
+    seeds = _seeds(args.seeds)
+    rendered = set(_seeds(args.render_seeds)) if args.render_seeds else set()
     builtin = [f"scene{i}" for i in range(1, 6)]
-    names = builtin + [f"gen-{s}" for s in seeds]
+    jobs = [(n, args.programs, bool(rendered)) for n in builtin]
+    jobs += [(f"gen-{s}", args.programs, s in rendered) for s in seeds]
     with mp.Pool(args.workers) as pool:
-        rows = pool.starmap(_measure, [(n, args.programs) for n in names], chunksize=1)
+        rows = pool.starmap(_measure, jobs, chunksize=1)
     base, gen = rows[:5], rows[5:]
     print(f"{'home':<10} {'load/gen s':>10} {'objects':>8} {'area m2':>8} {'exec %':>7} "
           f"{'added/prog':>10}")
@@ -89,9 +136,31 @@ def main() -> None:
     print(f"generation s/home: median {statistics.median(times):.3f} max {max(times):.3f} "
           f"(goal <= 1 s); loading a built-in home (reference) median {ref:.3f} s, ratio "
           f"{statistics.median(times) / ref:.1f}x")
+    cpu = [r["cpu_s"] for r in gen]
+    ref_cpu = statistics.median(r["cpu_s"] for r in base)
+    print(f"generation CPU s/home (process time: what a shared machine's load does not "
+          f"inflate): median {statistics.median(cpu):.3f} max {max(cpu):.3f}; loading a "
+          f"built-in home {ref_cpu:.3f} s, ratio {statistics.median(cpu) / ref_cpu:.1f}x")
     print(f"checks: {sum(r['problems'] == 0 for r in gen)}/{len(gen)} pass; same seed, same "
           f"bytes: {sum(r['same_bytes'] for r in gen)}/{len(gen)}; homes under 95%: "
           f"{sum(r['rate'] < 0.95 for r in gen)}")
+    if rendered:
+        _print_renders(base, [r for r in gen if "renders" in r])
+
+
+def _print_renders(base: list[dict], gen: list[dict]) -> None:
+    for what, rows in (("built-in", base), ("generated", gen)):
+        done = sum(r["renders"] for r in rows)
+        print(f"render (watch TV, grab a glass): {done}/{2 * len(rows)} succeed in {what} "
+              f"homes ({len(rows)} homes)")
+        for r in rows:
+            for why in r["render_problems"]:
+                print(f"  {r['home']}: {why}")
+
+
+def _seeds(text: str) -> range:
+    lo, _, hi = text.partition("-")
+    return range(int(lo), int(hi or lo) + 1)
 
 
 if __name__ == "__main__":

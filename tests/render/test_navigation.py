@@ -1,6 +1,7 @@
 import itertools
 
 import numpy as np
+import pytest
 
 from homesim.render.layout import build_layout, to_mujoco
 from homesim.render.navigation import CELL, build_grid, plan_path
@@ -36,3 +37,53 @@ def test_paths_through_doors_in_a_real_apartment(shared_data):
     assert len(path) >= 3
     length = sum(np.linalg.norm(b - a) for a, b in itertools.pairwise(path))
     assert 8.0 < length < 30.0
+
+
+WATCH_TV = """[Walk] <livingroom> (1)
+[Walk] <television> (1)
+[SwitchOn] <television> (1)
+[Walk] <sofa> (1)
+[Sit] <sofa> (1)
+[Watch] <television> (1)
+[StandUp]
+[Walk] <kitchen> (1)"""
+GRAB = """[Walk] <kitchen> (1)
+[Walk] <water_glass> (1)
+[Grab] <water_glass> (1)
+[Walk] <bedroom> (1)
+[Walk] <bed> (1)
+[PutBack] <water_glass> (1) <bed> (1)"""
+
+
+@pytest.mark.parametrize("seed", [2, 4])
+@pytest.mark.parametrize("text", [WATCH_TV, GRAB], ids=["watch_tv", "grab"])
+def test_agent_walks_to_grounding_spots_in_generated_homes(seed, text):
+    # Render and grounding share one floor model: every standing spot grounding chose
+    # lies on render's walkable floor, and the agent walks there (seeds 2 and 4 stopped
+    # with "no walkable path" when render kept a grid of its own).
+    from homesim import run_program
+    from homesim.program import parse_program
+    from homesim.render.agent import agent_shape
+    from homesim.render.animate import Animator
+    from homesim.render.scene import build_scene
+    from homesim.sim.execute import execute
+    from homesim.world.procedural import generate_home
+
+    run = run_program(parse_program(text), generate_home(seed))
+    assert run.executable, run.message
+    spots = run.grounding.standing
+    shape = agent_shape("male1")
+    scene = build_scene(run.graph, shape, seed=0, max_size=(64, 48))
+    anim = Animator(scene, run.graph, shape, fps=5, standing=spots)
+    for x, z in spots.values():
+        assert anim.grid.free[anim.grid.cell((x, z))] or any(
+            anim.grid.free[anim.grid.cell((x + dx, z + dz))]
+            for dx in (-CELL, 0, CELL) for dz in (-CELL, 0, CELL))
+    result = execute(run.grounding.program, run.graph, trace=True)
+    timeline = anim.run(result)
+    walks = [i for i, step in enumerate(run.grounding.program.steps)
+             if step.action.motion == "walk" and i in spots]
+    assert walks
+    for i in walks:
+        end = timeline.qpos[timeline.step_frames[i][1]][:2]
+        assert np.hypot(*(end - np.array(spots[i]))) < 0.05, (i, end, spots[i])

@@ -19,7 +19,15 @@ from homesim.errors import ExecutionError
 from homesim.render.layout import Box, Layout
 from homesim.world.floor import CELL
 
-__all__ = ["CELL", "Grid", "astar", "build_grid", "goal_cells", "plan_path", "smooth"]
+__all__ = ["CELL", "LEG_LEVEL", "PASSABLE", "Grid", "astar", "build_grid", "goal_cells",
+           "plan_path", "smooth"]
+
+PASSABLE = frozenset({"floor", "ceiling", "door", "doorjamb", "rug", "character"})
+"""Parts the body passes through (`homesim.render.interact` steps up to furniture among
+the others; walking uses the floor model, not parts)."""
+LEG_LEVEL = (0.08, 1.2)
+"""Parts between these heights (metres) are in the body's way when it steps up to
+furniture (`homesim.render.interact`)."""
 
 
 @dataclass
@@ -47,8 +55,12 @@ class Grid:
         return int(idx[k][0]), int(idx[k][1])
 
     def line_free(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Whether every cell under the segment a-b (sampled each half cell) is free."""
         n = int(np.ceil(np.linalg.norm(b - a) / (CELL / 2))) + 1
-        return all(self.free[self.cell(a + t * (b - a))] for t in np.linspace(0.0, 1.0, n))
+        t = np.linspace(0.0, 1.0, n)[:, None]
+        ij = np.round((a + t * (b - a) - self.origin) / CELL).astype(int)
+        ij = np.clip(ij, 0, np.array(self.free.shape) - 1)
+        return bool(self.free[ij[:, 0], ij[:, 1]].all())
 
 
 def build_grid(layout: Layout) -> Grid:

@@ -132,9 +132,9 @@ class FloorModel:
             if tiles[r]:
                 runs += self._room_runs(r, tiles[r], [footprint(b) for b in parts[r][1]])
         every = [footprint(b) for _, obstacles in parts.values() for b in obstacles]
-        walls = [footprint(box) for r in rooms if (box := graph.nodes[r].bounding_box)]
+        room_rects = [footprint(box) for r in rooms if (box := graph.nodes[r].bounding_box)]
         for way in doorways(graph):
-            runs += self._passage_runs(way, every, walls)
+            runs += self._passage_runs(way, every, room_rects)
         self.runs = sorted(runs)
         self.labels = _label(self.runs)
         self.main = _largest(self.runs, self.labels)

@@ -74,8 +74,8 @@ def _close_and_facing(parts: list[Part]) -> set[tuple[int, str, int]]:
         gap = np.maximum(lo[:, None, :] - hi[None, :, :], lo[None, :, :] - hi[:, None, :])
         near = gap.max(axis=2) < CLOSE_GAP  # (n, n)
         np.fill_diagonal(near, False)
-        for i, j in zip(*np.nonzero(near), strict=True):
-            edges.add((ks[i] + 1, "CLOSE", ks[j] + 1))
+        ids = (np.array(ks) + 1).tolist()
+        edges.update((ids[i], "CLOSE", ids[j]) for i, j in zip(*np.nonzero(near), strict=True))
         centre = (lo + hi) / 2
         for j, k in enumerate(ks):
             p = parts[k]

@@ -3,9 +3,10 @@
 - every node has a bounding box;
 - no two pieces of furniture overlap (things standing on the floor or mounted on a wall
   or ceiling; rugs lie under furniture and are left out);
-- every room can be reached on foot from every other: rooms are joined by doors, and in
-  each room the agent's square can walk from each door to every other door and to within
-  reach of every piece of furniture;
+- every room can be reached on foot from every other, on the floor model that grounding
+  and the renderer use (`homesim.world.floor`): rooms are joined by doors, every room has
+  floor on the home's walkable floor, the character stands on it, and every piece of
+  furniture has a standing spot on it (the spot grounding would choose);
 - every object is supported: ON or INSIDE something other than a room;
 - edges agree with the boxes (ON: resting on the top or hung on the face; INSIDE: the
   centre is in the box; CLOSE: the boxes are less than 1.5 m apart; BETWEEN: a door
@@ -14,12 +15,13 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from homesim.world.graph import EnvironmentGraph, Node
-from homesim.world.procedural.geometry import FreeFloor, Rect, blocks, grow
+from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
+from homesim.world.procedural.geometry import Rect
 from homesim.world.procedural.parts import Box3, gap3, overlap3
-from homesim.world.procedural.plan import WALL
 
 STRUCTURAL = frozenset({"Walls", "Floor", "Floors", "Ceiling", "Doors", "Windows"})
 MOUNTS = frozenset({"floor", "wall", "ceiling"})
@@ -27,8 +29,12 @@ TOL = 0.02
 
 
 def _box(n: Node) -> Box3:
-    b = n.bounding_box
-    assert b is not None
+    assert n.bounding_box is not None
+    return _corners(n.bounding_box)
+
+
+@functools.lru_cache(maxsize=8192)
+def _corners(b: BoundingBox) -> Box3:
     c, s = b.center, b.size
     return (c[0] - s[0] / 2, c[1] - s[1] / 2, c[2] - s[2] / 2,
             c[0] + s[0] / 2, c[1] + s[1] / 2, c[2] + s[2] / 2)
@@ -69,12 +75,15 @@ def _is_flat(n: Node) -> bool:
 
 def _overlaps(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
     solid = [n for n in fixtures if not _is_flat(n)]
-    out = []
-    for i, a in enumerate(solid):
-        for b in solid[i + 1:]:
-            if overlap3(_box(a), _box(b), TOL):
-                out.append(f"{a.label()} overlaps {b.label()}")
-    return out
+    if len(solid) < 2:
+        return []
+    boxes = np.array([_box(n) for n in solid])  # (n, 6)
+    lo, hi = boxes[:, :3], boxes[:, 3:]
+    depth = np.minimum(hi[:, None, :], hi[None, :, :]) - np.maximum(lo[:, None, :],
+                                                                    lo[None, :, :])
+    hit = np.triu((depth > TOL).all(axis=2), k=1)
+    return [f"{solid[i].label()} overlaps {solid[j].label()}"
+            for i, j in zip(*np.nonzero(hit), strict=True)]
 
 
 def _support(graph: EnvironmentGraph) -> list[str]:
@@ -90,13 +99,25 @@ def _support(graph: EnvironmentGraph) -> list[str]:
 
 
 def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
-    """Rooms cut off from the rest, and fixtures the agent cannot walk to."""
+    """Rooms cut off from the rest, and fixtures the agent cannot walk to, on the floor
+    model that grounding and the renderer use (`homesim.world.floor`)."""
+    from homesim.ground.standing import FloorPlan
+
     doors = [n for n in graph if n.class_name == "door"]
     out = _connected(graph, doors)
-    for room in sorted(graph.room_ids):
-        why = _room_walkable(graph, room, fixtures, doors)
-        if why is not None:
-            out.append(f"{graph.node(room).label()}: {why}")
+    plan = FloorPlan(graph)
+    model = plan.model()
+    on_main = model.rooms_on_main()
+    out += [f"{graph.node(r).label()} cannot be reached on foot from the other rooms"
+            for r in sorted(graph.room_ids - on_main)]
+    char = graph.character_id
+    if char is not None:
+        c = graph.node(char).bounding_box
+        assert c is not None
+        if not model.reachable(c.center[0], c.center[2]):
+            out.append(f"{graph.node(char).label()} stands off the walkable floor")
+    out += [f"{n.label()} cannot be reached on foot (no free floor to stand at next to it)"
+            for n in fixtures if plan.spot_near(n.id) is None]
     return out
 
 
@@ -126,24 +147,10 @@ def _connected(graph: EnvironmentGraph, doors: list[Node]) -> list[str]:
     return [f"{graph.node(lone).label()} has no door path from {graph.node(first).label()}"]
 
 
-def _room_walkable(graph: EnvironmentGraph, room: int, fixtures: list[Node],
-                   doors: list[Node]) -> str | None:
-    """Why the agent cannot walk from the doors of `room` to each of its fixtures, or None."""
-    area = grow(_fp(_box(graph.node(room))), -WALL)  # the floor inside the walls
-    mine = [n for n in fixtures if graph.room_of(n.id) == room]
-    obstacles = [_fp(_box(n)) for n in mine if blocks(_box(n)) and not _is_flat(n)]
-    ways = [_fp(_box(d)) for d in doors if room in graph.targets(d.id, "BETWEEN")]
-    why = FreeFloor(area, obstacles).walkable(ways, [_fp(_box(n)) for n in mine], reach=0.75)
-    if why is not None and why.startswith("object "):
-        return f"{mine[int(why.split()[1])].label()} cannot be reached on foot"
-    return why
-
-
 def _edges(graph: EnvironmentGraph) -> list[str]:
     out = _close_edges(graph)
-    for a, rel, b in graph.edges():
-        if rel == "CLOSE":
-            continue
+    others = (e for rel in ("ON", "INSIDE", "BETWEEN") for e in graph.edges(rel))
+    for a, rel, b in others:
         na, nb = graph.node(a), graph.node(b)
         ba, bb = _box(na), _box(nb)
         bad = False

@@ -8,6 +8,8 @@ import random
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+import numpy as np
+
 from homesim.world.procedural.geometry import (
     DOOR_REACH,
     SLACK,
@@ -103,6 +105,8 @@ class RoomFurnisher:
         self.doors = door_rects(plan, room)
         self.keep_out = [self._keep_out(d) for d in self.doors]
         self.fixtures: list[int] = []
+        self._base: tuple[int, FreeFloor, list[Rect]] | None = None
+        self._masks: dict[tuple[Rect, float], np.ndarray] = {}
 
     def _keep_out(self, d: Rect) -> Box3:
         x0, z0, x1, z1 = d
@@ -141,19 +145,27 @@ class RoomFurnisher:
                 return False
         return True
 
+    def _floor(self, extra: Box3 | None) -> tuple[FreeFloor, list[Rect]]:
+        """The room's free floor with its fixtures (and `extra`) as obstacles, and those
+        obstacles. The floor of the fixtures placed so far is kept and copied."""
+        if self._base is None or self._base[0] != len(self.fixtures):
+            boxes = [self.parts[k].box for k in self.fixtures]
+            obstacles = [(b[0], b[2], b[3], b[5]) for b in boxes if blocks(b)]
+            self._base = (len(self.fixtures), FreeFloor(self.interior, obstacles, strict=True,
+                                                        masks=self._masks), obstacles)
+        floor, obstacles = self._base[1].copy(), list(self._base[2])
+        if extra is not None and blocks(extra):
+            floor.block((extra[0], extra[2], extra[3], extra[5]))
+            obstacles.append((extra[0], extra[2], extra[3], extra[5]))
+        return floor, obstacles
+
     def walkable(self, extra: Box3 | None = None) -> bool:
-        boxes = [self.parts[k].box for k in self.fixtures] + ([extra] if extra else [])
-        obstacles = [(b[0], b[2], b[3], b[5]) for b in boxes if blocks(b)]
-        floor = FreeFloor(self.interior, obstacles, strict=True)
-        return floor.walkable(self.doors, [o for o in obstacles]) is None
+        floor, obstacles = self._floor(extra)
+        return floor.walkable(self.doors, obstacles) is None
 
     def reachable(self, box: Box3) -> bool:
         """Whether the agent can walk from the doors to within reach of `box`."""
-        obstacles = [p.footprint for p in (self.parts[k] for k in self.fixtures)
-                     if blocks(p.box)]
-        if blocks(box):
-            obstacles.append((box[0], box[2], box[3], box[5]))
-        floor = FreeFloor(self.interior, obstacles, strict=True)
+        floor, _ = self._floor(box)
         return floor.walkable(self.doors, [(box[0], box[2], box[3], box[5])]) is None
 
     def place_floor(self, cls: str) -> bool:
@@ -271,6 +283,7 @@ class RoomFurnisher:
         del self.parts[first:]
         self.parts.extend(keep)
         self.fixtures = list(range(first, len(self.parts)))
+        self._base = None
 
     def add(self, part: Part) -> None:
         part.states = tuple(class_info(part.cls)["states"])

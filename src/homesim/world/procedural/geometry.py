@@ -55,10 +55,11 @@ class FreeFloor:
     cells and the furnisher asks thousands of times per home, so flood fills run as
     whole-array dilations instead of cell-by-cell."""
 
-    def __init__(self, room: Rect, obstacles: Iterable[Rect], strict: bool = False):
+    def __init__(self, room: Rect, obstacles: Iterable[Rect], strict: bool = False,
+                 masks: dict[tuple[Rect, float], np.ndarray] | None = None):
         """`strict` (the generator) asks for a few centimetres more room than the checks
         (`homesim.world.procedural.checks`), so rounding never makes a home it built fail
-        them."""
+        them. `masks` keeps the masks of `near` across floors of the same room."""
         self.room = room
         self.slack = SLACK if strict else 0.0
         self.nx = max(1, int((room[2] - room[0]) / CELL))
@@ -69,8 +70,16 @@ class FreeFloor:
         fx = (self.xs >= inner[0]) & (self.xs <= inner[2])
         fz = (self.zs >= inner[1]) & (self.zs <= inner[3])
         self.free = fx[:, None] & fz[None, :]
+        self._near: dict[tuple[Rect, float], np.ndarray] = {} if masks is None else masks
         for ob in obstacles:
             self.block(ob)
+
+    def copy(self) -> FreeFloor:
+        """The same floor, to block more on (it shares the masks `near` made)."""
+        other = object.__new__(FreeFloor)
+        other.__dict__.update(self.__dict__)
+        other.free = self.free.copy()
+        return other
 
     def x(self, i: int) -> float:
         return float(self.xs[i])
@@ -79,11 +88,15 @@ class FreeFloor:
         return float(self.zs[j])
 
     def near(self, r: Rect, reach: float) -> np.ndarray:
-        """Mask of the cells whose centre lies within `reach` of rectangle `r` (per axis)."""
-        g = grow(r, reach)
-        mx = (self.xs >= g[0]) & (self.xs <= g[2])
-        mz = (self.zs >= g[1]) & (self.zs <= g[3])
-        return mx[:, None] & mz[None, :]
+        """Mask of the cells whose centre lies within `reach` of rectangle `r` (per axis);
+        read only (masks are kept: the furnisher asks for the same ones many times)."""
+        mask = self._near.get((r, reach))
+        if mask is None:
+            g = grow(r, reach)
+            mx = (self.xs >= g[0]) & (self.xs <= g[2])
+            mz = (self.zs >= g[1]) & (self.zs <= g[3])
+            mask = self._near[(r, reach)] = mx[:, None] & mz[None, :]
+        return mask
 
     def cells_near(self, r: Rect, reach: float) -> list[tuple[int, int]]:
         """The cells of `near` as (i, j) pairs, in order."""
@@ -94,15 +107,15 @@ class FreeFloor:
         self.free &= ~self.near(ob, AGENT_HALF + self.slack)
 
     def reach_from(self, start: np.ndarray) -> np.ndarray:
-        """Mask of the free cells reachable (4-connected) from the free cells of `start`."""
+        """Mask of the free cells reachable (4-connected) from the free cells of `start`.
+
+        Alternate sweeps along rows and columns: a run of free cells in a line is reached
+        as soon as one of its cells is, so the sweeps needed are the turns of the longest
+        path (a few), not its length in cells."""
+        rows, cols = _Runs(self.free), _Runs(self.free.T)
         seen = start & self.free
         while True:
-            grown = seen.copy()
-            grown[1:, :] |= seen[:-1, :]
-            grown[:-1, :] |= seen[1:, :]
-            grown[:, 1:] |= seen[:, :-1]
-            grown[:, :-1] |= seen[:, 1:]
-            grown &= self.free
+            grown = cols.spread(rows.spread(seen).T).T
             if np.array_equal(grown, seen):
                 return seen
             seen = grown
@@ -131,3 +144,21 @@ class FreeFloor:
             if not (comp & self.near(t, reach - self.slack)).any():
                 return f"object {k} has no free floor within {reach} m"
         return None
+
+
+class _Runs:
+    """The runs of free cells along the second axis of a grid, numbered in order."""
+
+    def __init__(self, free: np.ndarray):
+        self.free = free
+        padded = np.zeros((free.shape[0], free.shape[1] + 1), bool)
+        padded[:, 1:] = free
+        starts = padded[:, 1:] & ~padded[:, :-1]
+        self.ids = np.cumsum(starts.ravel()).reshape(free.shape)
+        self.count = int(self.ids.max(initial=0)) + 1
+
+    def spread(self, seen: np.ndarray) -> np.ndarray:
+        """Every free cell of a run that holds a cell of `seen`."""
+        hit = np.zeros(self.count, bool)
+        hit[self.ids[seen & self.free]] = True
+        return hit[self.ids] & self.free

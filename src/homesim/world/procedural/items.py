@@ -20,32 +20,64 @@ def place_items(rng: random.Random, parts: list[Part], room: int, entries: list[
     """Put every item of `entries` on or in something of the room (in up to 3 passes,
     so a faucet finds the sink placed before it); an item with no possible parent is
     left out."""
+    here = _Room(parts, room)
     todo = [(e, n) for e in entries for n in range(e.count)]
     for _ in range(3):
         later = []
         for e, n in todo:
-            if not _place(rng, parts, room, e, kb, final=False):
+            if not _place(rng, here, e, kb, final=False):
                 later.append((e, n))
         todo = later
     for e, _ in todo:
-        _place(rng, parts, room, e, kb, final=True)
+        _place(rng, here, e, kb, final=True)
 
 
-def _candidates(parts: list[Part], room: int, e: Entry, kb: ObjectKnowledge, final: bool
+class _Room:
+    """The parts of one room that can hold items, by class, and what each holds."""
+
+    def __init__(self, parts: list[Part], room: int):
+        self.parts, self.room = parts, room
+        self.holders: list[int] = []
+        self.by_class: dict[str, list[int]] = {}
+        self.held: dict[int, list[int]] = {}
+        for k, p in enumerate(parts):
+            if p.room == room and p.kind in ("fixture", "item"):
+                self._note(k)
+            if p.support is not None:
+                self.held.setdefault(p.support[0], []).append(k)
+
+    def _note(self, k: int) -> None:
+        self.holders.append(k)
+        self.by_class.setdefault(self.parts[k].cls, []).append(k)
+
+    def add(self, part: Part) -> None:
+        self.parts.append(part)
+        k = len(self.parts) - 1
+        self._note(k)
+        assert part.support is not None
+        self.held.setdefault(part.support[0], []).append(k)
+
+
+def _candidates(here: _Room, e: Entry, kb: ObjectKnowledge, final: bool
                 ) -> list[tuple[int, str, int]]:
-    here = [(k, p) for k, p in enumerate(parts) if p.room == room
-            and p.kind in ("fixture", "item") and p.cls != e.cls]
-    out = [(k, rel, n) for key, n in e.parents.items() for rel in [key.split("|")[1]]
-           for k, p in here if p.cls == key.split("|")[0] and _may_hold(p.cls, rel)]
+    """(part, relation, weight) for each part of the room that may hold the item, in part
+    order per parent class."""
+    out = []
+    for key, n in e.parents.items():
+        cls, rel = key.split("|")[:2]
+        if cls != e.cls and _may_hold(cls, rel):
+            out += [(k, rel, n) for k in here.by_class.get(cls, ())]
     if out or not final:
         return out
+    parts = here.parts
+    others = [k for k in here.holders if parts[k].cls != e.cls]
     for pl in kb.placements(e.cls):
         names = set(class_names_for(pl.destination, kb))
-        out += [(k, pl.relation, 1) for k, p in here
-                if p.cls in names and _may_hold(p.cls, pl.relation)]
+        out += [(k, pl.relation, 1) for k in others
+                if parts[k].cls in names and _may_hold(parts[k].cls, pl.relation)]
     if out:
         return out
-    return [(k, "ON", 1) for k, p in here if p.cls in SURFACE_CLASSES]
+    return [(k, "ON", 1) for k in others if parts[k].cls in SURFACE_CLASSES]
 
 
 def _may_hold(parent: str, relation: str) -> bool:
@@ -55,12 +87,13 @@ def _may_hold(parent: str, relation: str) -> bool:
     return relation != "ON" or not ("SITTABLE" in props or "LIEABLE" in props)
 
 
-def _place(rng: random.Random, parts: list[Part], room: int, e: Entry,
-           kb: ObjectKnowledge, final: bool) -> bool:
-    options = _candidates(parts, room, e, kb, final)
+def _place(rng: random.Random, here: _Room, e: Entry, kb: ObjectKnowledge,
+           final: bool) -> bool:
+    options = _candidates(here, e, kb, final)
     if not options:
         return False
     k, rel, _ = rng.choices(options, weights=[n for _, _, n in options])[0]
+    parts = here.parts
     parent = parts[k].box
     w, h, d = class_info(e.cls)["size"]
     px, py, pz = parent[3] - parent[0], parent[4] - parent[1], parent[5] - parent[2]
@@ -70,7 +103,7 @@ def _place(rng: random.Random, parts: list[Part], room: int, e: Entry,
         y0 = parent[1] + rng.uniform(0.02 * py, py - h - 0.02 * py)
     else:
         y0 = parent[4]
-    siblings = [p.box for p in parts if p.support and p.support[0] == k]
+    siblings = [parts[s].box for s in here.held.get(k, ())]
     box = None
     for _ in range(8):
         x = rng.uniform(parent[0] + w / 2, parent[3] - w / 2)
@@ -79,6 +112,6 @@ def _place(rng: random.Random, parts: list[Part], room: int, e: Entry,
         if not any(overlap3(box, s) for s in siblings):
             break
     assert box is not None
-    parts.append(Part(e.cls, room, box, (k, rel), parts[k].normal, kind="item",
-                      states=tuple(class_info(e.cls)["states"])))
+    here.add(Part(e.cls, here.room, box, (k, rel), parts[k].normal, kind="item",
+                  states=tuple(class_info(e.cls)["states"])))
     return True
