@@ -43,6 +43,7 @@ bench: setup
 	$(BIN)/python benchmarks/executor.py
 	$(BIN)/python benchmarks/grounding.py
 	$(BIN)/python benchmarks/render.py
+	$(BIN)/python benchmarks/interactions.py
 	$(BIN)/python benchmarks/serve.py
 	$(BIN)/python benchmarks/learn.py
 	$(BIN)/python benchmarks/repair.py

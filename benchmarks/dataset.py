@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import tempfile
 import time
 from pathlib import Path
@@ -37,25 +38,35 @@ def timed_generation(config: DatasetConfig, out: Path, workers: int) -> tuple[Su
         ray.shutdown()
 
 
-def clips_per_second(root: Path, workers: int, modalities: tuple[str, ...]) -> tuple[int, float]:
+def cpu_seconds() -> float:
+    """User + system CPU time of this process and its finished children (loader workers)."""
+    me, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(
+        resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def clips_per_second(root: Path, workers: int, modalities: tuple[str, ...]
+                     ) -> tuple[int, float, float]:
+    """Clips, clips per wall second and CPU seconds per clip."""
     from torch.utils.data import DataLoader
 
     from homesim.dataset.loader import ActivityClips
 
     loader = DataLoader(ActivityClips(root, modalities=modalities), batch_size=8,
                         num_workers=workers)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), cpu_seconds()
     clips = sum(len(batch["key"]) for batch in loader)
-    return clips, clips / (time.perf_counter() - t0)
+    return clips, clips / (time.perf_counter() - t0), (cpu_seconds() - c0) / clips
 
 
 def time_loader(root: Path) -> None:
     """Clips/s with 2 DataLoader workers against 0, RGB only and every modality."""
     for modalities in (("rgb",), ("rgb", "depth", "class", "instance", "flow")):
-        _, rate0 = clips_per_second(root, 0, modalities)
-        n2, rate2 = clips_per_second(root, 2, modalities)
+        _, rate0, _ = clips_per_second(root, 0, modalities)
+        n2, rate2, cpu = clips_per_second(root, 2, modalities)
         print(f"loader, {'+'.join(modalities)}, 2 s clips: {rate2:.1f} clips/s with 2 "
-              f"workers, {rate0:.1f} clips/s with 0 ({n2} clips; ratio {rate2 / rate0:.2f}x)")
+              f"workers, {rate0:.1f} clips/s with 0 ({n2} clips; ratio {rate2 / rate0:.2f}x); "
+              f"{cpu:.3f} CPU s per clip with 2 workers")
 
 
 def main() -> None:

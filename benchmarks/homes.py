@@ -1,9 +1,10 @@
 """Procedural homes: generation time, validity, determinism, the 518 real programs, render.
 
-For each seed: generate the home (time it; load a built-in home as the reference in the
-same run), check it (`check_home`), generate again and compare bytes; then run the 518
-real programs (ungrounded, as in benchmarks/grounding.py) through `homesim.run_program`
-and count the executable ones and the objects preparation added. The built-in homes
+For each seed: generate the home (time it, wall clock and CPU time of the process: on a
+shared machine the wall clock mostly measures waiting; load a built-in home as the
+reference in the same run), check it (`check_home`), generate again and compare bytes;
+then run the 518 real programs (ungrounded, as in benchmarks/grounding.py) through
+`homesim.run_program` and count the executable ones and the objects preparation added. The built-in homes
 (full, with boxes) are measured the same way for comparison. In the homes of
 `--render-seeds` (and the built-in ones), two typical real programs (the first that
 watches TV from the sofa, the first that grabs a glass to drink) are grounded and
@@ -68,18 +69,20 @@ def _measure(name: str, limit: int, render: bool) -> dict:
     row: dict = {"home": name}
     if name.startswith("gen-"):
         seed = int(name[4:])
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         graph = generate_home(seed)
         row["gen_s"] = time.perf_counter() - t0
+        row["cpu_s"] = time.process_time() - c0
         again = generate_home(seed)
         row["same_bytes"] = (gzip.compress(json.dumps(graph.to_dict()).encode(), mtime=0)
                              == gzip.compress(json.dumps(again.to_dict()).encode(), mtime=0))
         row["problems"] = len(check_home(graph))
     else:
         load_home.cache_clear()
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         graph = load_home(name)
         row["gen_s"] = time.perf_counter() - t0
+        row["cpu_s"] = time.process_time() - c0
     rooms = graph.rooms()
     row["objects"] = len(graph)
     row["area"] = sum(r.bounding_box.size[0] * r.bounding_box.size[2] for r in rooms)
@@ -133,6 +136,11 @@ def main() -> None:
     print(f"generation s/home: median {statistics.median(times):.3f} max {max(times):.3f} "
           f"(goal <= 1 s); loading a built-in home (reference) median {ref:.3f} s, ratio "
           f"{statistics.median(times) / ref:.1f}x")
+    cpu = [r["cpu_s"] for r in gen]
+    ref_cpu = statistics.median(r["cpu_s"] for r in base)
+    print(f"generation CPU s/home (process time: what a shared machine's load does not "
+          f"inflate): median {statistics.median(cpu):.3f} max {max(cpu):.3f}; loading a "
+          f"built-in home {ref_cpu:.3f} s, ratio {statistics.median(cpu) / ref_cpu:.1f}x")
     print(f"checks: {sum(r['problems'] == 0 for r in gen)}/{len(gen)} pass; same seed, same "
           f"bytes: {sum(r['same_bytes'] for r in gen)}/{len(gen)}; homes under 95%: "
           f"{sum(r['rate'] < 0.95 for r in gen)}")

@@ -2,7 +2,7 @@ import random
 
 from homesim.dataset.randomize import movable_objects, move_character, move_objects
 from homesim.ground.kbtypes import default_kb
-from homesim.ground.standing import FloorPlan
+from homesim.world.floor import FloorModel
 from homesim.world.homes import load_home
 from homesim.world.vocab import CLOSE, INSIDE
 
@@ -44,6 +44,7 @@ def test_the_agent_starts_on_free_floor_of_a_random_room():
         assert not moved.targets(char, CLOSE)
         box = moved.node(char).bounding_box
         assert (box.center[0], box.center[2]) == (start.x, start.z)
-        assert FloorPlan(home).is_free(start.room, start.x, start.z)
+        model = FloorModel(home)
+        assert model.walkable(*model.index(start.x, start.z))
         starts.add(start.room)
     assert len(starts) > 1

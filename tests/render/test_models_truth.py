@@ -63,3 +63,20 @@ def test_depth_back_projects_into_each_nodes_graph_box(views):
             assert not outside.any(), (graph.node(int(node)).label(), p[outside][:3])
             checked += len(p)
     assert checked > 0.5 * sum(ids.size for ids, _ in out)
+
+
+def test_culling_changes_no_pixel_and_draws_fewer_geoms():
+    graph = load_home("scene1")
+    scene = build_scene(graph, agent_shape("male1"), seed=0, max_size=(W, H))
+    data = mujoco.MjData(scene.model)
+    mujoco.mj_forward(scene.model, data)
+    with Renderer(scene, W, H) as culled, Renderer(scene, W, H) as full:
+        full._groups = {c: full._groups[-1] for c in full._groups}  # nothing hidden
+        hidden = [int((culled._groups[c] != full._groups[-1]).sum())
+                  for c in range(len(scene.cameras))]
+        assert max(hidden) > scene.model.ngeom // 4
+        for cam in range(0, len(scene.cameras), 7):
+            ids_a, depth_a = culled.ids_depth(data, cam)
+            ids_b, depth_b = full.ids_depth(data, cam)  # interleaved: groups reset per draw
+            np.testing.assert_array_equal(ids_a, ids_b)
+            np.testing.assert_array_equal(depth_a, depth_b)

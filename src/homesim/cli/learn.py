@@ -24,7 +24,7 @@ from homesim.files import check_target, write_text
 app = typer.Typer(help="Learn to write programs from descriptions (paper section 5).",
                   no_args_is_help=True)
 
-TASKS = ("text2prog",)
+TASKS = ("text2prog", "video2prog")
 
 
 def _datasets(data: str) -> tuple[str, ...]:
@@ -94,8 +94,10 @@ class _Reporter:
 @app.command("train")
 def train(
     out: Annotated[Path, typer.Option(help="Run folder; checkpoints go to OUT/<data set>/.")],
-    task: Annotated[str, typer.Option(help="What to learn.")] = "text2prog",
-    data: Annotated[str, typer.Option(help="real, synthetic or both.")] = "both",
+    task: Annotated[str, typer.Option(help="What to learn: text2prog or video2prog.")
+                    ] = "text2prog",
+    data: Annotated[str, typer.Option(
+        help="real, synthetic or both; for video2prog a data set folder.")] = "both",
     seed: Annotated[int, typer.Option(help="Seed of splits, synthetic data and training.")] = 0,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs to generate.")] = 5000,
     mle_epochs: Annotated[int | None, typer.Option(
@@ -109,11 +111,18 @@ def train(
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
     device: DeviceOption = "auto",
+    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 8,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
     if task not in TASKS:
-        raise HomesimError(f"--task {task}: only {', '.join(TASKS)} is available")
+        raise HomesimError(f"--task {task}: choose from {', '.join(TASKS)}")
     device = _torch(threads, device)
+    if task == "video2prog":
+        from homesim.cli.learn_video import train_video2prog
+
+        train_video2prog(out, data, seed, clip_epochs, mle_epochs, pg_epochs, batch_size,
+                         force, device)
+        return
     datasets = _datasets(data)
     from homesim.learn.table import MODELS, RunConfig, train_dataset
 
@@ -152,6 +161,9 @@ def evaluate(
     force: Annotated[bool, typer.Option(help="Replace the markdown file if it exists.")] = False,
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     device: DeviceOption = "auto",
+    task: Annotated[str, typer.Option(
+        help="text2prog (Table 3) or video2prog (Table 2: its own section of --markdown, "
+             "the rest of the file is kept).")] = "text2prog",
 ) -> None:
     """Score every row of Table 3 on the test splits and print it.
 
@@ -159,6 +171,13 @@ def evaluate(
     a note; the others are scored.
     """
     device = _torch(threads, device)
+    if task == "video2prog":
+        from homesim.cli.learn_video import eval_video2prog
+
+        eval_video2prog(runs, markdown, device, _machine(device))
+        return
+    if task not in TASKS:
+        raise HomesimError(f"--task {task}: choose from {', '.join(TASKS)}")
     datasets = _datasets(data)
     if markdown is not None:
         check_target(markdown, force)

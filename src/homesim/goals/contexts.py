@@ -39,6 +39,10 @@ class TaskContext:
     objects: frozenset[tuple[str, int]]
 
 
+SUBSET_BUILDS_ALL = 50
+"""Without the cache, a request for more tasks than this builds (and caches) all of them."""
+
+
 def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
                   ) -> dict[str, TaskContext]:
     """`TaskContext` of every annotated program of the real data set (or of `ids`, EAI
@@ -46,26 +50,41 @@ def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
 
     The full set is kept as a pickle beside the data (`_cache_path`), keyed by the data's
     manifest, the goal file and the source of the modules whose objects it holds: any
-    change to them builds it again. `cache` False neither reads nor writes it.
+    change to them builds it again. A subset is taken from it when it is there; else a
+    subset of up to `SUBSET_BUILDS_ALL` tasks is built alone, a larger one builds and
+    caches the whole set. `cache` False neither reads nor writes it.
     """
-    if ids is not None:
-        wanted = {f"file{i}" for i in ids}
-        return _build_contexts(wanted)
+    wanted = None if ids is None else {f"file{i}" for i in ids}
     path = _cache_path() if cache else None
-    if path is not None and path.exists():
-        try:
-            with path.open("rb") as f:
-                return pickle.load(f)  # our own file, written below
-        except Exception:
-            pass
-    contexts = _build_contexts(None)
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(".tmp")
-        with tmp.open("wb") as f:
-            pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
-        tmp.replace(path)
-    return contexts
+    if wanted is not None and (path is None or not path.exists()) and (
+            len(wanted) <= SUBSET_BUILDS_ALL):
+        return _build_contexts(wanted)
+    contexts = _read_cache(path) if path is not None else None
+    if contexts is None:
+        contexts = _build_contexts(None)
+        if path is not None:
+            _write_cache(path, contexts)
+    if wanted is None:
+        return contexts
+    return {k: c for k, c in contexts.items() if f"file{k}" in wanted}
+
+
+def _read_cache(path: Path) -> dict[str, TaskContext] | None:
+    if not path.exists():
+        return None
+    try:
+        with path.open("rb") as f:
+            return pickle.load(f)  # our own file, written by _write_cache
+    except Exception:
+        return None
+
+
+def _write_cache(path: Path, contexts: dict[str, TaskContext]) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    with tmp.open("wb") as f:
+        pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
+    tmp.replace(path)
 
 
 def _build_contexts(wanted: set[str] | None) -> dict[str, TaskContext]:

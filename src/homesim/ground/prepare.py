@@ -663,6 +663,8 @@ class _Adder:
         """Put the object on or in a destination, if there is room for its box."""
         st = self.st
         _, dest, relation, room = option
+        if not self._standable(dest):
+            return None
         box = None
         if size is not None:
             dest_box = st.node(dest).bounding_box
@@ -675,6 +677,26 @@ class _Adder:
                 return None
         near = [a for a in anchors if a == dest or a in st.targets(dest, CLOSE)]
         return _put(st, ref, names, self.kb, box, dest, relation, room, near)
+
+    def _standable(self, dest: int) -> bool:
+        """Whether the agent can stand next to `dest`, or next to what holds it (as
+        grounding asks: `homesim.ground.search`); True without geometry."""
+        plan, st = self.plan, self.st
+        if plan is None:
+            return True
+        seen: set[int] = set()
+        while dest not in seen and dest not in st.graph.room_ids:
+            if dest not in plan.graph.nodes:
+                return True  # added by this preparation: placed where it can be reached
+            seen.add(dest)
+            if st.node(dest).bounding_box is None or plan.spot_near(dest) is not None:
+                return True
+            holders = sorted((st.targets(dest, ON) | st.targets(dest, INSIDE))
+                             - st.graph.room_ids)
+            if not holders:
+                return False
+            dest = holders[0]
+        return True
 
     def _try_floor(self, ref: ObjectRef, names: list[str], attempt: tuple[int, list[int]],
                    size: tuple[float, float, float] | None) -> Addition | None:

@@ -61,6 +61,7 @@ class FloorPlan:
         self._changed = changed_rooms
         self._rect_cache: dict[int, tuple[Any, tuple[list[_Rect], list[_Rect]]]] = {}
         self._model: FloorModel | None = None
+        self._cached = False  # made by `_PlanCache` (for_graph)
         # A plan from `for_graph` is shared by threads: its lazy tables fill under a lock.
         self._lock = threading.RLock()
 
@@ -100,7 +101,10 @@ class FloorPlan:
         if self._model is None:
             with self._lock:
                 if self._model is None:
-                    self._model = FloorModel(self.graph)
+                    # A plan of one's own (preparation's, which adds obstacles) shares the
+                    # model of the home's cached plan: the model depends on the graph only.
+                    self._model = (FloorModel(self.graph) if self._cached
+                                   else FloorPlan.for_graph(self.graph).model())
         return self._model
 
     def is_free(self, room: int, x: float, z: float, size_x: float = AGENT_SIZE,
@@ -138,7 +142,8 @@ class FloorPlan:
 
     def free_floor(self, room: int, size_x: float, size_z: float,
                    rng: random.Random, tries: int = 64) -> Spot | None:
-        """A random spot of the room where a footprint of this size fits, or None."""
+        """A random spot of the room where a footprint of this size fits, on the walkable
+        floor (not in a pocket the agent could not walk to), or None."""
         floors, _ = self._room_parts(room)
         if not floors:
             return None
@@ -146,15 +151,16 @@ class FloorPlan:
             f = floors[rng.randrange(len(floors))]
             x = f.center[0] + rng.uniform(-0.5, 0.5) * f.size[0]
             z = f.center[2] + rng.uniform(-0.5, 0.5) * f.size[2]
-            if self.is_free(room, x, z, size_x, size_z):
+            if self.is_free(room, x, z, size_x, size_z) and self.reachable(x, z):
                 return (x, z)
         return None
 
     def free_floor_near(self, room: int, box: BoundingBox, size_x: float,
                         size_z: float) -> Spot | None:
-        """The nearest spot around `box` where a footprint of this size fits, or None."""
+        """The nearest spot around `box` where a footprint of this size fits, on the
+        walkable floor, or None."""
         for x, z in self._ring_spots(box, max(size_x, size_z), _FLOOR_RINGS):
-            if self.is_free(room, x, z, size_x, size_z):
+            if self.is_free(room, x, z, size_x, size_z) and self.reachable(x, z):
                 return (x, z)
         return None
 
@@ -274,6 +280,7 @@ class _PlanCache:
                     plan = FloorPlan(weak, rotation, self.plan(base, rotation), changed)
                 else:
                     plan = FloorPlan(weak, rotation)
+                plan._cached = True
                 plans[rotation] = plan
             return plan
 

@@ -122,9 +122,10 @@ class Renderer:
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
               rect: mujoco.MjrRect | None = None) -> None:
         self._gl.make_current()
-        if camera_id != self._camera_now:
-            self.scene.model.geom_group[:] = self._groups.get(camera_id, self._groups[-1])
-            self._camera_now = camera_id
+        # Set on every draw (a small copy): another renderer of the same model may have
+        # changed the groups since.
+        self.scene.model.geom_group[:] = self._groups.get(camera_id, self._groups[-1])
+        self._camera_now = camera_id
         self._cam.fixedcamid = camera_id
         mujoco.mjv_updateScene(self.scene.model, data, self._opt, None, self._cam,
                                mujoco.mjtCatBit.mjCAT_ALL, self._scn)

@@ -12,7 +12,8 @@ model learns to invert them. People write differently, and this grammar imitates
    ("go to the fridge and open it"); standing up before walking away sometimes is not.
    Walks to rooms are always said.
 3. **Names and pronouns.** An object just mentioned is usually "it"; objects have the
-   names people use (television: "TV"; couch: "sofa"); a first mention may be "a cup".
+   names people use (television: "TV"; couch: "sofa"); a first mention may be "a cup"
+   or say where it is ("the cup on the kitchen counter").
 4. **Order.** Adjacent clauses that commute (disjoint objects, each starts by walking to
    its own object, no hands left full, no posture change) may be told in either order;
    "Before you sit down, turn on the TV" tells two clauses back to front while keeping
@@ -48,11 +49,13 @@ from homesim.synth.phrasebook import (
 
 @dataclass(frozen=True)
 class Thing:
-    """An object of a step: its node (what makes two mentions the same) and class."""
+    """An object of a step: its node (what makes two mentions the same), its class, and
+    where it is when the program starts, as (``"on"``, ``"desk"``), if known."""
 
     node: int
     name: str
     room: bool = False
+    where: tuple[str, str] | None = None
 
 
 Act = tuple[str, tuple[Thing, ...]]
@@ -103,6 +106,7 @@ P_AFTER = 0.08
 P_OPENER = 0.3
 P_EXTRA = 0.15
 P_FIRST_PERSON = 0.5
+P_WHERE = 0.15
 _PERSON = {"my": ("my", "your"), "me": ("me", "you"), "I": ("I", "you")}
 """Voice-dependent slots: (first person, imperative)."""
 
@@ -262,14 +266,21 @@ class _Speaker:
             return "it"
         name = self.name(thing)
         self.last = thing.node
+        said = self._determiner(thing, name, slot, again) + name
+        if not again and thing.where is not None and self.rng.random() < P_WHERE:
+            preposition, place = thing.where  # "the cup on the kitchen counter"
+            return f"{said} {preposition} the {names_for(place)[0]}"
+        return said
+
+    def _determiner(self, thing: Thing, name: str, slot: str, again: bool) -> str:
         if self._namesake(thing, name):  # a second rug: "another rug", "the other rug"
-            return ("another " if not again and slot in "xX" else "the other ") + name
+            return "another " if not again and slot in "xX" else "the other "
         roll = self.rng.random()
         if not again and slot in "xX" and roll < 0.2 and not name.endswith("s"):
-            return ("an " if name[0] in "aeiou" else "a ") + name
+            return "an " if name[0] in "aeiou" else "a "
         if not again and self.first_person and roll > 0.9:
-            return "my " + name
-        return "the " + name
+            return "my "
+        return "the "
 
     def _namesake(self, thing: Thing, name: str) -> bool:
         """Whether an object mentioned before `thing` goes by the same name."""

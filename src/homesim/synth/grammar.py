@@ -42,6 +42,7 @@ from homesim.world.vocab import (
     HAS_SWITCH,
     INSIDE,
     LOOKABLE,
+    ON,
     SITTABLE,
     SURFACES,
 )
@@ -332,11 +333,26 @@ def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
 def _redescribe(sp: ActivityProgram, chosen: list[Expansion], ctx: _Context
                 ) -> ActivityProgram:
     """The program described by the paraphrase grammar (seeded by its id)."""
-    rooms = ctx.graph.room_ids
-    acts: list[Act] = [(key, tuple(Thing(i, ctx.state.class_name(i), i in rooms) for i in ids))
+    graph = ctx.graph
+    things = {i: Thing(i, graph.node(i).class_name, i in graph.room_ids, _where(graph, i))
+              for exp in chosen for _, ids in exp.steps for i in ids}
+    acts: list[Act] = [(key, tuple(things[i] for i in ids))
                        for exp in chosen for key, ids in exp.steps]
     text = describe(acts, random.Random(f"describe:{sp.id}"), sp.program.title).text
     return replace(sp, program=replace(sp.program, description=text))
+
+
+def _where(graph: EnvironmentGraph, node: int) -> tuple[str, str] | None:
+    """Where a node is in the home: on or in a piece of furniture, else in its room."""
+    if node in graph.room_ids:
+        return None
+    for relation, preposition in ((ON, "on"), (INSIDE, "in")):
+        holders = sorted(h for h in graph.targets(node, relation) - graph.room_ids
+                         if graph.node(h).class_name not in _STRUCTURE)
+        if holders:
+            return preposition, graph.node(holders[0]).class_name
+    room = graph.room_of(node)
+    return None if room is None else ("in", graph.node(room).class_name)
 
 
 def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES,

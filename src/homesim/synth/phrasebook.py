@@ -26,7 +26,7 @@ PHRASINGS: dict[str, tuple[str, ...]] = {
     "switch_off": ("turn off {X}", "switch off {X}", "turn {x} off", "switch {x} off",
                    "shut off {X}", "power off {X}", "shut {x} off"),
     "grab": ("grab {x}", "pick up {X}", "pick {x} up", "take {x}", "get {x}",
-             "take hold of {x}", "pick up {X} with {my} hand",
+             "take hold of {x}", "reach for {x}",
              "grab hold of {x}", "lift {x}"),
     "put": ("put {x} on {y}", "place {x} on {y}", "set {x} down on {y}", "leave {x} on {y}",
             "put {x} down on {y}", "rest {x} on {y}", "drop {x} on {y}",
@@ -43,7 +43,7 @@ PHRASINGS: dict[str, tuple[str, ...]] = {
     "look": ("look at {x}", "watch {x}", "take a look at {x}", "stare at {x}",
              "gaze at {x}", "keep {my} eyes on {x}", "have a look at {x}"),
     "stand_up": ("stand up", "get up", "get back up", "stand up again",
-                 "get back on {my} feet", "rise"),
+                 "get back on {my} feet", "get up again"),
     # patterns of steps
     "move": ("put {x} on {y}", "move {x} to {y}", "take {x} to {y}",
              "bring {x} over to {y}", "pick up {X} and put {x} on {y}",
