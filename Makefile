@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
-EXTRAS ?= dev,stats,render,serve,learn,agents
+EXTRAS ?= dev,stats,render,serve,learn,agents,dataset
 
 .PHONY: setup demo test lint bench clean
 WEB_BUILD := src/homesim/serve/static/index.html
@@ -43,10 +43,12 @@ bench: setup
 	$(BIN)/python benchmarks/executor.py
 	$(BIN)/python benchmarks/grounding.py
 	$(BIN)/python benchmarks/render.py
+	$(BIN)/python benchmarks/interactions.py
 	$(BIN)/python benchmarks/serve.py
 	$(BIN)/python benchmarks/learn.py
 	$(BIN)/python benchmarks/repair.py
 	$(BIN)/python benchmarks/home_load.py
+	$(BIN)/python benchmarks/descriptions.py
 	$(BIN)/python benchmarks/parse.py
 	$(BIN)/python benchmarks/entry_points.py
 	$(BIN)/python benchmarks/serve_load.py

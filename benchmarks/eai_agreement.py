@@ -22,6 +22,7 @@ import hashlib
 import json
 import os
 import random
+import re
 import subprocess
 import sys
 import tempfile
@@ -29,7 +30,8 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from homesim.goals.plans import TaskContext, load_contexts, score_plans
+from homesim.goals.contexts import TaskContext, load_contexts
+from homesim.goals.plans import score_plans
 
 HERE = Path(__file__).parent
 VENV = Path(os.environ.get("EAI_VENV", "/tmp/eai"))
@@ -96,7 +98,8 @@ def build_plans(contexts: dict[str, TaskContext], sample: int, seed: int) -> lis
 def run_eai(plans_path: Path, out_path: Path, fresh: bool = False) -> dict:
     """EAI's verdicts, from the side environment (kept in `CACHE` by the plans' hash:
     EAI takes minutes; `fresh` runs it again)."""
-    key = hashlib.sha256(plans_path.read_bytes()).hexdigest()[:16]
+    key = hashlib.sha256(plans_path.read_bytes() + (HERE / "eai_reference.py").read_bytes()
+                         ).hexdigest()[:16]
     cached = CACHE / f"{key}.json"
     if cached.exists() and not fresh:
         return {**json.loads(cached.read_text()), "cached": str(cached)}
@@ -113,8 +116,12 @@ EAI_ONLY_ACTIONS = ("PLUGIN", "PLUGOUT", "RELEASE")  # run by EAI's simulator, r
 # hallucination check (not in its valid_actions table)
 
 
+_NOT_OPEN = re.compile(r"\((\d+)\) is not open or is not openable")
+
+
 def eai_bug(plan: dict, context: TaskContext, eai: dict) -> str | None:
-    """Which documented fault of EAI's evaluator (docs/goals.md) touches this plan, if any."""
+    """Which documented fault of EAI's evaluator (docs/goals.md) touches this plan, if any
+    (the first that applies, in the order of that list)."""
     text = plan["llm_output"]
     goals = context.goals.goals
     if not eai["gold_test"]:
@@ -127,6 +134,20 @@ def eai_bug(plan: dict, context: TaskContext, eai: dict) -> str | None:
         return "action-goal order from set()"
     if eai["error"] is not None and eai["error"].startswith("code"):
         return "failure without an error kind"
+    return _eai_runtime_bug(context, eai)
+
+
+def _eai_runtime_bug(context: TaskContext, eai: dict) -> str | None:
+    """Faults of EAI's run-time error kinds, from what `eai_reference.py` recorded."""
+    message = eai.get("message") or ""
+    if eai["error"] == "missing_step" and eai.get("runs_earlier"):
+        return "wrong order judged on the literal edge"
+    if eai["error"] == "missing_step" and eai.get("self_close") and "is not close" in message:
+        return "Grab: the character close to itself"
+    closed = _NOT_OPEN.search(message)
+    if eai["error"] == "affordance" and closed and int(closed[1]) in context.home and (
+            "CAN_OPEN" in context.home.node(int(closed[1])).properties):
+        return "closed container counted as affordance"
     return None
 
 

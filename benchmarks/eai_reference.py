@@ -7,7 +7,11 @@ side environment where ``eai-eval==1.0.5`` is installed. It follows the loop of
 ``virtualhome_eval/evaluation/action_sequencing/scripts/evaluate_results.py`` step by step,
 calling EAI's functions, and records each plan's verdict (that script only keeps totals).
 One change: plans equal to the gold program are executed and judged like any other (the
-script counts them executable and never checks their goals).
+script counts them executable and never checks their goals). Beyond the verdict it records,
+for a failed plan, the failing step, EAI's message, whether EAI's character was CLOSE to
+itself then (`self_close`), and for a ``missing_step``, whether the failing step runs in
+EAI's own simulator after some earlier prefix of the run (`runs_earlier`), which
+`eai_agreement.py` uses to name EAI's faults.
 """
 
 from __future__ import annotations
@@ -23,6 +27,18 @@ from pathlib import Path
 
 def _load(path: str) -> object:
     return json.loads(Path(path).read_text())
+
+
+def _runs_earlier(planner: object, history: list, action: object) -> bool:
+    """Whether `action` runs in EAI's own simulator right after some proper prefix of the
+    steps that ran (what EAI's wrong-order check means to find)."""
+    for k in range(len(history)):
+        planner.reset()
+        for past in history[:k]:
+            planner.my_execute_primitive_action_eval(past)
+        if planner.my_execute_primitive_action_eval(action)[0]:
+            return True
+    return False
 
 
 def main(plans_path: str, out_path: str) -> None:
@@ -79,9 +95,9 @@ def main(plans_path: str, out_path: str) -> None:
             continue
         acts = eu.json_to_action(acts, relevant_name_to_id=relevant)
         planner.reset()
-        history, executable = [], True
+        history, executable, failed = [], True, None
         states = [copy.deepcopy(planner.env_state.to_dict())]
-        for action in acts:
+        for step, action in enumerate(acts, start=1):
             ok, info = planner.my_execute_primitive_action_eval(action)
             if ok:
                 history.append(action)
@@ -93,6 +109,13 @@ def main(plans_path: str, out_path: str) -> None:
                 record["additional"] += 1
                 continue
             record["error"] = kinds.get(code, f"code {code}")
+            record["failed_step"] = step
+            record["message"] = " ".join(str(m) for m in info.messages)[:300]
+            char = planner.acting_char_id
+            record["self_close"] = any(
+                e["from_id"] == e["to_id"] == char and e["relation_type"] == "CLOSE"
+                for e in states[-1]["edges"])
+            failed = action
             executable = False
             break
         if executable and record["additional"]:
@@ -101,6 +124,8 @@ def main(plans_path: str, out_path: str) -> None:
         record["success"] = bool(eu.scene_evaluate_wID(
             planner.env_state.to_dict(), nodes, edges, planner.acting_char_id,
             action_seq=history, action_goals=actions_goal)[3])
+        if record["error"] == "missing_step":
+            record["runs_earlier"] = _runs_earlier(planner, history, failed)
     elapsed = time.perf_counter() - start
     Path(out_path).write_text(json.dumps({"seconds": elapsed, "plans": out}, indent=1))
 

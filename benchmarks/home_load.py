@@ -18,9 +18,11 @@ Rows:
   programs (what the conformance test loads), when the data set is fetched.
 
 Goal (issue 11): loading scene1 from the package <= 10 ms. The machine's load average is
-printed: timings taken under load are noisy, the ratios less so.
+printed: wall times taken under load are noisy, the ratios less so; the CPU time of the
+scene1 load (`time.process_time`) leaves out waiting for a core, so it stays close to a
+quiet machine's wall time.
 
-    python benchmarks/home_load.py [--repeat 20]
+    python benchmarks/home_load.py [--repeat 20] [--skip-dataset]
 """
 
 from __future__ import annotations
@@ -162,11 +164,24 @@ def _ref_edge(raw: Any, nodes: Mapping[int, Node], where: str) -> tuple[int, str
 
 # ------------------------------------------------------------------------ timing
 def best_of(fn: Callable[[], Any], repeat: int) -> float:
+    """Best wall time of `repeat` calls, in seconds."""
     best = math.inf
     for _ in range(repeat):
         t0 = time.perf_counter()
         fn()
         best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def best_cpu(fn: Callable[[], Any], repeat: int) -> float:
+    """Best CPU time of `repeat` calls (`time.process_time`, seconds): time spent waiting
+    for a core on a busy machine does not count, so it is close to a quiet machine's wall
+    time for single-threaded work like loading."""
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.process_time()
+        fn()
+        best = min(best, time.process_time() - t0)
     return best
 
 
@@ -185,7 +200,7 @@ Row = tuple[str, Callable[[], Any], Callable[[], Any] | None, Callable[[], Any],
 """label, homesim's loader, today's JSON loader (None: it is homesim's), old loader, repeat"""
 
 
-def rows(path: Path, repeat: int) -> list[Row]:
+def rows(path: Path, repeat: int, with_dataset: bool = True) -> list[Row]:
     """What to time: the built-in home, from_dict on scene1 and on the dataset graphs."""
     data = json.loads(gzip.decompress(path.read_bytes()))
     # Same answer from every loader before timing anything.
@@ -198,7 +213,7 @@ def rows(path: Path, repeat: int) -> list[Row]:
         ("from_dict scene1", lambda: EnvironmentGraph.from_dict(data), None,
          lambda: ref_from_dict(data), repeat),
     ]
-    graphs = dataset_graphs()
+    graphs = dataset_graphs() if with_dataset else []
     if graphs:
         out.append((f"from_dict {len(graphs)} dataset graphs",
                     lambda: [EnvironmentGraph.from_dict(g) for g in graphs], None,
@@ -209,13 +224,16 @@ def rows(path: Path, repeat: int) -> list[Row]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=20)
+    parser.add_argument("--skip-dataset", action="store_true",
+                        help="leave out the dataset graphs row (minutes on a busy machine)")
     args = parser.parse_args()
     load = os.getloadavg()
     with resources.as_file(resources.files("homesim.world.builtin") / "scene1.json.gz") as path:
         print(f"{'':<30} {'homesim ms':>10} {'JSON loader ms':>15} {'ratio':>6} "
               f"{'old loader ms':>14} {'ratio':>6}")
         times = {}
-        for label, ours, json_loader, old_loader, repeat in rows(path, args.repeat):
+        todo = rows(path, args.repeat, with_dataset=not args.skip_dataset)
+        for label, ours, json_loader, old_loader, repeat in todo:
             t_ours, t_old = best_of(ours, repeat), best_of(old_loader, repeat)
             times[label] = t_ours
             if json_loader is None:
@@ -225,9 +243,16 @@ def main() -> None:
                 json_cols = f"{t_json * 1e3:>15.2f} {t_json / t_ours:>5.1f}x"
             print(f"{label:<30} {t_ours * 1e3:>10.2f} {json_cols} {t_old * 1e3:>14.2f} "
                   f"{t_old / t_ours:>5.1f}x")
+        scene1 = todo[0]
+        cpu = [best_cpu(fn, args.repeat) * 1e3 for fn in (scene1[1], scene1[2], scene1[3])
+               if fn is not None]
     load_ms = times["load scene1 (built-in)"] * 1e3
-    print(f"\ngoal: load scene1 from the package <= 10 ms: "
-          f"{'met' if load_ms <= 10 else 'NOT MET'} ({load_ms:.1f} ms)")
+    print(f"\nload scene1, CPU time (process_time): homesim {cpu[0]:.2f} ms, JSON loader "
+          f"{cpu[1]:.2f} ms ({cpu[1] / cpu[0]:.1f}x), old loader {cpu[2]:.2f} ms "
+          f"({cpu[2] / cpu[0]:.1f}x)")
+    print(f"goal: load scene1 from the package <= 10 ms: wall "
+          f"{'met' if load_ms <= 10 else 'NOT MET'} ({load_ms:.1f} ms), CPU "
+          f"{'met' if cpu[0] <= 10 else 'NOT MET'} ({cpu[0]:.1f} ms)")
     after = os.getloadavg()
     print(f"load average (1 min) before/after: {load[0]:.2f} / {after[0]:.2f} "
           f"on {os.cpu_count()} cores")

@@ -13,6 +13,8 @@ Goals (issue 5): >= 10 frames/s on CPU (OSMesa); >= 300 frames/s on a GPU (EGL).
 from __future__ import annotations
 
 import argparse
+import os
+import resource
 import tempfile
 import time
 from pathlib import Path
@@ -44,6 +46,7 @@ def main() -> None:
     parser.add_argument("--height", type=int, default=480)
     args = parser.parse_args()
     w, h = args.width, args.height
+    load0 = os.getloadavg()[0]
     graph = homesim.load_home(DEMO_HOME)
     t0 = time.perf_counter()
     scene, timeline, _ = prepare(load_example("watch_tv"), graph, width=w, height=h, fps=30,
@@ -76,6 +79,10 @@ def main() -> None:
     ref_renderer.close()
 
     goal = GOALS.get(BACKEND, GOALS["osmesa"])
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # KiB on Linux
+    print(f"machine: {os.cpu_count()} CPUs, load average {load0:.1f} before, "
+          f"{os.getloadavg()[0]:.1f} after; peak RSS {rss:.0f} MiB (goal <= 1024); "
+          f"scene: {scene.model.ngeom} geoms, {scene.model.ntex} textures")
     print(f"backend MUJOCO_GL={BACKEND} ({gl_name}); {w}x{h}; {n} frames of the demo "
           f"(setup: scene + animation {setup:.1f} s, not timed)")
     print(f"{'':<44} {'frames/s':>9}")

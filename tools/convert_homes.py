@@ -4,7 +4,10 @@ Each scene is validated by `EnvironmentGraph.from_dict` and written, canonically
 and gzip-compressed, to src/homesim/world/builtin/<name>.json.gz. Where the character's
 INSIDE edge names another room than the one its box is in (scene1: bathroom 1, with its
 box and CLOSE edges in bedroom 67), the edge is moved to the room of the box, and the fix
-is printed. Then the column files `load_home` reads are written from the JSON
+is printed. Door boxes are VirtualHome placeholders (0.93 x 0.93 x 1.0 m at the floor);
+each becomes the closed leaf of its door frame (`homesim.render.layout.door_leaf`: between
+the posts, as tall as the opening, 2.5 cm thick), so the rendered door and its graph box
+agree. Then the column files `load_home` reads are written from the JSON
 (`tools/pack_homes.py`). Run from the repo root:
 
     python tools/convert_homes.py [../shared/data/virtualhome/scenes]
@@ -13,9 +16,13 @@ is printed. Then the column files `load_home` reads are written from the JSON
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
-from homesim.world.graph import EnvironmentGraph
+import numpy as np
+
+from homesim.render.layout import door_leaf, to_mujoco
+from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.homes import character_room_problem, rooms_holding_box
 from homesim.world.vocab import INSIDE
 from pack_homes import pack_all  # tools/ is on the path when this script runs
@@ -27,6 +34,7 @@ def main(scenes: Path) -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     for path in sorted(scenes.glob("scene*.json")):
         graph = fix_character_room(EnvironmentGraph.load(path), path.name)
+        graph = fix_door_boxes(graph, path.name)
         target = OUT / (path.stem + ".json.gz")
         graph.save(target)
         print(f"{path.name}: {len(graph)} nodes, {graph.num_edges()} edges -> {target.name} "
@@ -46,6 +54,28 @@ def fix_character_room(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:
                                               and e[2] in graph.room_ids)]
     print(f"{name}: fixed: {problem}; now INSIDE {graph.node(room).label()}")
     return EnvironmentGraph(graph.nodes.values(), [*edges, (char, INSIDE, room)], graph.meta)
+
+
+def fix_door_boxes(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:
+    """The graph with each door's box set to the closed leaf of its nearest door frame."""
+    jambs = [b for n in graph.nodes_of_class("doorjamb") if (b := to_mujoco(n)) is not None]
+    fixed = 0
+    nodes = []
+    for node in graph.nodes.values():
+        box = to_mujoco(node) if node.class_name == "door" else None
+        if box is not None and jambs:
+            jamb = min(jambs, key=lambda j: float(np.hypot(*(j.center[:2] - box.center[:2]))))
+            leaf = door_leaf(jamb)
+            (x, y, z), (sx, sy, sz) = leaf.center, 2 * leaf.half
+            node = replace(node, bounding_box=BoundingBox(
+                (round(float(x), 4), round(float(z), 4), round(float(y), 4)),
+                (round(float(sx), 4), round(float(sz), 4), round(float(sy), 4))))
+            fixed += 1
+        nodes.append(node)
+    if not fixed:
+        return graph
+    print(f"{name}: {fixed} door boxes set to their frames' leaves")
+    return EnvironmentGraph(nodes, list(graph.edges()), graph.meta)
 
 
 if __name__ == "__main__":

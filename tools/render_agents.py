@@ -32,7 +32,7 @@ def _box(center, size) -> dict:
 
 
 def studio() -> EnvironmentGraph:
-    """A 6 m room (Unity frame, y up) with a chair facing -x... and a cup on the floor."""
+    """A 6 m room (Unity frame, y up) with a chair by a wall and a cup in a corner."""
     nodes = [
         {"id": 1, "class_name": "livingroom", "category": "Rooms",
          "bounding_box": _box((0, 1.25, 0), (6.1, 2.5, 6.1))},

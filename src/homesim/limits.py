@@ -57,6 +57,14 @@ MAX_RENDER_PIXEL_FRAMES = 64 * 320 * 240
 """Most frames x pixels one render request may ask for (64 frames at 320x240; an
 RGB frame costs 3 bytes a pixel, so at most ~15 MB of images per request)."""
 
+MAX_RENDER_VIDEO_FPS = 30
+"""Highest frame rate of a program's video rendered for the editor (``/api/render/video``)."""
+
+MAX_RENDER_VIDEO_PIXEL_FRAMES = 1800 * 320 * 240
+"""Most frames x pixels of one video rendered for the editor (2.5 minutes at 12 fps and
+320x240), checked once the program is animated, before the first frame is drawn; the
+frames go straight into the MP4 file, one at a time."""
+
 MIN_VIDEO_SIDE = 8
 """Smallest frame width or height of a recorded video (``homesim render``), in pixels."""
 

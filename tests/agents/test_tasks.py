@@ -88,6 +88,10 @@ def test_eai_tasks_in_the_env_agree_with_plan_scoring(real_data):
             assert not env.step(str(step))[2], pid
 
 
+def test_check_env_passes_on_an_eai_task(real_data):
+    check_env(eai_env("27_2", formula=True), skip_render_check=True)
+
+
 def test_unknown_task_is_a_data_error(real_data):
     from homesim.errors import DataError
 

@@ -45,3 +45,18 @@ def test_out_naming_a_file_is_one_line(tmp_path, capsys):
     assert main(["learn", "train", "--data", "synthetic", "--out", str(out)]) == 2
     err = " ".join(capsys.readouterr().err.split())
     assert "runs: not a folder; --out names the run folder" in err and "internal" not in err
+
+
+def test_device_auto_is_cpu_without_cuda_and_cuda_is_refused(capsys):
+    import torch
+
+    from homesim.cli.learn import _torch
+
+    if torch.cuda.is_available():
+        assert _torch(1, "auto") == "cuda"
+    else:
+        assert _torch(1, "auto") == "cpu"
+        assert main(["learn", "table", "--out", "x", "--device", "cuda"]) == 2
+        assert "no CUDA device" in capsys.readouterr().err
+    assert main(["learn", "table", "--out", "x", "--device", "tpu"]) == 2
+    assert "--device tpu: choose from auto, cpu, cuda" in capsys.readouterr().err

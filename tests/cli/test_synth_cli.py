@@ -18,6 +18,22 @@ def test_synth_writes_jsonl_and_refuses_to_overwrite(tmp_path, capsys):
     assert main(["synth", "--n", "3", "--out", str(out), "--force"]) == 0
 
 
+def test_synth_description_styles(tmp_path, capsys):
+    from homesim.synth import generate
+
+    for style in ("people", "templates"):
+        out = tmp_path / f"{style}.jsonl"
+        assert main(["synth", "--n", "3", "--seed", "4", "--descriptions", style,
+                     "--out", str(out)]) == 0
+        texts = [json.loads(line)["description"] for line in out.read_text().splitlines()]
+        assert texts == [sp.program.description for sp in generate(3, 4, style=style)]
+    default = tmp_path / "default.jsonl"
+    assert main(["synth", "--n", "3", "--seed", "4", "--out", str(default)]) == 0
+    assert default.read_text() == (tmp_path / "people.jsonl").read_text()
+    assert main(["synth", "--n", "1", "--descriptions", "poems", "--out", str(tmp_path / "x")]) == 2
+    assert "--descriptions poems: choose people or templates" in capsys.readouterr().err
+
+
 def test_synth_bad_home_is_one_line(tmp_path, capsys):
     assert main(["synth", "--n", "1", "--home", "scene9", "--out", str(tmp_path / "x")]) == 2
     err = capsys.readouterr().err

@@ -103,15 +103,38 @@ def test_a_repeated_step_that_now_fails_is_additional(context, tiny_home):
 
 
 def test_contexts_are_cached_and_a_torn_cache_is_rebuilt(monkeypatch, tmp_path, context):
-    from homesim.goals import contexts as plans
+    from homesim.goals import contexts
 
     builds = []
-    monkeypatch.setattr(plans, "_build_contexts",
-                        lambda wanted: builds.append(wanted) or {"1_1": context})
+    monkeypatch.setattr(contexts, "_build_contexts", lambda wanted: builds.append(wanted) or {
+        k: context for k in ("1_1", "2_1") if wanted is None or f"file{k}" in wanted})
     path = tmp_path / "c.pickle"
-    monkeypatch.setattr(plans, "_cache_path", lambda: path)
-    assert set(plans.load_contexts()) == {"1_1"} and path.exists()
-    assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 1
+    monkeypatch.setattr(contexts, "_cache_path", lambda: path)
+    assert set(contexts.load_contexts(["2_1"])) == {"2_1"} and not path.exists()
+    assert builds == [{"file2_1"}]  # a small subset without the cache: built alone
+    assert set(contexts.load_contexts()) == {"1_1", "2_1"} and path.exists()
+    assert set(contexts.load_contexts()) == {"1_1", "2_1"} and len(builds) == 2
+    assert set(contexts.load_contexts(["1_1"])) == {"1_1"} and len(builds) == 2  # cached
     path.write_bytes(b"torn")
-    assert set(plans.load_contexts()) == {"1_1"} and len(builds) == 2
-    assert plans.load_contexts(cache=False) and len(builds) == 3
+    assert set(contexts.load_contexts()) == {"1_1", "2_1"} and len(builds) == 3
+    assert contexts.load_contexts(cache=False) and len(builds) == 4
+
+
+def test_a_large_subset_builds_and_caches_them_all(monkeypatch, tmp_path, context):
+    from homesim.goals import contexts
+
+    builds = []
+    monkeypatch.setattr(contexts, "_build_contexts",
+                        lambda wanted: builds.append(wanted) or {"1_1": context, "2_1": context})
+    monkeypatch.setattr(contexts, "SUBSET_BUILDS_ALL", 1)
+    monkeypatch.setattr(contexts, "_cache_path", lambda: tmp_path / "c.pickle")
+    assert set(contexts.load_contexts(["1_1", "2_1"])) == {"1_1", "2_1"}
+    assert builds == [None] and (tmp_path / "c.pickle").exists()
+
+
+@pytest.mark.parametrize("name", ["LOOKAT_SHORT", "LOOKAT_MEDIUM", "LOOKAT_LONG", "SQUEEZE"])
+def test_every_action_of_eai_table_is_known(context, name):
+    """EAI's valid_actions include the timed LookAt variants: aliases, not hallucinations."""
+    s = score_plan("1_1", plan(WALK_TV, '"TURNTO": ["tv", "14"]', f'"{name}": ["tv", "14"]'),
+                   context)
+    assert s.error != "hallucination" and s.steps[0] == "[WALK] <tv> (1.14)"

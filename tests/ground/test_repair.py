@@ -144,3 +144,18 @@ def test_same_seed_same_repair():
     a, b = (repair(text, "scene2_trimmed", seed=3).to_dict() for _ in range(2))
     assert a == b and a["insertions"]
     assert json.dumps(a)  # JSON-ready
+
+
+@pytest.mark.parametrize(("text", "walk"), [
+    # Sitting on the couch the character stands by leaves no room to lie on it; a walk
+    # before the first step on the couch lets grounding pick another one.
+    ("[Sit] <couch> (1)\n[Lie] <couch> (1)", "[Walk] <couch> (1)"),
+    # The cellphone at hand cannot be typed on; the phone that can is across the home.
+    ("[Grab] <phone> (1)\n[Type] <phone> (1)", "[Walk] <phone> (1)"),
+])
+def test_a_walk_before_the_first_step_on_an_object_lets_grounding_pick_another(text, walk):
+    r = repair(text, "scene4")
+    assert not r.before.executable and r.executable
+    assert [(i.index, str(i.step), i.before) for i in r.insertions] == [(0, walk, 0)]
+    assert "first acts on it" in r.insertions[0].reason
+    assert _own_steps(r) == text.split("\n")

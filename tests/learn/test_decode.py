@@ -25,3 +25,24 @@ def test_greedy_sample_and_constrained(tiny_splits):
     for p, e in zip(safe, test, strict=True):
         assert END not in p
         assert executable(t2p.steps.decode(p), e)
+
+
+def test_penalty_discourages_reuse_and_forbids_long_runs():
+    from homesim.learn.decode import MAX_RUN, REPEAT_PENALTY, penalized
+
+    log_probs = torch.log_softmax(torch.tensor([0.0, 3.0, 1.0, 0.5]), 0)
+    p = penalized(log_probs, [1, 2, 1])
+    assert p[1] == log_probs[1] - 2 * REPEAT_PENALTY and p[3] == log_probs[3]
+    assert p[END] == log_probs[END]  # ending is never penalised
+    assert penalized(log_probs, [1] * MAX_RUN)[1] == float("-inf")
+
+
+def test_constrained_decoding_does_not_loop(tiny_splits):
+    t2p = Text2Prog.create(tiny_splits.train, seed=0, embeddings="none")
+    with torch.no_grad():  # an untrained model: its favourite step would repeat forever
+        t2p.model.out.bias.data += 5 * t2p.model.step_embeddings()[1]
+    preds = t2p.predict(tiny_splits.test, constrained=True)
+    for p in preds:
+        keys = [str(s) for s in p.steps]
+        assert len(p) <= t2p.model.config.max_steps
+        assert not any(keys[i] == keys[i + 1] == keys[i + 2] for i in range(len(keys) - 2))

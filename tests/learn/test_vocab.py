@@ -26,3 +26,17 @@ def test_step_vocab_encode_decode_round_trip():
 def test_step_outside_vocabulary_is_reported():
     v = StepVocab.build([parse_program("[Walk] <cup> (1)")])
     assert v.encode(parse_program("[Walk] <sofa> (1)")) is None
+
+
+def test_instance_numbers_survive_the_vocabulary():
+    p = parse_program("[Walk] <chair> (1)\n[Sit] <chair> (1)\n[StandUp]\n[Walk] <chair> (2)")
+    v = StepVocab.build([p])
+    assert str(v.decode(v.encode(p))) == str(p)
+    assert v.table[v.index[step_key(p.steps[3])]][3] == 1  # the second chair's instance
+    assert StepVocab.from_json(v.to_json()).steps == v.steps
+
+
+def test_unseen_share_counts_steps_outside_the_vocabulary():
+    v = StepVocab.build([parse_program("[Walk] <cup> (1)\n[Grab] <cup> (1)")])
+    other = parse_program("[Walk] <cup> (1)\n[Grab] <mug> (1)\n[Walk] <mug> (1)\n[Grab] <cup> (1)")
+    assert v.unseen_share([other]) == 0.5

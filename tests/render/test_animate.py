@@ -169,3 +169,50 @@ def test_agent_stands_where_grounding_chose(box_home):
         assert np.linalg.norm(end - spot) < 0.06, (i, end, spot)
         moved += np.linalg.norm(plain.qpos[plain.step_frames[i][1]][:2] - spot) > 0.06
     assert moved  # without the spots render stands elsewhere: the test can fail
+
+
+def test_hand_touches_what_it_takes_even_from_a_far_spot(box_home):
+    """Grounding's spot 1 m from the table: the agent steps closer, the hand reaches the
+    cup's surface before the cup moves, and the cup does not jump when taken."""
+    from homesim.render.interact import TOUCH
+
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(PROGRAM), box_home, trace=True,
+                             reference=True)
+    far = (1.0 - 0.3 - 1.0, -1.0)  # 1 m from the table's -x edge (x = 0.7)
+    tl = Animator(scene, box_home, AGENTS["male1"], fps=10,
+                  standing={0: far, 1: far}).run(result)
+    (grab,) = tl.attaches
+    assert grab.node == 21 and grab.gap <= TOUCH
+    cup = scene.mocap[21]
+    start = tl.mocap[0][cup]
+    assert all(np.array_equal(tl.mocap[f][cup], start) for f in range(grab.frame + 1))
+    np.testing.assert_allclose(tl.mocap[grab.frame + 1][cup], start, atol=1e-9)  # no jump
+    walked = tl.qpos[grab.frame][:2] - np.array(far)
+    assert np.linalg.norm(walked) > 0.2  # it had to step closer
+
+
+def test_drink_brings_the_cup_to_the_mouth(box_home):
+    scene = build_scene(box_home, AGENTS["female1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(
+        "[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Drink] <cup> (21)\n"), box_home, trace=True,
+        reference=True)
+    tl = Animator(scene, box_home, AGENTS["female1"], fps=10).run(result)
+    drink = tl.interactions[-1]
+    assert drink.step == 2
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = tl.qpos[drink.peak]
+    mujoco.mj_kinematics(scene.model, d)
+    head = d.site("j:head").xpos
+    cup = tl.mocap[drink.peak][scene.mocap[21]]
+    assert np.linalg.norm(cup - head) < 0.2
+    assert cup[2] > head[2] - 0.2  # up at the face, not at the chest
+
+
+def test_fridge_door_swings_with_the_hand_on_its_handle(animated):
+    _, scene, tl = animated
+    opening = next(it for it in tl.interactions if it.step == 5)
+    hinge = scene.hinge_qpos[23]
+    angles = [tl.qpos[f][hinge] for f in range(opening.start, opening.peak + 1)]
+    assert angles[0] == 0.0 and abs(angles[-1] - scene.hinge_open[23]) < 1e-9
+    assert len({round(a, 3) for a in angles}) > 5  # it swings over several frames

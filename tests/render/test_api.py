@@ -63,3 +63,23 @@ def test_a_video_over_the_frames_x_pixels_limit_is_refused_before_drawing(
         render_program(p, box_home, tmp_path / "x", width=32, height=24)
     assert e.value.limit == "MAX_VIDEO_PIXEL_FRAMES"
     assert not (tmp_path / "x").exists()
+
+
+def test_render_video_writes_the_recordings_frames_as_mp4_only(box_home, tmp_path, gl):
+    import imageio_ffmpeg
+
+    from homesim.render import load_recording, render_video
+
+    p = homesim.parse_program("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n")
+    calls = []
+    path = tmp_path / "v.mp4"
+    n = render_video(p, box_home, path, width=64, height=48, fps=5, seed=2,
+                     progress=lambda done, total: calls.append((done, total)))
+    rec = render_program(p, box_home, tmp_path / "rec", width=64, height=48, fps=5, seed=2)
+    assert n == rec.num_frames == load_recording(rec.out_dir).rgb().shape[0]
+    assert calls[-1] == (n, n) and len(calls) == n
+    reader = imageio_ffmpeg.read_frames(str(path))
+    info = next(reader)
+    assert info["size"] == (64, 48) and info["fps"] == 5
+    assert sum(1 for _ in reader) == n
+    assert {x.name for x in tmp_path.iterdir()} == {"v.mp4", "rec"}  # no ground truth

@@ -94,3 +94,15 @@ def test_same_seed_gives_the_same_recording(tmp_path, box_home, gl):
             np.testing.assert_array_equal(arr, b.frame(i)[key], err_msg=key)
     np.testing.assert_array_equal(a.per_frame["joints2d"], b.per_frame["joints2d"])
 
+
+
+def test_flow_is_invalid_across_cuts_and_after_the_last_frame(recording):
+    _, rec, _, _ = recording
+    cut = rec.per_frame["cut"]
+    assert cut.any()  # the test can fail: the camera changes at least once
+    for i in np.flatnonzero(cut):
+        assert not rec.frame(int(i))["flow_valid"].any()
+    assert not rec.frame(rec.num_frames - 1)["flow_valid"].any()
+    kept = next(i for i in range(rec.num_frames - 1) if not cut[i])
+    f = rec.frame(kept)
+    assert f["flow_valid"].any() and not f["flow_valid"][f["depth"] == 0].any()

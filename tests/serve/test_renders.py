@@ -164,3 +164,107 @@ def test_render_with_the_real_renderer_shows_each_step(watch_tv):
         status = _wait(client, job)
         assert status["status"] == "failed" and status["error"]["status"] == 422
         assert "needs a home with 3D geometry" in status["error"]["message"]
+
+
+FAKE_MP4 = b"\x00\x00\x00\x18ftypmp42" + bytes(range(256)) * 4
+
+
+def fake_video(request, path, progress):
+    """Three 'frames' with their progress, then a file standing in for the MP4."""
+    for done in range(1, 4):
+        progress(done, 3)
+    with open(path, "wb") as f:
+        f.write(FAKE_MP4)
+    return 3
+
+
+def video_then_wait(request, path, progress):
+    progress(1, 50)
+    time.sleep(60)
+    return 50
+
+
+def failing_video(request, path, progress):
+    from homesim.errors import LimitError
+
+    raise LimitError("2400 frames at 320x240 is over the limit of ... frames x pixels per "
+                     "video (MAX_RENDER_VIDEO_PIXEL_FRAMES)", "MAX_RENDER_VIDEO_PIXEL_FRAMES")
+
+
+def test_video_job_answers_202_then_progress_then_an_mp4_with_ranges(watch_tv):
+    with _client(video_source=fake_video) as client:
+        r = client.post("/api/render/video", json={"program": watch_tv, "home": "scene1",
+                                                     "width": 32, "height": 24, "fps": 8})
+        assert r.status_code == 202, r.text
+        job = r.json()
+        assert job["kind"] == "video" and job["video"] is None and job["fps"] == 8
+        status = _wait(client, job)
+        assert status["status"] == "done", status
+        assert (status["ready"], status["total"]) == (3, 3)
+        assert status["video"] == f"{job['url']}/video" and status["frames"] == []
+        video = client.get(status["video"])
+        assert video.status_code == 200 and video.headers["content-type"] == "video/mp4"
+        assert video.content == FAKE_MP4
+        part = client.get(status["video"], headers={"Range": "bytes=4-11"})
+        assert part.status_code == 206 and part.content == b"ftypmp42"
+        assert client.get(f"{job['url']}/frames/0").status_code == 404  # a video job
+        keyframes = client.post("/api/render", json={"program": watch_tv, "home": "scene1",
+                                                     "width": 16, "height": 16}).json()
+        r = client.get(f"{keyframes['url']}/video")
+        assert r.status_code == 404 and "key frames, not a video" in r.json()["error"]["message"]
+
+
+def test_a_video_that_is_not_ready_or_failed_is_409_with_the_reason(watch_tv):
+    body = {"program": watch_tv, "home": "scene1", "width": 16, "height": 16}
+    with _client(video_source=video_then_wait) as client:
+        job = _wait(client, client.post("/api/render/video", json=body).json(),
+                    until=("running",))
+        deadline = time.monotonic() + 20
+        while client.get(job["url"]).json()["total"] == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        r = client.get(f"{job['url']}/video")
+        assert r.status_code == 409 and "1 of 50 frames drawn" in r.json()["error"]["message"]
+        assert client.delete(job["url"]).json()["status"] == "cancelled"
+    with _client(video_source=failing_video) as client:
+        job = client.post("/api/render/video", json=body).json()
+        status = _wait(client, job)
+        assert status["status"] == "failed" and status["error"]["status"] == 422
+        assert status["error"]["limit"] == "MAX_RENDER_VIDEO_PIXEL_FRAMES"
+        r = client.get(f"{job['url']}/video")
+        assert r.status_code == 409 and "MAX_RENDER_VIDEO_PIXEL_FRAMES" in r.text
+
+
+def test_video_request_fps_is_bounded(watch_tv):
+    from homesim.limits import MAX_RENDER_VIDEO_FPS
+
+    with _client(video_source=fake_video) as client:
+        r = client.post("/api/render/video", json={
+            "program": watch_tv, "home": "scene1", "fps": MAX_RENDER_VIDEO_FPS + 1})
+        assert r.status_code == 422 and "fps" in r.json()["error"]["message"]
+        assert client.app.state.renders.jobs == {}
+
+
+@pytest.mark.render
+def test_video_with_the_real_renderer_is_a_playable_mp4(watch_tv, tmp_path):
+    gl = pytest.importorskip("homesim.render.gl")
+    if not gl.gl_available():
+        pytest.skip(f"no OpenGL context with MUJOCO_GL={gl.BACKEND}")
+    import imageio_ffmpeg
+
+    app = create_app()
+    with TestClient(app, base_url="http://127.0.0.1") as client:
+        job = client.post("/api/render/video", json={"program": watch_tv, "home": "scene1",
+                                                     "width": 64, "height": 48, "fps": 3}).json()
+        deadline = time.monotonic() + 60
+        status = job
+        while status["status"] in ("queued", "running") and time.monotonic() < deadline:
+            time.sleep(0.1)
+            status = client.get(job["url"]).json()
+        assert status["status"] == "done", status
+        assert status["ready"] == status["total"] > 10
+        path = tmp_path / "v.mp4"
+        path.write_bytes(client.get(status["video"]).content)
+    reader = imageio_ffmpeg.read_frames(str(path))
+    info = next(reader)
+    assert info["size"] == (64, 48) and info["fps"] == 3
+    assert sum(1 for _ in reader) == status["total"]

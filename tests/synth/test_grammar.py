@@ -4,6 +4,8 @@ from homesim.knowledge.datasets import ActivityProgram
 from homesim.program.actions import ANIMATED
 from homesim.sim import execute
 from homesim.synth import Grammar, generate
+from homesim.synth.describe import names_for
+from homesim.synth.grammar import STYLES
 from homesim.world import load_home
 
 
@@ -27,10 +29,12 @@ def test_programs_are_ungrounded_with_a_description():
 
 
 def test_description_names_the_objects():
-    for sp in generate(40, seed=6):
-        text = sp.program.description.lower()
-        for ref in sp.program.object_refs():
-            assert ref.name.replace("_", " ") in text, (ref.name, text)
+    for style in STYLES:
+        for sp in generate(40, seed=6, style=style):
+            text = sp.program.description.lower()
+            for ref in sp.program.object_refs():
+                names = (ref.name.replace("_", " "),) if style == "templates" else names_for(ref.name)
+                assert any(n.lower() in text for n in names), (ref.name, text)
 
 
 def test_same_seed_same_programs_and_json_round_trip():

@@ -1,3 +1,5 @@
+from dataclasses import replace
+
 import pytest
 
 from homesim.errors import GraphError
@@ -16,16 +18,27 @@ def test_ten_built_in_homes():
                            + [f"scene{i}_trimmed" for i in range(1, 6)])
 
 
-def test_built_in_homes_equal_the_shared_scenes(shared_data):
+def _without_door_boxes(graph: EnvironmentGraph) -> dict:
+    return {i: replace(n, bounding_box=None) if n.class_name == "door" else n
+            for i, n in graph.nodes.items()}
+
+
+def test_built_in_homes_equal_the_shared_scenes_but_for_two_fixes(shared_data):
     for name in home_names():
         shared = EnvironmentGraph.load(shared_data / "scenes" / f"{name}.json")
-        if name == "scene1":  # the one fix of tools/convert_homes.py
+        home = load_home(name)
+        # Fix 1 (tools/convert_homes.py): door boxes are their frames' closed leaves.
+        assert _without_door_boxes(home) == _without_door_boxes(shared)
+        for door in home.nodes_of_class("door"):
+            if door.bounding_box is not None:
+                assert min(door.bounding_box.size) < 0.03 < 2.0 < door.bounding_box.size[1]
+        if name == "scene1":  # fix 2: the character's room
             assert character_room_problem(shared) == (
                 "character 65 is INSIDE bathroom 1 but its box is in bedroom 67")
-            assert set(shared.edges()) ^ set(load_home(name).edges()) == {
+            assert set(shared.edges()) ^ set(home.edges()) == {
                 (65, "INSIDE", 1), (65, "INSIDE", 67)}
             continue
-        assert load_home(name) == shared
+        assert set(home.edges()) == set(shared.edges())
 
 
 def test_the_character_starts_in_the_room_of_its_box():

@@ -6,8 +6,9 @@
 // It builds "watch TV" from blocks with the mouse (drag from the toolbox, pick objects in
 // the dropdowns), runs it and expects every step to pass; adds a failing step and expects
 // its reason on the block; saves and loads files; pastes a program and expects blocks;
-// switches homes; asks for key frames; numbers error lines as the user's text does, keeps
-// bubbles inside the pane and drops results of an earlier program when a check fails;
+// switches homes; asks for key frames and plays the video of the whole program; numbers
+// error lines as the user's text does, keeps bubbles inside the pane and drops results of
+// an earlier program when a check fails;
 // turns a README-style program (`<tv> (1)`, objects not bound to nodes) into action blocks.
 // Exits non-zero with a one-line reason on the first failure.
 import { chromium } from "playwright-core";
@@ -311,6 +312,24 @@ async function main() {
     const status = await page.locator("#status").textContent();
     check(frames === 5 || status.includes("rendering is not available"),
       `key frames: ${frames} images, status ${status}`);
+    // 8b. Play video: the whole program rendered on the server, played in the strip.
+    await page.locator("#video").click();
+    await page.waitForFunction(() => /^(✓|✗) video/.test(
+      document.querySelector("#video-status").textContent), null, { timeout: 150000 });
+    const videoStatus = await page.locator("#video-status").textContent();
+    let video = { duration: 0, width: 0 };
+    if (videoStatus.startsWith("✓")) {
+      await page.waitForFunction(() => document.querySelector("#video-player").readyState >= 2,
+        null, { timeout: 20000 });
+      video = await page.evaluate(() => {
+        const v = document.querySelector("#video-player");
+        return { duration: v.duration, width: v.videoWidth };
+      });
+    }
+    check((video.duration > 3 && video.width === 320)
+      || videoStatus.includes("rendering is not available"),
+    `video: ${videoStatus} ${JSON.stringify(video)}`);
+    if (opts.shots) await page.screenshot({ path: `${opts.shots}/video.png` });
 
     // 9. A check that fails drops the results of the earlier program; the error names the
     // line of the text as the user wrote it, and its bubble fits in the pane.
@@ -364,7 +383,7 @@ async function main() {
 
     check(errors.length === 0, `browser errors: ${errors.join(" | ")}`);
     console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000,
-      keyframes: frames }));
+      keyframes: frames, video }));
   } finally {
     await browser.close();
   }

@@ -30,9 +30,14 @@ export interface Execution {
 }
 export interface Frame { index: number; line: number; url: string }
 export interface RenderJob {
-  id: string; url: string; status: "queued" | "running" | "done" | "failed" | "cancelled";
-  total: number; ready: number; frames: Frame[];
-  error: { status: number; kind: string; message: string; line?: number } | null;
+  id: string; url: string; kind: "keyframes" | "video";
+  status: "queued" | "running" | "done" | "failed" | "cancelled";
+  total: number; // key frames; of a video, its frames (0 until the program is animated)
+  ready: number; // key frames ready; of a video, frames drawn so far
+  frames: Frame[];
+  video: string | null; // the MP4's URL once a video job is done
+  fps?: number;
+  error: { status: number; kind: string; message: string; line?: number; limit?: string } | null;
 }
 
 export class ApiError extends Error {
@@ -64,6 +69,8 @@ export const api = {
   validate: (program: string, home: string) => call<Validation>("validate", { program, home }),
   execute: (program: string, home: string) => call<Execution>("execute", { program, home }),
   render: (program: string, home: string) => call<RenderJob>("render", { program, home }),
+  renderVideo: (program: string, home: string, fps: number) =>
+    call<RenderJob>("render/video", { program, home, fps }),
   renderStatus: (id: string) => call<RenderJob>(`render/${encodeURIComponent(id)}`),
 };
 
@@ -71,15 +78,15 @@ export const api = {
 export const frameUrl = (id: string, index: number): string =>
   `api/render/${encodeURIComponent(id)}/frames/${index}`;
 
-/** Queue a render and call `onFrame` for each key frame as it is drawn; resolves with the
- * finished job, or throws the job's error. */
-export async function renderKeyFrames(program: string, home: string,
-  onFrame: (frame: Frame, job: RenderJob) => void, pollMs = 300): Promise<RenderJob> {
-  let job = await api.render(program, home);
-  let shown = 0;
+/** The URL of a video job's MP4, relative to the page like every API call. */
+export const videoUrl = (id: string): string => `api/render/${encodeURIComponent(id)}/video`;
+
+/** Poll a render job, calling `onUpdate` with each status, until it is done (resolves with
+ * it) or failed or cancelled (throws its error). */
+async function follow(job: RenderJob, onUpdate: (job: RenderJob) => void,
+  pollMs: number): Promise<RenderJob> {
   for (;;) {
-    for (const frame of job.frames.slice(shown)) onFrame(frame, job);
-    shown = Math.max(shown, job.frames.length);
+    onUpdate(job);
     if (job.status === "failed" || job.status === "cancelled") {
       const error = job.error;
       throw new ApiError(error?.status ?? 500, error?.message ?? `render ${job.status}`,
@@ -89,4 +96,23 @@ export async function renderKeyFrames(program: string, home: string,
     await new Promise((resolve) => window.setTimeout(resolve, pollMs));
     job = await api.renderStatus(job.id);
   }
+}
+
+/** Queue a render and call `onFrame` for each key frame as it is drawn; resolves with the
+ * finished job, or throws the job's error. */
+export async function renderKeyFrames(program: string, home: string,
+  onFrame: (frame: Frame, job: RenderJob) => void, pollMs = 300): Promise<RenderJob> {
+  let shown = 0;
+  return follow(await api.render(program, home), (job) => {
+    for (const frame of job.frames.slice(shown)) onFrame(frame, job);
+    shown = Math.max(shown, job.frames.length);
+  }, pollMs);
+}
+
+/** Queue a video of the whole program and call `onProgress` with each status (frames drawn
+ * of the total); resolves with the finished job (its MP4 at `videoUrl(job.id)`), or throws
+ * the job's error. */
+export async function renderVideo(program: string, home: string, fps: number,
+  onProgress: (job: RenderJob) => void, pollMs = 400): Promise<RenderJob> {
+  return follow(await api.renderVideo(program, home, fps), onProgress, pollMs);
 }

@@ -2,7 +2,9 @@
 // checked and run by the homesim server.
 import * as Blockly from "blockly/core";
 import * as En from "blockly/msg/en";
-import { ApiError, api, frameUrl, renderKeyFrames, type Execution } from "./api";
+import {
+  ApiError, api, frameUrl, renderKeyFrames, renderVideo, videoUrl, type Execution, type RenderJob,
+} from "./api";
 import { defineBlocks, toolbox } from "./blocks";
 import { parseUnbound, setObjects, setUnbound } from "./objects";
 import { itemsToState, parseText, workspaceToText, type Generated } from "./program";
@@ -18,6 +20,11 @@ const textArea = $<HTMLTextAreaElement>("text");
 const statusLine = $<HTMLParagraphElement>("status");
 const resultList = $<HTMLOListElement>("results");
 const frameBox = $<HTMLDivElement>("frames");
+const player = $<HTMLDivElement>("player");
+const videoElement = $<HTMLVideoElement>("video-player");
+const videoProgress = $<HTMLProgressElement>("video-progress");
+const videoStatus = $<HTMLParagraphElement>("video-status");
+const VIDEO_FPS = 12; // frames per second of the program's video
 const BUBBLE_CHARS = 44; // warning bubbles wrap at this width, so they fit beside a block
 
 let ws: Blockly.WorkspaceSvg;
@@ -29,6 +36,7 @@ let applyingText = false;
 let validateTimer: number | undefined;
 let textTimer: number | undefined;
 let requestEpoch = 0; // a check's answer is dropped once a newer check or run was asked for
+let videoEpoch = 0; // a video job's updates are dropped once a newer one was asked for
 
 function setStatus(message: string, kind: "ok" | "error" | "info" = "info"): void {
   statusLine.textContent = message;
@@ -62,6 +70,68 @@ function mixesBoundAndUnbound(text: string): boolean {
 function clearResults(): void {
   resultList.replaceChildren();
   frameBox.replaceChildren();
+  clearVideo();
+}
+
+/** Hide the video of an earlier program (and forget a video job still under way). */
+function clearVideo(): void {
+  videoEpoch++;
+  player.hidden = true;
+  videoElement.pause();
+  videoElement.removeAttribute("src");
+  videoElement.load();
+}
+
+function setVideoStatus(message: string, kind: "ok" | "error" | "info" = "info"): void {
+  videoStatus.textContent = message;
+  videoStatus.className = kind;
+}
+
+function showVideoProgress(job: RenderJob): void {
+  if (job.status === "queued") {
+    videoProgress.removeAttribute("value"); // indeterminate
+    setVideoStatus("video: waiting for a render worker…");
+  } else if (job.total > 0) {
+    videoProgress.max = job.total;
+    videoProgress.value = job.ready;
+    setVideoStatus(`rendering video… ${job.ready} of ${job.total} frames`);
+  } else {
+    videoProgress.removeAttribute("value");
+    setVideoStatus("rendering video… (animating the program)");
+  }
+}
+
+/** Render the whole program as a video (a job on the server) and play it in the strip. */
+async function playVideo(): Promise<void> {
+  clearVideo();
+  const epoch = videoEpoch;
+  if (generated.blockAtLine.size === 0) {
+    setStatus("Nothing to render: the program has no steps.", "error");
+    return;
+  }
+  player.hidden = false;
+  videoElement.hidden = true;
+  videoProgress.hidden = false;
+  showVideoProgress({ status: "queued" } as RenderJob);
+  try {
+    const job = await renderVideo(generated.text, homeSelect.value, VIDEO_FPS, (update) => {
+      if (epoch === videoEpoch) showVideoProgress(update);
+    });
+    if (epoch !== videoEpoch) return;
+    videoProgress.hidden = true;
+    videoElement.src = videoUrl(job.id);
+    videoElement.hidden = false;
+    const seconds = job.total / (job.fps ?? VIDEO_FPS);
+    setVideoStatus(`✓ video: ${job.total} frames, ${seconds.toFixed(1)} s`, "ok");
+    await videoElement.play().catch(() => undefined); // if autoplay is refused: controls
+  } catch (e) {
+    if (epoch !== videoEpoch) return;
+    videoProgress.hidden = true;
+    const message = e instanceof ApiError ? asShown(e.message, e.line)
+      : `cannot reach the server (${String(e)})`;
+    setVideoStatus(`✗ video: ${message}`, "error");
+    if (e instanceof ApiError) markBlock(e.line, message);
+  }
 }
 
 function clearMarks(): void {
@@ -295,6 +365,12 @@ async function start(): Promise<void> {
   $("run").addEventListener("click", () => void run());
   $("check").addEventListener("click", () => void validate());
   $("render").addEventListener("click", () => void renderFrames());
+  $("video").addEventListener("click", () => void playVideo());
+  videoElement.addEventListener("error", () => {
+    if (!videoElement.getAttribute("src")) return;
+    setVideoStatus("✗ video: this browser cannot play it (H.264 MP4); download it from "
+      + new URL(videoElement.src, location.href).pathname, "error");
+  });
   $("save").addEventListener("click", save);
   $("clear").addEventListener("click", () => { textArea.value = ""; applyText(""); });
   $<HTMLInputElement>("load").addEventListener("change", async (event) => {

@@ -96,8 +96,8 @@ def generate(
     seconds = time.perf_counter() - t0
     console.print(
         f"[green]ok[/]: {summary.ok} episodes ({summary.failed} failed), {summary.frames} "
-        f"frames, {summary.bytes / 1e6:.1f} MB ({summary.bytes_per_frame / 1e3:.1f} KB per "
-        f"frame) in {summary.shards} shards in {out}; {seconds:.0f} s")
+        f"frames, {summary.disk_bytes / 1e6:.1f} MB ({summary.bytes_per_frame / 1e3:.1f} KB "
+        f"per frame) in {summary.shards} shards in {out}; {seconds:.0f} s")
 
 
 @app.command()
@@ -133,3 +133,17 @@ def verify(root: Annotated[Path, typer.Argument(help="Data set folder.")]) -> No
         raise HomesimError(f"{root}: {len(report.problems)} problems")
     console.print(f"[green]ok[/]: {report.shards} shards, {report.episodes} episodes "
                   f"({report.ok} made), {report.frames} frames; checksums match")
+
+
+@app.command()
+def card(
+    root: Annotated[Path, typer.Argument(help="Data set folder.")],
+    out: Annotated[Path, typer.Option(help="Folder for stats.json and the figures.")],
+    seed: Annotated[int, typer.Option(help="Seed of the episodes on the contact sheet.")] = 0,
+) -> None:
+    """Figures of the data set card: counts and Table 1(a) (stats.json), action and object
+    histograms, and a contact sheet of 12 random episodes."""
+    from homesim.dataset.card import write_card
+
+    for path in write_card(root, out, seed):
+        console.print(f"wrote {path}")

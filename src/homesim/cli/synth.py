@@ -12,6 +12,7 @@ from homesim.cli.common import console
 from homesim.errors import HomesimError
 from homesim.files import check_target
 from homesim.synth import DEFAULT_HOMES, generate, write_jsonl
+from homesim.synth.grammar import STYLES
 from homesim.world.homes import home_names, is_generated
 
 
@@ -21,10 +22,13 @@ def synth(
     seed: Annotated[int, typer.Option(help="Random seed (same seed, same programs).")] = 0,
     home: Annotated[list[str] | None, typer.Option(
         help="Built-in home to use (repeat for several; default: the five apartments).")] = None,
+    descriptions: Annotated[str, typer.Option(
+        help="Description style: people (a paraphrase grammar) or templates (the fixed "
+             "phrases of the earlier learning figures). Same programs either way.")] = "people",
     force: Annotated[bool, typer.Option(help="Replace OUT if it exists.")] = False,
 ) -> None:
     """Sample programs from the grammar over the 12 animated actions, executable by
-    construction in the homes, each with a templated description.
+    construction in the homes, each with a description (docs/knowledge.md).
 
     OUT is a JSONL data set (docs/knowledge.md) that every homesim loader reads. It is
     written to a temporary file first and only replaces OUT once complete, so an
@@ -32,6 +36,8 @@ def synth(
     """
     if n < 1:
         raise HomesimError(f"--n must be at least 1, got {n}")
+    if descriptions not in STYLES:
+        raise HomesimError(f"--descriptions {descriptions}: choose {' or '.join(STYLES)}")
     check_target(out, force)  # before the work, not after it
     homes = tuple(home) if home else DEFAULT_HOMES
     unknown = [h for h in homes if h not in home_names() and not is_generated(h)]
@@ -43,7 +49,7 @@ def synth(
         task = bar.add_task("synth", total=n)
 
         def counted():
-            for sp in generate(n, seed, homes):
+            for sp in generate(n, seed, homes, style=descriptions):
                 yield sp
                 bar.advance(task)
 

@@ -35,12 +35,14 @@ class Summary:
     ok: int
     failed: int
     frames: int
-    bytes: int
+    bytes: int  # members of the made episodes
     shards: int
+    disk_bytes: int = 0  # the shard files (members plus tar headers and padding)
 
     @property
     def bytes_per_frame(self) -> float:
-        return self.bytes / self.frames if self.frames else 0.0
+        """Shard bytes on disk per frame (what the data set costs)."""
+        return self.disk_bytes / self.frames if self.frames else 0.0
 
 
 def load_programs(source: str, n: int, seed: int) -> list[tuple[str, str]]:
@@ -141,14 +143,14 @@ class _Job:
         ok = [r for r in rows if r["status"] == "ok"]
         summary = Summary(self.layout.root, len(rows), len(ok), len(rows) - len(ok),
                           sum(r["num_frames"] for r in ok), sum(r["bytes"] for r in ok),
-                          len(self.shards))
+                          len(self.shards), sum(s["bytes"] for s in self.shards.values()))
         shards = [{k: v for k, v in self.shards[k].items() if k != "rows"}
                   for k in sorted(self.shards)]
         write_text(self.layout.config_path, dumps({
             "format": FORMAT, "config": self.config.to_dict(), "complete": True,
             "counts": {"episodes": summary.episodes, "ok": summary.ok,
                        "failed": summary.failed, "frames": summary.frames,
-                       "bytes": summary.bytes},
+                       "bytes": summary.bytes, "disk_bytes": summary.disk_bytes},
             "shards": shards}))
         return summary
 

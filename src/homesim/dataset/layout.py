@@ -84,6 +84,19 @@ class Layout:
                 else:
                     p.unlink(missing_ok=True)
 
+    def finished_shards(self) -> list[dict[str, Any]]:
+        """The json of every finished shard, in order: from dataset.json when the run is
+        complete, else from the shards written so far (a run still going, or stopped)."""
+        info = read_json(self.config_path) if self.config_path.exists() else {}
+        if info.get("complete"):
+            return [read_json(self.shards / f"{Path(s['name']).stem}.json")
+                    for s in info["shards"]]
+        return [read_json(p) for p in sorted(self.shards.glob("shard-*.json"))]
+
+    def finished_rows(self) -> list[dict[str, Any]]:
+        """Manifest rows of the finished shards' episodes (all of them once complete)."""
+        return [row for shard in self.finished_shards() for row in shard["rows"]]
+
     # -- episodes -------------------------------------------------------------------
     def staged_tar(self, key: str) -> Path:
         return self.staging / f"{key}.tar"

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from homesim.ground.kbtypes import ObjectKnowledge, class_names_for
 from homesim.ground.placement import place_box
-from homesim.ground.standing import AGENT_SIZE, FloorPlan
+from homesim.world.floor import FloorModel
 from homesim.world.graph import BoundingBox, Edge, EnvironmentGraph, Node
 from homesim.world.vocab import CLOSE, FACING, GRABBABLE, INSIDE, ON, S_CLOSED
 
@@ -140,19 +140,22 @@ class Start:
 
 def move_character(graph: EnvironmentGraph, rng: random.Random
                    ) -> tuple[EnvironmentGraph, Start | None]:
-    """Stand the character on free floor of a random room; None (home unchanged) when no
-    room has any."""
+    """Stand the character on a random cell of a random room's walkable floor (the floor
+    model's main part, `homesim.world.floor.FloorModel`: every room and object the
+    renderer can walk to is reachable from there); None (home unchanged) when there is
+    none."""
     char = graph.character_id
     if char is None or graph.node(char).bounding_box is None:
         return graph, None
-    plan = FloorPlan(graph)
-    rooms = sorted(r.id for r in graph.rooms() if r.bounding_box is not None)
-    rng.shuffle(rooms)
-    for room in rooms:
-        spot = plan.free_floor(room, AGENT_SIZE, AGENT_SIZE, rng)
-        if spot is not None:
-            return _place_character(graph, char, room, spot), Start(room, *spot)
-    return graph, None
+    model = FloorModel(graph)
+    runs = [r for r in model.main_runs() if r[3] >= 0]  # (row, first, last, room)
+    rooms = sorted({r[3] for r in runs})
+    if not rooms:
+        return graph, None
+    room = rng.choice(rooms)
+    cells = [(i, j) for j, a, b, r in runs if r == room for i in range(a, b + 1)]
+    x, z = model.point(*rng.choice(cells))
+    return _place_character(graph, char, room, (x, z)), Start(room, x, z)
 
 
 def _place_character(graph: EnvironmentGraph, char: int, room: int,

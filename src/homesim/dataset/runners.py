@@ -66,7 +66,7 @@ def ray_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
             max_retries=1, **extra)
         slots = max(1, int(ray.cluster_resources().get("CPU", 1))) * 2
         todo = list(reversed(specs))
-        pending = []
+        pending: list = []
         while todo or pending:
             while todo and len(pending) < slots:
                 pending.append(task.remote(todo.pop(), config, str(root.resolve())))

@@ -38,9 +38,9 @@ def iter_members(source: str | Path | IO[bytes]) -> Iterator[tuple[str, bytes]]:
         for info in tar:
             if not info.isfile():
                 continue
-            f = tar.extractfile(info)
-            assert f is not None  # a regular file member
-            yield info.name, f.read()
+            member = tar.extractfile(info)
+            assert member is not None  # a regular file member
+            yield info.name, member.read()
 
 
 class MemberHash:

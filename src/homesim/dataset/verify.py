@@ -27,7 +27,8 @@ class Report:
 
 def iter_episodes(shard: Path) -> Iterator[tuple[str, list[tuple[str, bytes]]]]:
     """(key, members) of each episode of a shard, streaming (members are consecutive)."""
-    key, members = None, []
+    key: str | None = None
+    members: list[tuple[str, bytes]] = []
     for name, data in iter_members(shard):
         k = name.split(".", 1)[0]
         if k != key and members:
@@ -97,7 +98,10 @@ def _check_members(key: str, members: list[tuple[str, bytes]], row: dict[str, An
     meta_bytes = names.get(f"{key}.json")
     if meta_bytes is None:
         return "no json member"
-    meta = json.loads(meta_bytes)
+    try:
+        meta = json.loads(meta_bytes)
+    except ValueError:
+        return "json member unreadable"
     if meta["num_frames"] != row["num_frames"]:
         return f"json says {meta['num_frames']} frames, the manifest {row['num_frames']}"
     stride, frames = meta["gt_stride"], meta["num_frames"]

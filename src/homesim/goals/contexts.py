@@ -39,6 +39,10 @@ class TaskContext:
     objects: frozenset[tuple[str, int]]
 
 
+SUBSET_BUILDS_ALL = 50
+"""Without the cache, a request for more tasks than this builds (and caches) all of them."""
+
+
 def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
                   ) -> dict[str, TaskContext]:
     """`TaskContext` of every annotated program of the real data set (or of `ids`, EAI
@@ -46,44 +50,56 @@ def load_contexts(ids: Iterable[str] | None = None, cache: bool = True
 
     The full set is kept as a pickle beside the data (`_cache_path`), keyed by the data's
     manifest, the goal file and the source of the modules whose objects it holds: any
-    change to them builds it again. `cache` False neither reads nor writes it.
+    change to them builds it again. A subset is taken from it when it is there; else a
+    subset of up to `SUBSET_BUILDS_ALL` tasks is built alone, a larger one builds and
+    caches the whole set. `cache` False neither reads nor writes it.
     """
-    if ids is not None:
-        wanted = {f"file{i}" for i in ids}
-        return _build_contexts(wanted)
+    wanted = None if ids is None else {f"file{i}" for i in ids}
     path = _cache_path() if cache else None
-    if path is not None and path.exists():
-        try:
-            with path.open("rb") as f:
-                return pickle.load(f)  # our own file, written below
-        except Exception:
-            pass
-    contexts = _build_contexts(None)
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(".tmp")
-        with tmp.open("wb") as f:
-            pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
-        tmp.replace(path)
-    return contexts
+    if wanted is not None and (path is None or not path.exists()) and (
+            len(wanted) <= SUBSET_BUILDS_ALL):
+        return _build_contexts(wanted)
+    contexts = _read_cache(path) if path is not None else None
+    if contexts is None:
+        contexts = _build_contexts(None)
+        if path is not None:
+            _write_cache(path, contexts)
+    if wanted is None:
+        return contexts
+    return {k: c for k, c in contexts.items() if f"file{k}" in wanted}
+
+
+def _read_cache(path: Path) -> dict[str, TaskContext] | None:
+    if not path.exists():
+        return None
+    try:
+        with path.open("rb") as f:
+            return pickle.load(f)  # our own file, written by _write_cache
+    except Exception:
+        return None
+
+
+def _write_cache(path: Path, contexts: dict[str, TaskContext]) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    with tmp.open("wb") as f:
+        pickle.dump(contexts, f, protocol=pickle.HIGHEST_PROTOCOL)
+    tmp.replace(path)
 
 
 def _build_contexts(wanted: set[str] | None) -> dict[str, TaskContext]:
-    from homesim.errors import DataError
     from homesim.goals.eai import eai_id, load_eai_goals
+    from homesim.knowledge.fetch import dataset_dir
     from homesim.knowledge.graphpairs import GraphPairReader
-    from homesim.knowledge.realdata import real_programs
 
     goals = load_eai_goals()
+    graphs = dataset_dir() / "graphs"  # the stored graphs of program fileN: fileN.json
     reader = GraphPairReader()
     out = {}
-    for item in real_programs():
-        if item.id not in goals or (wanted is not None and item.id not in wanted):
-            continue
-        if item.graph_path is None:
-            raise DataError(f"{item.source or item.id}: no stored graphs for this program")
-        home, objects = reader.read(item.graph_path)
-        out[eai_id(item.id)] = TaskContext(goals[item.id], home, objects)
+    for program in sorted(goals):
+        if wanted is None or program in wanted:
+            home, objects = reader.read(graphs / f"{program}.json")
+            out[eai_id(program)] = TaskContext(goals[program], home, objects)
     return out
 
 

@@ -19,6 +19,9 @@ derived from that step's row of the action catalog (`homesim.program.actions`):
 - neither ``handles`` nor ``moves`` (LookAt, Watch): turn to, or walk to, the object.
 - ``hands`` ``let_go`` with a ``reach`` motion but no ``reach`` (PutObjBack): walk back to
   where the object was taken from (a run of the steps before it says where).
+- an object an earlier step already acted on without walking to it: walk to it before that
+  first step (grounding then binds an object the character can reach, not the one it
+  stands by: lying on the couch it sat on finds no room; another couch has it).
 
 An insertion is kept when the program then runs further (a later original step fails, or
 none); an insertion after which the program still fails, at its own step (a Walk needs a
@@ -179,32 +182,32 @@ def _progress(items: list[_Item], run: Run) -> int:
     return sum(reason is None for _, reason in items[:upto])
 
 
-def _improve(items: list[_Item], run: Run, depth: int, search: _Search
-             ) -> tuple[list[_Item], Run] | None:
-    """The first insertion (or chain of up to `depth`) after which more original steps
-    run; None when there is none within the budget."""
+def _improve(items: list[_Item], run: Run, depth: int, search: _Search,
+             need: int | None = None) -> tuple[list[_Item], Run] | None:
+    """The first insertion (or chain of up to `depth`) after which more than `need` (by
+    default: as many as now) original steps run; None when there is none within the
+    budget."""
     if run.failed_step is None or run.failed_step > len(items):
         return None
-    base = _progress(items, run)
+    need = _progress(items, run) if need is None else need
     stuck: list[tuple[list[_Item], Run]] = []
     for inserted in _candidates(items, run.failed_step - 1, run, search):
         if search.runs_left <= 0:
             return None
         trial = search.run(inserted)
-        progress = _progress(inserted, trial)
-        if progress > base:
+        if _progress(inserted, trial) > need:
             return inserted, trial
         if trial.failed_step is not None:
-            # Preparation places added objects where the program first acts on them, so an
-            # insertion may move the failure earlier: worth repairing in turn, after those
-            # that leave it where it was.
+            # Preparation places added objects where the program first acts on them, and
+            # grounding may bind objects anew, so an insertion may move the failure
+            # earlier: worth repairing in turn, after those that leave it where it was.
             stuck.append((inserted, trial))
     if depth <= 1:
         return None
     stuck.sort(key=lambda t: -_progress(*t))  # stable: candidate order among equals
     for inserted, trial in stuck:
-        found = _improve(inserted, trial, depth - 1, search)
-        if found is not None and _progress(*found) > base:
+        found = _improve(inserted, trial, depth - 1, search, need)
+        if found is not None:
             return found
     return None
 
@@ -220,6 +223,26 @@ def _candidates(items: list[_Item], k: int, run: Run, search: _Search
             continue  # the same step twice in a row fixes nothing
         seen.add(new)
         yield [*items[:k], (new, reason), *items[k:]]
+    for j, new, reason in _earlier_fixes(step, k, items):
+        yield [*items[:j], (new, reason), *items[j:]]
+
+
+def _earlier_fixes(step: Step, k: int, items: list[_Item]) -> Iterator[tuple[int, Step, str]]:
+    """Walk to an object of step `k` before the first step that acts on it, when none
+    walks there first: the object is then bound to one the character can reach, rather
+    than to the one it happens to stand by (sitting on the couch it stands by, then
+    lying on it, finds no room; a [Walk] first lets grounding pick another couch)."""
+    for ref in dict.fromkeys(step.args):
+        first = next((j for j in range(k) if ref in items[j][0].args), None)
+        if first is None:
+            continue
+        walk = _step("WALK", ref)
+        earlier = [s for s, _ in items[:first]]
+        if walk in earlier or items[first][0].action.moves:
+            continue
+        first_name, name = items[first][0].action.name, step.action.name
+        yield (first, walk, f"walk to {ref} before [{first_name}], which first acts on it, "
+                            f"so that [{name}] finds one it can reach")
 
 
 def _fixes(step: Step, k: int, items: list[_Item], search: _Search

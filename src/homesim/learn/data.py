@@ -43,11 +43,16 @@ def real_examples(directory: Path | None = None) -> list[Example]:
     return [rp.ungrounded() for rp in real_programs(directory)]
 
 
-def synthetic_examples(n: int = 5000, seed: int = 0, path: Path | None = None) -> list[Example]:
-    """Synthetic examples: read from a `homesim synth` file, or generated with `seed`."""
+def synthetic_examples(n: int = 5000, seed: int = 0, path: Path | None = None,
+                       style: str = "templates") -> list[Example]:
+    """Synthetic examples: read from a `homesim synth` file, or generated with `seed`.
+
+    `style` is the description style (`homesim.synth.grammar.STYLES`): the learning
+    figures in docs/results.md were made with ``"templates"``, which stays the default
+    here so that they reproduce; ``"people"`` is the paraphrase grammar (same programs)."""
     from homesim.synth import generate, read_jsonl
 
-    return read_jsonl(path) if path is not None else list(generate(n, seed))
+    return read_jsonl(path) if path is not None else list(generate(n, seed, style=style))
 
 
 def split(name: str, examples: list[Example], seed: int) -> Splits:

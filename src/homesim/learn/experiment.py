@@ -22,6 +22,7 @@ from homesim.learn.metrics import example_scores
 from homesim.learn.splits import make_split
 from homesim.learn.text2prog import Text2Prog
 from homesim.learn.train import BestOnDev, TrainConfig, train_mle
+from homesim.learn.vocab import StepVocab
 from homesim.program.model import Program
 
 DATASETS = ("real", "synthetic")
@@ -37,9 +38,9 @@ class RunSpec:
     split: str
     seed: int
     synth_n: int = 5000
-    mle_epochs: int = 25  # dev steps LCS plateaus by epoch ~16-20 on real data
+    mle_epochs: int = 12  # CPU budget: 10 models on a shared 2-core machine (docs/learn.md)
     batch_size: int = 32
-    mle_lr: float = 2e-3
+    mle_lr: float = 4e-3
     embeddings: str = "minilm"
 
     def folder(self, out: Path) -> Path:
@@ -48,19 +49,33 @@ class RunSpec:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def matches(self, stored: dict | None) -> bool:
+        """Whether `stored` (a saved `to_dict`) describes this run; the synthetic-set size
+        does not matter for real data."""
+        if not isinstance(stored, dict):
+            return False
+        mine = self.to_dict()
+        if self.dataset == "real":
+            stored, mine = {**stored, "synth_n": None}, {**mine, "synth_n": None}
+        return stored == mine
 
-def load_examples(dataset: str, seed: int = 0, synth_n: int = 5000) -> list[Example]:
-    """The real programs, or `synth_n` synthetic ones generated with `seed`."""
+
+SYNTH_SEED = 0
+"""The synthetic programs are one generated set (this seed); each run's seed splits them."""
+
+
+def load_examples(dataset: str, synth_n: int = 5000) -> list[Example]:
+    """The real programs, or `synth_n` synthetic ones generated with `SYNTH_SEED`."""
     if dataset == "real":
         return real_examples()
     if dataset == "synthetic":
-        return synthetic_examples(synth_n, seed)
+        return synthetic_examples(synth_n, SYNTH_SEED)
     raise HomesimError(f"unknown data set {dataset!r}: choose from {', '.join(DATASETS)}")
 
 
 def load_run_splits(spec: RunSpec) -> Splits:
     """The train/dev/test examples of a run."""
-    examples = load_examples(spec.dataset, spec.seed, spec.synth_n)
+    examples = load_examples(spec.dataset, spec.synth_n)
     return make_split(spec.split, examples, spec.seed, spec.dataset)
 
 
@@ -71,7 +86,7 @@ def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
     path = folder / "mle.pt"
     if path.is_file():
         t2p = Text2Prog.load(path, device)
-        if t2p.meta.get("spec") == spec.to_dict():
+        if spec.matches(t2p.meta.get("spec")):
             return t2p
     start = time.perf_counter()
     t2p = Text2Prog.create(splits.train, spec.seed, embeddings=spec.embeddings, device=device)
@@ -87,13 +102,14 @@ def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
     return t2p
 
 
-def row_jobs(splits: Splits, seed: int, t2p: Text2Prog | None
-             ) -> list[tuple[str, Callable[[], list[Program]]]]:
-    """(row name, predictions) of every row of the table, in order."""
-    from homesim.learn.retrieve import RetrieveEdit
+Job = tuple[str, Callable[[], list[Program]]]
+"""A table row: its name and how to make its predictions on the test split."""
 
+
+def baseline_jobs(splits: Splits, seed: int) -> list[Job]:
+    """Rows that learn nothing, the ground truth and the empty program first."""
     train, test = splits.train, splits.test
-    jobs: list[tuple[str, Callable[[], list[Program]]]] = [
+    return [
         ("Ground truth", lambda: [e.program for e in test]),
         ("Empty program", lambda: [Program(()) for _ in test]),
         ("Random sampling", lambda: baselines.random_sampling(train, test, seed)),
@@ -102,46 +118,125 @@ def row_jobs(splits: Splits, seed: int, t2p: Text2Prog | None
         ("NN (title)", lambda: baselines.nn_title(train, test)),
         ("NN (description)", lambda: baselines.nn_description(train, test)),
     ]
-    if t2p is not None:
-        jobs += [("MLE (seq2seq)", lambda: t2p.predict(test)),
-                 ("MLE + constrained decoding", lambda: t2p.predict(test, constrained=True))]
-    jobs.append(("Retrieve-and-edit", lambda: RetrieveEdit.fit(train, splits.dev).predict(test)))
-    return jobs
 
 
-def score_rows(splits: Splits, jobs: list[tuple[str, Callable[[], list[Program]]]],
-               report: Report | None = None) -> dict[str, dict]:
-    """Per-example scores of every row: LCS, executable here and elsewhere, repetition."""
-    rows: dict[str, dict] = {}
+def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
+    """Rows that learn: seq2seq (greedy, constrained), retrieve-and-edit, consensus."""
+    from homesim.learn.consensus import Consensus
+    from homesim.learn.retrieve import RetrieveEdit
+
+    test = splits.test
+    fitted: dict[str, RetrieveEdit] = {}
+
+    def retrieval() -> RetrieveEdit:
+        if "model" not in fitted:
+            fitted["model"] = RetrieveEdit.fit(splits.train, splits.dev)
+        return fitted["model"]
+
+    return [
+        ("MLE (seq2seq)", lambda: t2p.predict(test)),
+        ("MLE + constrained decoding", lambda: t2p.predict(test, constrained=True)),
+        ("Retrieve-and-edit", lambda: retrieval().predict(test)),
+        ("Consensus (MLE + retrieval)",
+         lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)),
+    ]
+
+
+def rule_job(splits: Splits) -> Job:
+    """The hand-written parser of the synthetic phrasings (an upper bound, `rules`)."""
+    from homesim.learn.rules import parse
+
+    return ("Rule parser (upper bound)", lambda: [parse(e.description) for e in splits.test])
+
+
+def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
+               save: Callable[[], None] | None = None, report: Report | None = None) -> None:
+    """Per-example scores of every row not yet in `rows` (LCS, executes here and in the
+    other homes, repetition), calling `save` after each row."""
     for done, (name, job) in enumerate(jobs):
-        start = time.perf_counter()
-        preds = job()
-        rows[name] = {
-            "examples": [example_scores(p, e.program, executable(p, e), cross_home_rate(p, e))
-                         for p, e in zip(preds, splits.test, strict=True)],
-            "seconds": time.perf_counter() - start}
+        if name not in rows:
+            start = time.perf_counter()
+            preds = job()
+            predicted = time.perf_counter() - start
+            rows[name] = {
+                "examples": [example_scores(p, e.program, executable(p, e),
+                                            cross_home_rate(p, e))
+                             for p, e in zip(preds, splits.test, strict=True)],
+                "predict_seconds": predicted, "seconds": time.perf_counter() - start}
+            if save:
+                save()
         if report:
             report(splits.name, done + 1, len(jobs), 0.0)
-    return rows
+
+
+def preload_vectors(splits: Splits, cache: Path) -> None:
+    """Embed every title, description and activity of the data set in one go (cached on
+    disk), so that the vectors do not depend on what was embedded before."""
+    from homesim.learn.embeddings import preload_sentence_vectors
+
+    examples = [*splits.train, *splits.dev, *splits.test]
+    preload_sentence_vectors([t for e in examples for t in (e.title, e.description, e.activity)],
+                             cache)
+
+
+def cached_run(spec: RunSpec, out: Path) -> dict | None:
+    """The scores a run already has (``scores.json`` for this spec), or None."""
+    cache = spec.folder(out) / "scores.json"
+    if not cache.is_file():
+        return None
+    data = json.loads(cache.read_text())
+    return data if spec.matches(data.get("spec")) and data.get("rows") else None
 
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         report: Report | None = None) -> dict:
-    """Score every row of one run (cached in ``scores.json`` for the same spec)."""
+    """Score every row of one run; rows already in ``scores.json`` for the same spec are
+    kept (so baselines scored without the model are reused, and an interrupted run resumes).
+    """
     folder = spec.folder(out)
     cache = folder / "scores.json"
+    rows: dict[str, dict] = {}
     if cache.is_file():
-        data = json.loads(cache.read_text())
-        if data.get("spec") == spec.to_dict() and data.get("with_model") == with_model:
-            return data
+        old = json.loads(cache.read_text())
+        if spec.matches(old.get("spec")):
+            rows = old["rows"]
     splits = load_run_splits(spec)
+    preload_vectors(splits, out / spec.dataset / "vectors.npz")
     t2p = mle_model(spec, splits, folder, device, report) if with_model else None
-    unseen = None if t2p is None else t2p.steps.unseen_share(e.program for e in splits.test)
-    data = {"spec": spec.to_dict(), "with_model": with_model,
-            "n_train": len(splits.train), "n_dev": len(splits.dev), "n_test": len(splits.test),
-            "test_ids": [e.id for e in splits.test], "unseen_step_share": unseen,
-            "train_seconds": None if t2p is None else t2p.meta.get("seconds"),
-            "rows": score_rows(splits, row_jobs(splits, spec.seed, t2p), report)}
-    folder.mkdir(parents=True, exist_ok=True)
-    write_text(cache, json.dumps(data) + "\n", force=True)
-    return data
+    jobs = baseline_jobs(splits, spec.seed)
+    if t2p is not None:
+        jobs += model_jobs(splits, spec.seed, t2p)
+    if spec.dataset == "synthetic":
+        jobs.append(rule_job(splits))
+    unseen = StepVocab.build(e.program for e in splits.train).unseen_share(
+        e.program for e in splits.test)
+    data = {"spec": spec.to_dict(), "n_train": len(splits.train), "n_dev": len(splits.dev),
+            "n_test": len(splits.test), "test_ids": [e.id for e in splits.test],
+            "unseen_step_share": unseen,
+            "train_seconds": None if t2p is None else t2p.meta.get("seconds"), "rows": rows}
+
+    def save() -> None:
+        folder.mkdir(parents=True, exist_ok=True)
+        write_text(cache, json.dumps(data) + "\n", force=True)
+
+    score_rows(splits, jobs, rows, save, report)
+    ordered = {name: rows[name] for name, _ in jobs}  # the table's order
+    data["rows"] = {**ordered, **{k: v for k, v in rows.items() if k not in ordered}}
+    save()
+    return {**data, "rows": ordered}
+
+
+def block(runs: list[dict], model_row: str, baselines_to_beat: tuple[str, ...]) -> dict:
+    """The summary of one data set and split over its runs (one per seed)."""
+    from homesim.learn.summary import gaps, summarize_rows
+
+    def mean(key: str) -> float:
+        values = [r[key] for r in runs if r.get(key) is not None]
+        return round(sum(values) / len(values), 1) if values else 0.0
+
+    out = {"seeds": [r["spec"]["seed"] for r in runs], "rows": summarize_rows(runs),
+           "sizes": {"train": mean("n_train"), "dev": mean("n_dev"), "test": mean("n_test"),
+                     "unseen": sum(r["unseen_step_share"] for r in runs) / len(runs)}}
+    if any(model_row in r["rows"] for r in runs):
+        out["gaps"] = gaps(runs, model_row, baselines_to_beat)
+    return out

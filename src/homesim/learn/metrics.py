@@ -7,6 +7,7 @@ compared by action and object class names; instance numbers are ignored.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from itertools import pairwise
 
 from homesim.program.metrics import (
     ProgramScores,
@@ -54,7 +55,7 @@ SOLVED_LCS = 0.5
 def repeats(program: Program) -> int:
     """Steps equal to the step before them (action and object classes)."""
     tokens = step_tokens(program)
-    return sum(a == b for a, b in zip(tokens, tokens[1:], strict=False))
+    return sum(a == b for a, b in pairwise(tokens))
 
 
 def example_scores(pred: Program, truth: Program, runs_here: bool,

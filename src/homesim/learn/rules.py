@@ -109,11 +109,26 @@ def _parse(text: str, at: int) -> list[tuple[str, dict[str, str]]] | None:
     return None
 
 
+def _pieces(text: str) -> list[tuple[str, dict[str, str]]]:
+    """Fallback for text that is not a chain of known phrases: each piece between
+    connectives or sentence ends that is one known phrase, the rest skipped."""
+    tasks = []
+    for piece in re.split(rf"{JOIN}|\. |, ", text):
+        piece = re.sub(rf"^{START}", "", piece.strip())
+        for kind, pattern in _patterns():
+            m = pattern.fullmatch(piece)
+            if m is not None:
+                tasks.append((kind, m.groupdict()))
+                break
+    return tasks
+
+
 def parse(description: str) -> Program:
-    """The program the description's phrases say; the empty program if it parses not."""
+    """The program the description's phrases say: the whole text as a chain of known
+    phrases, else the pieces of it that are known phrases (possibly none: empty)."""
     text = description.strip().lower().rstrip(".")
     start = re.compile(START).match(text)
-    tasks = _parse(text, start.end() if start else 0) or []
+    tasks = _parse(text, start.end() if start else 0) or _pieces(text)
     keys = []
     for kind, slots in tasks:
         names = {k.rstrip("2"): v.replace(" ", "_") for k, v in slots.items() if v and k != "up"}

@@ -33,6 +33,7 @@ class Seq2SeqConfig:
     step_dim: int = 100
     dropout: float = 0.2
     max_steps: int = 40
+    feature_dim: int = 0  # > 0: a video encoder reads (batch, clips, feature_dim) features
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -62,6 +63,8 @@ class Seq2Seq(nn.Module):
         self.words = nn.Embedding(cfg.n_words, cfg.word_dim, padding_idx=0)
         if word_vectors is not None:
             self.words.weight.data.copy_(word_vectors)
+        # the second encoder's input: clip features projected to the word embedding size
+        self.features = nn.Linear(cfg.feature_dim, cfg.word_dim) if cfg.feature_dim else None
         self.encoder = nn.LSTM(cfg.word_dim, cfg.hidden // 2, batch_first=True,
                                bidirectional=True)
         self.init_h = nn.Linear(cfg.hidden, cfg.hidden)
@@ -85,14 +88,23 @@ class Seq2Seq(nn.Module):
         return total / n_parts
 
     def encode(self, words: torch.Tensor, mask: torch.Tensor) -> DecoderState:
-        """Read the descriptions: words (batch, words) ids, mask (batch, words)."""
-        x = self.drop(self.words(words))  # (batch, words, word_dim)
+        """Read the descriptions: words (batch, words) ids, mask (batch, words).
+
+        With a video encoder (`Seq2SeqConfig.feature_dim`), `words` may instead be float
+        clip features (batch, clips, feature_dim): they are projected and read the same way.
+        """
+        if words.is_floating_point():
+            if self.features is None:
+                raise ValueError("this model has no video encoder (feature_dim is 0)")
+            x = self.drop(torch.tanh(self.features(words)))  # (batch, clips, word_dim)
+        else:
+            x = self.drop(self.words(words))  # (batch, words, word_dim)
         lengths = mask.sum(1).cpu()
         packed = nn.utils.rnn.pack_padded_sequence(x, lengths, batch_first=True,
                                                    enforce_sorted=False)
         out, (h, _) = self.encoder(packed)
         enc, _ = nn.utils.rnn.pad_packed_sequence(out, batch_first=True,
-                                                  total_length=words.shape[1])
+                                                  total_length=mask.shape[1])
         last = torch.cat([h[0], h[1]], dim=1)  # (batch, hidden) both directions' ends
         h0 = torch.tanh(self.init_h(last))
         return DecoderState(enc, mask, h0, torch.zeros_like(h0), torch.zeros_like(h0))

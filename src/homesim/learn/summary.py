@@ -12,6 +12,7 @@ intervals. The bootstrap has its own seed: same runs, same intervals.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -70,23 +71,35 @@ def summarize_gap(per_seed: list[list[dict]], baseline: list[list[dict]] | None,
             "lo": float(lo), "hi": float(hi), "seeds": full}
 
 
-def summarize_rows(runs: list[dict]) -> dict[str, dict[str, dict]]:
-    """Row -> metric -> summary, over the runs (one per seed) of one data set and split."""
-    rows = runs[0]["rows"]
-    out: dict[str, dict[str, dict]] = {}
-    for row in rows:
-        per_seed = [r["rows"][row]["examples"] for r in runs]
+def summarize_rows(runs: list[dict]) -> dict[str, dict[str, Any]]:
+    """Row -> metric -> summary over the runs (one per seed) of one data set and split.
+
+    A row missing from some runs (a model not trained for every seed) is summarised over
+    the runs that have it; ``n_seeds`` says how many.
+    """
+    names = list(dict.fromkeys(row for r in runs for row in r["rows"]))
+    out: dict[str, dict[str, Any]] = {}
+    for row in names:
+        per_seed = [r["rows"][row]["examples"] for r in runs if row in r["rows"]]
         out[row] = {m: summarize(per_seed, m) for m in METRICS
                     if not _all_none(per_seed, m)}
+        out[row]["n_seeds"] = len(per_seed)
     return out
 
 
 def gaps(runs: list[dict], row: str, baselines: tuple[str, ...],
          metrics: tuple[str, ...] = ("steps", "simulator", "solved")) -> dict[str, dict]:
-    """Baseline -> metric -> paired summary of `row` minus that baseline."""
-    per_seed = [r["rows"][row]["examples"] for r in runs]
-    return {b: {m: summarize_gap(per_seed, [r["rows"][b]["examples"] for r in runs], m)
-                for m in metrics} for b in baselines}
+    """Baseline -> metric -> paired summary of `row` minus that baseline, over the runs
+    that have both."""
+    out: dict[str, dict[str, Any]] = {}
+    for b in baselines:
+        both = [r for r in runs if row in r["rows"] and b in r["rows"]]
+        if both:
+            out[b] = {m: summarize_gap([r["rows"][row]["examples"] for r in both],
+                                       [r["rows"][b]["examples"] for r in both], m)
+                      for m in metrics}
+            out[b]["n_seeds"] = len(both)
+    return out
 
 
 def _all_none(per_seed: list[list[dict]], metric: str) -> bool:

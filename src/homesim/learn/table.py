@@ -86,7 +86,7 @@ def load_splits(dataset: str, seed: int, synth_n: int = 5000) -> Splits:
 
 
 def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None,
-                  splits: Splits | None = None) -> dict[str, Path]:
+                  splits: Splits | None = None, device: str = "cpu") -> dict[str, Path]:
     """Train MLE, then PG(LCS) and PG(LCS+Sim) from it; save the three checkpoints."""
     splits = splits or load_splits(config.dataset, config.seed, config.synth_n)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -96,7 +96,8 @@ def train_dataset(config: RunConfig, out_dir: Path, report: Report | None = None
 
     meta = {"task": "text2prog", "run": asdict(config)}
     start = time.perf_counter()
-    mle = Text2Prog.create(splits.train, config.seed, embeddings=config.embeddings)
+    mle = Text2Prog.create(splits.train, config.seed, embeddings=config.embeddings,
+                           device=device)
     best = BestOnDev(mle, splits.dev)
     history = train_mle(mle, splits.train, config.mle_config(), progress("MLE"), best)
     best.restore()
@@ -128,14 +129,15 @@ def _scored(preds: list[Program], test: list) -> Scores:
     return score(preds, [e.program for e in test], flags)
 
 
-def evaluate_dataset(run_dir: Path, report: Report | None = None) -> dict:
+def evaluate_dataset(run_dir: Path, report: Report | None = None, device: str = "cpu"
+                     ) -> dict:
     """Score every row on the test split of the data set trained in `run_dir`."""
     paths = {name: run_dir / f"{name}.pt" for name in MODELS}
     missing = [str(p) for p in paths.values() if not p.is_file()]
     if missing:
         raise HomesimError(f"{missing[0]}: checkpoint not found; run 'homesim learn train' "
                            "first")
-    models = {name: Text2Prog.load(p) for name, p in paths.items()}
+    models = {name: Text2Prog.load(p, device) for name, p in paths.items()}
     run = models["mle"].meta.get("run", {})
     splits = load_splits(run.get("dataset", run_dir.name), run.get("seed", 0),
                          run.get("synth_n", 5000))

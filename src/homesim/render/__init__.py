@@ -11,7 +11,13 @@ Only this package imports mujoco; `homesim.render.gl` picks the OpenGL backend
 (`MUJOCO_GL`: osmesa on CPU, egl on GPU).
 """
 
-from homesim.render.api import RenderResult, iter_keyframes, render_keyframes, render_program
+from homesim.render.api import (
+    RenderResult,
+    iter_keyframes,
+    render_keyframes,
+    render_program,
+    render_video,
+)
 from homesim.render.gl import BACKEND, gl_available
 from homesim.render.groundtruth import Recording, StepSpan, load_recording
 from homesim.render.renderer import Renderer
@@ -32,4 +38,5 @@ __all__ = [
     "load_recording",
     "render_keyframes",
     "render_program",
+    "render_video",
 ]

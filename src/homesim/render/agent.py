@@ -283,8 +283,9 @@ def _head(s: AgentShape) -> str:
 def _torso_geoms(s: AgentShape) -> list[str]:
     """Abdomen, chest, shoulder line, and the outfit's accent (tie or belt)."""
     t, b, k, o = s.torso, s.build, s.scale, s.outfit
-    chest = (0.096 * k * b, s.shoulder - 0.03 * k, 0.36 * t)
-    belly = (0.086 * k * b, s.waist, 0.42 * t)
+    female = s.sex == "female"
+    chest = ((0.100 if female else 0.096) * k * b, s.shoulder - 0.03 * k, 0.36 * t)
+    belly = ((0.078 if female else 0.086) * k * b, s.waist, 0.42 * t)
     arm_r = _arm_radius(s)
     out = [
         _geom("abdomen", "ellipsoid", belly, o.top, pos=(0.0, 0.0, 0.32 * t)),

@@ -249,14 +249,16 @@ class Animator:
     def reach(self, side: str, point: np.ndarray, seconds: float = 0.6,
               at_peak=None, during=None, back: bool = True, step: bool = True,
               nodes: tuple[int, ...] = (), hold: float = 0.15,
-              grip: np.ndarray | None = None) -> Reached:
+              grip: np.ndarray | None = None, seed: Mapping[str, float] | None = None
+              ) -> Reached:
         """Reach `point` with a hand, call `at_peak()`, hold `hold` seconds and come back.
 
         Standing, the agent first steps toward the point until the hand can touch it
-        (`ReachPlanner`: on the way, crouching for low points; `step=False` stays put).
+        (`ReachPlanner`: on the way, crouching for low points; `step=False` stays put
+        and moves the arm only).
         `nodes`: the objects acted on, recorded as an `Interaction` of the step. `grip`:
         bring the point held at this offset from the hand (a held object's centre) to
-        `point` rather than the hand."""
+        `point` rather than the hand. `seed`: joint angles the arm's IK starts from."""
         if self.posture == "stand" and step:
             plan = self.planner.plan(self.pose.xy, side, point, grip)
             self.step_to(plan.pose.xy, point)
@@ -264,7 +266,8 @@ class Animator:
         else:
             if self.posture == "stand":
                 self.turn_to(point)
-            reached, _ = self.ik.reach(self.pose, side, point, grip)
+            reached, _ = self.ik.reach(self.pose.with_joints(**(seed or {})), side, point,
+                                       grip, lean=step)
         rest = self.pose
         self.reaching = frozenset({side})
         start = len(self.timeline)
@@ -509,8 +512,11 @@ def use_held(anim: Animator, rec: StepRecord) -> None:
     if side is None:
         _touch(anim, target, {})
         return
+    sign = 1.0 if side == "l" else -1.0
+    bent = {f"{side}_sh_pitch": -1.0, f"{side}_elbow": -2.3, f"{side}_sh_yaw": 0.0,
+            f"{side}_sh_roll": 0.3 * sign}  # forearm folded up before the chest
     anim.reach(side, _face_spot(anim, target, rec.step.action.key), 0.7, step=False,
-               nodes=(target,), hold=0.8, grip=props.grip.get(side))
+               nodes=(target,), hold=0.8, grip=props.grip.get(side), seed=bent)
 
 
 def _face_spot(anim: Animator, obj: int, action: str) -> np.ndarray:

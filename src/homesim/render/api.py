@@ -15,7 +15,7 @@ from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
-from homesim.render.groundtruth import RecordingWriter, StepSpan
+from homesim.render.groundtruth import RecordingWriter, StepSpan, open_video
 from homesim.render.recorder import iter_still_frames, record
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
@@ -58,13 +58,15 @@ def _check_size(width: int, height: int, fps: int) -> None:
                          "MAX_VIDEO_FPS")
 
 
-def _check_length(frames: int, width: int, height: int) -> None:
-    """Refuse a recording over `MAX_VIDEO_PIXEL_FRAMES` before drawing anything."""
-    if frames * width * height > MAX_VIDEO_PIXEL_FRAMES:
+def _check_length(frames: int, width: int, height: int,
+                  limit: tuple[int, str] | None = None) -> None:
+    """Refuse a recording over `MAX_VIDEO_PIXEL_FRAMES` (or `limit`: its value and name)
+    before drawing anything."""
+    most, name = limit or (MAX_VIDEO_PIXEL_FRAMES, "MAX_VIDEO_PIXEL_FRAMES")
+    if frames * width * height > most:
         raise LimitError(f"{frames} frames at {width}x{height} is over the limit of "
-                         f"{MAX_VIDEO_PIXEL_FRAMES:,} frames x pixels per video "
-                         "(MAX_VIDEO_PIXEL_FRAMES); lower --fps or the image size",
-                         "MAX_VIDEO_PIXEL_FRAMES")
+                         f"{most:,} frames x pixels per video ({name}); lower the frame "
+                         "rate or the image size", name)
 
 
 def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: int, fps: int,
@@ -87,7 +89,7 @@ def prepare(program: Program, graph: EnvironmentGraph, *, width: int, height: in
     scene = build_scene(graph, shape, seed=seed, max_size=(width, height))
     timeline = Animator(scene, graph, shape, fps=fps / speed, seed=seed,
                         standing=standing).run(result)
-    shots = plan_shots(scene, timeline, width / height)
+    shots = plan_shots(scene, timeline, (width, height))
     if shots:  # the same model with a close-up camera per interaction
         scene = build_scene(graph, shape, seed=seed, max_size=(width, height), shots=shots)
     return scene, timeline, name
@@ -132,6 +134,33 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
     meta = _meta(program, home or "graph", scene, name, width, height, fps, seed, total, steps)
     writer.close(meta)
     return RenderResult(out, total, width, height, fps, name, steps, time.perf_counter() - t0)
+
+
+def render_video(program: Program, graph: EnvironmentGraph, path: str | Path, *,
+                 width: int = 320, height: int = 240, fps: int = 12, seed: int = 0,
+                 bindings: Bindings | None = None, progress: Progress | None = None,
+                 agent: str | None = None,
+                 standing: Mapping[int, tuple[float, float]] | None = None,
+                 limit: tuple[int, str] | None = None) -> int:
+    """Write only the video of a program (the frames and cameras `render_program` would
+    record) to the MP4 file `path`; returns the number of frames. `standing`: as for
+    `render_program`; `limit`: (frames x pixels, its name in `homesim.limits`) instead
+    of `MAX_VIDEO_PIXEL_FRAMES`."""
+    _check_size(width, height, fps)
+    scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=fps,
+                                 seed=seed, bindings=bindings, agent=agent, standing=standing)
+    total = len(timeline)
+    _check_length(total, width, height, limit)
+    video = open_video(Path(path), width, height, fps)
+    try:
+        with Renderer(scene, width, height) as renderer:
+            for truth in record(scene, timeline, renderer):
+                video.send(np.ascontiguousarray(truth.rgb))
+                if progress is not None:
+                    progress(truth.index + 1, total)
+    finally:
+        video.close()
+    return total
 
 
 def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed, total,
@@ -191,6 +220,6 @@ def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 32
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
                                  seed=seed, bindings=bindings, agent=agent, standing=standing)
     ends = [end for _, end in timeline.step_frames]
-    with Renderer(scene, width, height) as renderer:
+    with Renderer(scene, width, height, shadows=True) as renderer:  # stills: no rush
         for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, ends)):
             yield step, rgb

@@ -45,6 +45,20 @@ def write_npz(path: Path, arrays: dict[str, np.ndarray]) -> None:
     tmp.replace(path)
 
 
+def open_video(path: Path, width: int, height: int, fps: int):
+    """An H.264 (yuv420p) MP4 writer: ``send(rgb)`` each (H, W, 3) uint8 frame, then
+    ``close()``. The index is at the front of the file (``+faststart``), so a browser can
+    play it while it downloads."""
+    import imageio_ffmpeg
+
+    video = imageio_ffmpeg.write_frames(
+        str(path), (width, height), fps=fps, codec="libx264", pix_fmt_out="yuv420p",
+        quality=7, macro_block_size=1, ffmpeg_log_level="error",
+        output_params=["-preset", "veryfast", "-movflags", "+faststart"])
+    video.send(None)
+    return video
+
+
 class RecordingWriter:
     """Streams frames into a recording folder; `close(meta)` finishes it.
 
@@ -53,15 +67,9 @@ class RecordingWriter:
     """
 
     def __init__(self, out_dir: str | Path, width: int, height: int, fps: int):
-        import imageio_ffmpeg
-
         self.out = Path(out_dir)
         (self.out / "frames").mkdir(parents=True, exist_ok=True)
-        self._video = imageio_ffmpeg.write_frames(
-            str(self.out / "video.mp4"), (width, height), fps=fps, codec="libx264",
-            pix_fmt_out="yuv420p", quality=7, macro_block_size=1,
-            ffmpeg_log_level="error", output_params=["-preset", "veryfast"])
-        self._video.send(None)
+        self._video = open_video(self.out / "video.mp4", width, height, fps)
         self._pool = ThreadPoolExecutor(max_workers=1)
         self._pending: list[Future] = []
         self._per_frame: dict[str, list] = {k: [] for k in (

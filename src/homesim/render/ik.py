@@ -23,9 +23,10 @@ TOLERANCE = 0.004
 """Metres: the solver stops once the hand is this close to its target."""
 
 
-def arm_joints(side: str) -> tuple[str, ...]:
-    return (f"{side}_sh_pitch", f"{side}_sh_roll", f"{side}_sh_yaw", f"{side}_elbow",
-            "spine_pitch", "spine_yaw")
+def arm_joints(side: str, lean: bool = True) -> tuple[str, ...]:
+    """The joints a reach moves: the arm's, and the spine's when it may lean."""
+    arm = (f"{side}_sh_pitch", f"{side}_sh_roll", f"{side}_sh_yaw", f"{side}_elbow")
+    return (*arm, "spine_pitch", "spine_yaw") if lean else arm
 
 
 def crouched(pose: Pose, shape: AgentShape, drop: float) -> Pose:
@@ -73,12 +74,12 @@ class ArmIK:
         return self.data.site(name).xpos.copy()
 
     def reach(self, pose: Pose, side: str, target: np.ndarray,
-              grip: np.ndarray | None = None) -> tuple[Pose, float]:
+              grip: np.ndarray | None = None, lean: bool = True) -> tuple[Pose, float]:
         """The pose with the `side` arm reaching `target`; and the distance left (metres).
 
         `grip`: reach with the point held at this offset in the hand's body frame (a held
-        object's centre) instead of the hand itself."""
-        names = arm_joints(side)
+        object's centre) instead of the hand itself. `lean`: the spine may bend too."""
+        names = arm_joints(side, lean)
         q = {n: pose.joints.get(n, 0.0) for n in names}
         site = self.scene.hand_sites[side]
         body = int(self.model.site_bodyid[site])

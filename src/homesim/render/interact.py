@@ -2,9 +2,10 @@
 
 A reach aims at a point on the object's surface (the point of its box nearest the
 shoulder, or a door's handle). When grounding's standing spot leaves it out of the arm's
-reach, `ReachPlanner` finds where to stand instead: on the straight line toward the
-object, as far as the body fits between the obstacles, crouching for low points, leaning
-(the IK bends the spine) for far ones.
+reach, `ReachPlanner` finds where to stand instead, on the same floor model
+(`homesim.world.floor`): on the straight line toward the object while the floor is
+walkable, else around it; crouching for low points, leaning (the IK bends the spine) for
+far ones.
 """
 
 from __future__ import annotations
@@ -17,20 +18,18 @@ import numpy as np
 from homesim.render.agent import AgentShape
 from homesim.render.ik import ArmIK, crouched
 from homesim.render.layout import Box, Layout
-from homesim.render.navigation import LEG_LEVEL, PASSABLE
 from homesim.render.poses import Pose, standing
 
 TOUCH = 0.01
 """Metres: a hand this close to an object's surface touches it (grab, press, open)."""
-BODY_RADIUS = 0.16
-"""Metres: the agent's footprint when it steps up to furniture (narrower than the 0.25 m
-the path planner keeps while walking)."""
 STEP = 0.05
 """Metres between the standing points tried on the way to an object."""
 CROUCH = (0.0, 0.2, 0.35)
 """Pelvis drops (metres) tried, in order, for points below `LOW`."""
 LOW = 0.75
 """Metres: points lower than this may be reached crouching."""
+COMFORT_LEAN = 0.5
+"""Radians of spine pitch: the agent steps closer rather than bow more than this."""
 AROUND = (0.35, 0.5, 0.65)
 """Metres from the target (horizontally) of the standing points tried around it when the
 way straight to it is blocked."""
@@ -71,21 +70,14 @@ class ReachPlanner:
 
     def __init__(self, layout: Layout, ik: ArmIK, shape: AgentShape):
         self.ik, self.shape = ik, shape
-        self.floors = [(f.lo[:2], f.hi[:2]) for f in layout.floors]
-        self.obstacles = [(b.lo[:2], b.hi[:2]) for p in layout.parts
-                          if p.class_name not in PASSABLE and p.movable is None
-                          for b in p.boxes
-                          if b.hi[2] > LEG_LEVEL[0] and b.lo[2] < LEG_LEVEL[1]]
+        self.walk = layout.walk
 
     def fits(self, xy: np.ndarray) -> bool:
-        """Whether the agent's footprint stands on floor, clear of furniture and walls."""
-        if not any(np.all(xy >= lo) and np.all(xy <= hi) for lo, hi in self.floors):
+        """Whether the agent may stand at `xy`: the nearest cell of the floor model
+        (`homesim.world.floor`, the one grounding's spots come from) is walkable."""
+        if self.walk is None:
             return False
-        for lo, hi in self.obstacles:
-            d = np.maximum(np.maximum(lo - xy, xy - hi), 0.0)
-            if float(np.hypot(d[0], d[1])) < BODY_RADIUS:
-                return False
-        return True
+        return self.walk.walkable(*self.walk.index(float(xy[0]), float(xy[1])))
 
     def reach_from(self, xy: np.ndarray, side: str, point: np.ndarray,
                    grip: np.ndarray | None = None) -> ReachPlan:
@@ -109,22 +101,26 @@ class ReachPlanner:
              grip: np.ndarray | None = None) -> ReachPlan:
         """Where to stand to reach `point`: the first point on the way from `start_xy`
         toward it (every `STEP` metres, while the body fits) from which the hand touches
-        it; else the nearest point around it (`AROUND`) from which it does; else the
+        it without bowing more than `COMFORT_LEAN` (else the first from which it touches
+        at all); else the nearest point around it (`AROUND`) from which it does; else the
         point tried from which the hand comes closest."""
         d = point[:2] - start_xy
         dist = float(np.hypot(*d))
+        tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
         best = self.reach_from(start_xy, side, point, grip)
-        for s in np.arange(STEP, dist, STEP):
-            if best.gap <= TOUCH:
-                return best
-            xy = start_xy + d / dist * s
+        touching = best if best.gap <= TOUCH else None
+        for xy in tries:
+            if touching is not None and _lean(touching) <= COMFORT_LEAN:
+                return touching
             if not self.fits(xy):
                 break
             plan = self.reach_from(xy, side, point, grip)
+            if plan.gap <= TOUCH and (touching is None or _lean(plan) < _lean(touching)):
+                touching = plan
             if plan.gap < best.gap - 1e-3:
                 best = plan
-        if best.gap <= TOUCH:
-            return best
+        if touching is not None:
+            return touching
         for xy in self.around(start_xy, point)[:MAX_AROUND]:
             plan = self.reach_from(xy, side, point, grip)
             if plan.gap < best.gap - 1e-3:
@@ -145,3 +141,7 @@ class ReachPlanner:
         """Whether the body fits all along the segment a-b (checked every 5 cm)."""
         n = max(2, int(np.ceil(np.linalg.norm(b - a) / 0.05)) + 1)
         return all(self.fits(a + t * (b - a)) for t in np.linspace(0.0, 1.0, n)[1:])
+
+
+def _lean(plan: ReachPlan) -> float:
+    return plan.pose.joints.get("spine_pitch", 0.0)

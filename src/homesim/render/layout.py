@@ -259,6 +259,9 @@ def _window(panel: Box, axis: int, sign: float) -> Shape:
 
 
 _WINDOWED = frozenset({"microwave", "stove", "oven", "washingmachine"})
+_CARCASS_ROLE = {"fridge": "white", "washingmachine": "white", "dishwasher": "white",
+                 "stove": "metal", "oven": "metal", "microwave": "black", "garbagecan": "metal"}
+"""Material of a hinged object's body; others are wood."""
 
 
 def _seat(box: Box, axis: int, sign: float) -> list[Box]:
@@ -466,13 +469,16 @@ def _door_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
     axis, sign = home.front(node, box)
     part.boxes, part.hinge = _hollow(box, axis, sign)
-    part.shapes = _slab_shapes(part.boxes, "body")
+    role = _CARCASS_ROLE.get(node.class_name, "wood")
+    part.shapes = _slab_shapes(part.boxes, role)
     h = part.hinge
-    h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), "front"),
+    h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), role),
                 _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
     if node.class_name in _WINDOWED:
         h.shapes.append(_window(h.panel, axis, sign))
-    if node.class_name in ("stove", "oven"):
+    if node.class_name in ("stove", "oven"):  # the top gives way to the hot plates
+        part.shapes = [Shape(s.kind, s.center - [0, 0, 0.004], s.half, s.role)
+                       if s.center[2] - s.half[2] > box.center[2] else s for s in part.shapes]
         part.shapes += _burners(box)
     return True
 
@@ -515,9 +521,9 @@ def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     """The class's model; screens get their panel, lamps light."""
     part.boxes.append(_flat(box))
-    front = home.front(node, box)
-    part.shapes = home.model(node, _flat(box), front)
     cls = node.class_name
+    front = _facing_seat(node, box, home) if cls in SCREEN_CLASSES else home.front(node, box)
+    part.shapes = home.model(node, _flat(box), front)
     if cls in SCREEN_CLASSES:
         screen = next((s for s in part.shapes if s.role == "screen"), None)
         if screen is None:
@@ -531,6 +537,17 @@ def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     if cls in LAMP_CLASSES or node.category == "Lamps":
         part.lamp = True
     return True
+
+
+def _facing_seat(node: Node, box: Box, home: _Home) -> tuple[int, float]:
+    """A screen faces the nearest sofa of its room (else the room's middle)."""
+    room = home.graph.room_of(node.id)
+    seats = [b for n in home.graph.nodes_of_class("sofa") if home.graph.room_of(n.id) == room
+             and (b := to_mujoco(n)) is not None]
+    if not seats:
+        return home.front(node, box)
+    seat = min(seats, key=lambda b: float(np.hypot(*(b.center[:2] - box.center[:2]))))
+    return _front_axis(box, seat.center)
 
 
 def _screen(box: Box, front: tuple[int, float]) -> Shape:

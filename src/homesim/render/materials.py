@@ -44,7 +44,7 @@ _FIXED: dict[str, tuple[str, tuple[float, float, float] | None, float, float]] =
     "leaf": ("matte", (0.22, 0.48, 0.20), 0.1, 0.2),
     "coffee": ("glossy", (0.28, 0.16, 0.08), 0.5, 0.6),
     "label": ("matte", (0.95, 0.93, 0.85), 0.0, 0.1),
-    "ceiling": ("matte", (0.96, 0.96, 0.94), 0.0, 0.1),
+    "ceiling": ("ceiling", (0.96, 0.96, 0.94), 0.0, 0.1),
     "body": ("plastic", None, 0.3, 0.4),
     "front": ("plastic", None, 0.3, 0.4),
     "accent": ("plastic", None, 0.3, 0.4),
@@ -125,6 +125,21 @@ def wallpaper(seed: int, n: int = TEXTURE_SIZE) -> np.ndarray:
     return _gray(v)
 
 
+def book_spines(seed: int, n: int = TEXTURE_SIZE) -> np.ndarray:
+    """A row of book spines: vertical bands of colours and widths, titles as light bars."""
+    rng = np.random.default_rng(seed)
+    img = np.ones((n, n, 3))
+    x = 0
+    while x < n:
+        width = int(rng.integers(4, 12))
+        img[:, x:x + width] = np.array(_BOOKS[int(rng.integers(len(_BOOKS)))]) * rng.uniform(
+            0.7, 1.1)
+        img[:, x + width - 1:x + width] *= 0.5
+        img[n // 3:n // 3 + 3, x + 1:x + width - 2] = 0.9
+        x += width
+    return np.clip(img, 0, 1)
+
+
 def picture(seed: int, n: int = TEXTURE_SIZE) -> np.ndarray:
     """An abstract painting: a background wash and a few coloured blocks and discs."""
     rng = np.random.default_rng(seed)
@@ -158,7 +173,7 @@ def tv_image(n: int = TEXTURE_SIZE) -> np.ndarray:
 @lru_cache(maxsize=64)
 def _texture_png(kind: str, seed: int) -> bytes:
     maker = {"planks": planks, "tiles": tiles, "fabric": fabric, "marble": marble,
-             "wallpaper": wallpaper, "picture": picture}
+             "wallpaper": wallpaper, "picture": picture, "books": book_spines}
     return _png(tv_image() if kind == "tv" else maker[kind](seed))
 
 
@@ -219,6 +234,8 @@ class Look:
         if role in ("fabric", "cushion"):
             tint = tuple(min(1.0, c * 1.12) for c in rgb) if role == "cushion" else rgb
             return tint, "fabric"
+        if role == "books":
+            return (1.0, 1.0, 1.0), "books"
         if role.startswith("book"):
             return self.books[int(role[4:] or 0) % 4], "plastic"
         if role.startswith("art"):
@@ -240,6 +257,7 @@ class Look:
             "planks.png": _texture_png("planks", s), "tiles.png": _texture_png("tiles", s),
             "fabric.png": _texture_png("fabric", s), "marble.png": _texture_png("marble", s),
             "wallpaper.png": _texture_png("wallpaper", s), "tv.png": _texture_png("tv", 0),
+            "books.png": _texture_png("books", s),
         }
         for k in range(3):
             files[f"art{k}.png"] = _texture_png("picture", s * 10 + k)
@@ -260,9 +278,12 @@ class Look:
             '<material name="wallpaper" texture="t_wallpaper" texuniform="true" '
             'texrepeat="1.5 1.5" specular="0"/>',
             '<material name="paint" specular="0.05"/>',
+            '<material name="books" texture="t_books" texuniform="true" texrepeat="2 2" '
+            'specular="0.2"/>',
             '<material name="plastic" specular="0.3" shininess="0.4"/>',
             '<material name="glossy" specular="0.6" shininess="0.7"/>',
             '<material name="matte" specular="0"/>',
+            '<material name="ceiling" specular="0" emission="0.35"/>',
             '<material name="metal" specular="0.9" shininess="0.8"/>',
             '<material name="glass" specular="1" shininess="1"/>',
             '<material name="screen_off" rgba="0.02 0.02 0.03 1" specular="0.6" '

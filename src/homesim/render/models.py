@@ -84,6 +84,12 @@ class Kit:
         self.shapes.append(Shape(kind, np.asarray(center, float), half, role, axis))
         return self
 
+    def add(self, other: Kit, offset: np.ndarray) -> Kit:
+        """Another kit's shapes, moved by `offset`."""
+        self.shapes += [Shape(s.kind, s.center + offset, s.half, s.role, s.axis)
+                        for s in other.shapes]
+        return self
+
     def legs(self, top: float, r: float, inset: float, role: str = "wood",
              square: bool = False) -> Kit:
         """Four legs from the floor up to `top`, `inset` from the corners."""
@@ -92,7 +98,7 @@ class Kit:
                 x, y = sx * (self.w - inset - r), sy * (self.d - inset - r)
                 if square:
                     self.box([x - r, y - r, self.bottom], [x + r, y + r, top], role)
-                else:
+                else:  # round legs: a capsule-ended rod reads as turned wood or tube
                     self.cyl(x, y, r, self.bottom, top, role)
         return self
 
@@ -108,7 +114,7 @@ def sofa(k: Kit) -> None:
     leg = 0.06 if k.v != 2 else 0.12
     arm = (0.0, 0.1, 0.16)[k.v] * min(1.0, w)
     back = min(0.22, d * 0.5)
-    k.legs(b + leg, 0.025, 0.04, "darkwood", square=k.v == 1)
+    k.legs(b + leg, 0.025, 0.04, "darkwood", square=True)
     k.box([-w, -d, b + leg], [w, d, seat - 0.12], "fabric")  # base
     n = 3 if w > 0.8 else 2
     inner = w - arm
@@ -139,7 +145,7 @@ def chair(k: Kit) -> None:
         k.box([-w, -d, seat - 0.07], [w, d, seat], "fabric")
         k.box([-w * 0.9, -d, seat + 0.05], [w * 0.9, -d + 0.08, k.h], "fabric")
         return
-    k.legs(seat - 0.04, 0.022, 0.02, "wood", square=k.v == 1)
+    k.legs(seat - 0.04, 0.022, 0.02, "wood", square=True)
     k.box([-w, -d, seat - 0.04], [w, d, seat], "wood" if k.v == 1 else "cushion")
     if k.v == 0:  # slats
         for x in np.linspace(-w + 0.03, w - 0.03, 4):
@@ -229,16 +235,25 @@ def cabinet(k: Kit) -> None:
 
 
 def drawers(k: Kit) -> None:
-    carcass(k, drawers=max(1, min(5, round(k.h / 0.18))))
+    """Drawer chests: fronts with knobs (0), with bars (1), or two columns (2)."""
+    rows = max(1, min(5, round(k.h / 0.18)))
+    if k.v == 2:
+        for s_ in (-1, 1):
+            sub = Kit(k.w / 2, k.d, k.h, 0)
+            carcass(sub, drawers=rows)
+            k.add(sub, np.array([s_ * k.w / 2, 0.0, 0.0]))
+        return
+    carcass(k, drawers=rows)
+    if k.v == 1:
+        k.shapes = [Shape(x.kind, x.center, x.half * [6 if x.role == "metal" else 1, 1, 1],
+                          x.role, x.axis) for x in k.shapes]
 
 
 def counter(k: Kit) -> None:
     top = k.h - min(0.04, k.h * 0.2)
-    sub = Kit(k.w, k.d, (top + k.h) / 2 - (top - k.h) / 2, k.v)
-    sub.h = (top - k.bottom) / 2
+    sub = Kit(k.w, k.d, (top - k.bottom) / 2, k.v)
     carcass(sub, doors=max(1, min(6, round(k.w / 0.3))))
-    shift = np.array([0, 0, (top + k.bottom) / 2])
-    k.shapes += [Shape(s.kind, s.center + shift, s.half, s.role, s.axis) for s in sub.shapes]
+    k.add(sub, np.array([0.0, 0.0, (top + k.bottom) / 2]))
     k.box([-k.w, -k.d, top], [k.w, k.d, k.h], "stone")
 
 
@@ -248,24 +263,32 @@ def shelf(k: Kit) -> None:
     n = max(1, min(6, round(2 * k.h / 0.35)))
     for s in (-1, 1):
         k.box([s * w - t if s > 0 else -w, -d, b], [w if s > 0 else -w + t, d, k.h], "wood")
-    k.box([-w, -d, b], [w, -d + t, k.h], "darkwood")
-    rng = np.random.default_rng(k.v)
+    if k.v != 1:  # variant 1 is open at the back
+        k.box([-w, -d, b], [w, -d + t, k.h], "darkwood")
+    if k.v == 2:  # a kick board under the lowest shelf
+        k.box([-w, d - t, b], [w, d, b + min(0.08, k.h * 0.3)], "darkwood")
     for i in range(n + 1):
         z = b + i * (2 * k.h - t) / n
         k.box([-w, -d, z], [w, d, z + t], "wood")
-        if i < n and n > 1 and k.h > 0.3:  # a row of books
-            x = -w + t
-            while x < w - t - 0.05:
-                bw = float(rng.uniform(0.025, 0.05))
-                bh = float(rng.uniform(0.6, 0.9)) * (2 * k.h / n - t)
-                k.box([x, -d + t, z + t], [x + bw, d * 0.6, z + t + bh], f"book{int(x * 97) % 4}")
-                x += bw + float(rng.uniform(0.0, 0.03))
+        if i < n and n > 1 and k.h > 0.3:  # a row of books (one box, a striped texture)
+            top = z + t + (0.55 + 0.1 * ((i + k.v) % 3)) * (2 * k.h / n - t)
+            x0 = -w + t if (i + k.v) % 2 else -w * 0.3
+            k.box([x0, -d + t, z + t], [w - t, d * 0.6, top], "books")
 
 
 def wallshelf(k: Kit) -> None:
+    """A board on brackets (0), a box shelf (1), or two boards (2)."""
     k.box([-k.w, -k.d, k.h - 0.03], [k.w, k.d, k.h], "wood")
-    for s in (-1, 1):
-        x = s * (k.w - 0.05)
+    if k.v == 1:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.bottom + 0.03], "wood")
+        for s_ in (-1, 1):
+            k.box([s_ * k.w - 0.02 if s_ > 0 else -k.w, -k.d, k.bottom],
+                  [k.w if s_ > 0 else -k.w + 0.02, k.d, k.h], "wood")
+        return
+    if k.v == 2:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.bottom + 0.03], "wood")
+    for s_ in (-1, 1):
+        x = s_ * (k.w - 0.05)
         k.box([x - 0.01, -k.d, k.bottom], [x + 0.01, -k.d + 0.02, k.h], "metal")
 
 
@@ -303,15 +326,30 @@ def bathtub(k: Kit) -> None:
 
 
 def rug(k: Kit) -> None:
-    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "fabric")
+    """A plain rug (0), one with a border (1), or a round one (2)."""
+    if k.v == 2:
+        k.cyl(0, 0, min(k.w, k.d), k.bottom, k.h, "fabric")
+        return
+    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h * (0.5 if k.v else 1)], "fabric")
+    if k.v == 1:
+        b = min(0.12, k.w * 0.2, k.d * 0.2)
+        k.box([-k.w + b, -k.d + b, k.bottom], [k.w - b, k.d - b, k.h], "cushion")
 
 
 def curtains(k: Kit) -> None:
-    n = max(2, round(k.w / 0.06))
+    """Folds hanging from a rod: round folds (0), flat panels (1), tied back (2)."""
+    n = max(2, min(4, round(k.w / 0.06)))
     xs = np.linspace(-k.w, k.w, n + 1)
     for i in range(n):
         r = (xs[i + 1] - xs[i]) / 2
-        k.cyl((xs[i] + xs[i + 1]) / 2, 0, min(r * 1.3, k.d), k.bottom, k.h - 0.02, "fabric")
+        x = (xs[i] + xs[i + 1]) / 2
+        if k.v == 1:
+            k.box([xs[i], -k.d * (0.3 + 0.5 * (i % 2)), k.bottom], [xs[i + 1], k.d * 0.3,
+                                                                    k.h - 0.02], "fabric")
+        elif k.v == 2:
+            k.ell([x, 0, 0], [r * 1.2, min(r * 1.3, k.d), k.h - 0.02], "fabric")
+        else:
+            k.cyl(x, 0, min(r * 1.3, k.d), k.bottom, k.h - 0.02, "fabric")
     k.rod([0, 0, k.h - 0.01], 0, 0.01, k.w, "metal")
 
 
@@ -320,17 +358,34 @@ def towelrack(k: Kit) -> None:
 
 
 def hanger(k: Kit) -> None:
-    k.rod([0, 0, k.h - 0.02], 2, 0.004, 0.02, "metal")
-    k.rod([0, 0, k.bottom + 0.02], 1, 0.008, k.d, "wood")
+    """A bar hanger: wood (0), metal (1), or with a garment on it (2)."""
+    k.rod([0, 0, k.h - 0.02], 1, 0.008, k.d, "metal" if k.v == 1 else "wood")
+    if k.v == 2:
+        k.box([-k.w * 0.5, -k.d * 0.9, k.bottom], [k.w * 0.5, k.d * 0.9, k.h - 0.03], "fabric")
 
 
 def clothes_flat(k: Kit) -> None:
-    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "body")
+    """A garment: flat (0), folded in two layers (1), or hung with a collar (2)."""
+    if k.v == 1:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, 0], "fabric")
+        k.box([-k.w * 0.9, -k.d * 0.9, 0], [k.w * 0.9, k.d * 0.9, k.h], "cushion")
+    elif k.v == 2:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h * 0.8], "fabric")
+        k.ell([0, 0, k.h * 0.8], [k.w, k.d * 0.4, k.h * 0.2], "cushion")
+    else:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "fabric")
 
 
 def clothespile(k: Kit) -> None:
-    k.ell([0, 0, 0], [k.w, k.d, k.h], "body")
-    k.ell([k.w * 0.2, -k.d * 0.2, k.h * 0.3], [k.w * 0.6, k.d * 0.6, k.h * 0.6], "accent")
+    """A heap of clothes: one mound (0), two (1), or a folded stack (2)."""
+    if k.v == 1:
+        k.ell([-k.w * 0.3, 0, 0], [k.w * 0.7, k.d, k.h], "fabric")
+        k.ell([k.w * 0.4, k.d * 0.2, -k.h * 0.2], [k.w * 0.6, k.d * 0.7, k.h * 0.8], "accent")
+    elif k.v == 2:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, 0], "fabric")
+        k.box([-k.w * 0.9, -k.d * 0.9, 0], [k.w * 0.9, k.d * 0.85, k.h], "accent")
+    else:
+        k.ell([0, 0, 0], [k.w, k.d, k.h], "fabric")
 
 
 def stall(k: Kit) -> None:  # drawn by the enclosure shaper; kept for completeness
@@ -368,10 +423,16 @@ def ceilinglamp(k: Kit) -> None:
 
 
 def walllamp(k: Kit) -> None:
+    """A sconce: a glowing cylinder (0), a globe (1), or an up-light bowl (2)."""
     r = min(k.w, k.d)
     k.box([-r * 0.3, -k.d, -0.05], [r * 0.3, -k.d + 0.02, 0.05], "metal")
     k.rod([0, -k.d / 2, 0], 1, 0.01, k.d / 2, "metal")
-    k.cyl(0, k.d * 0.3, r * 0.6, -k.h * 0.2, k.h * 0.5, "glow")
+    if k.v == 1:
+        k.ell([0, k.d * 0.3, k.h * 0.2], [r * 0.6, r * 0.6, min(r * 0.6, k.h)], "glow")
+    elif k.v == 2:
+        k.ell([0, k.d * 0.3, k.h * 0.5], [r * 0.7, r * 0.7, k.h * 0.3], "glow")
+    else:
+        k.cyl(0, k.d * 0.3, r * 0.6, -k.h * 0.2, k.h * 0.5, "glow")
 
 
 def tablelamp(k: Kit) -> None:
@@ -429,9 +490,16 @@ def mouse(k: Kit) -> None:
 
 
 def plate_on_wall(k: Kit) -> None:
-    """Light switches, sockets: a wall plate and a toggle."""
+    """Light switches and sockets: a plate with a toggle (0), two (1), or a round one (2)."""
     k.box([-k.w, -k.d, k.bottom], [k.w, k.d * 0.3, k.h], "white")
-    k.box([-k.w * 0.3, k.d * 0.3, -k.h * 0.3], [k.w * 0.3, k.d, k.h * 0.3], "black")
+    if k.v == 1:
+        for s_ in (-1, 1):
+            k.box([-k.w * 0.3, k.d * 0.3, s_ * k.h * 0.45 - k.h * 0.2],
+                  [k.w * 0.3, k.d, s_ * k.h * 0.45 + k.h * 0.2], "black")
+    elif k.v == 2:
+        k.rod([0, k.d * 0.65, 0], 1, min(k.w, k.h) * 0.45, k.d * 0.35, "metal")
+    else:
+        k.box([-k.w * 0.3, k.d * 0.3, -k.h * 0.3], [k.w * 0.3, k.d, k.h * 0.3], "black")
 
 
 def radio(k: Kit) -> None:
@@ -442,13 +510,14 @@ def radio(k: Kit) -> None:
 
 
 def phone(k: Kit) -> None:
-    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "black")
-    big = int(np.argmax([k.w, k.d, k.h]))
+    """A phone or remote: black (0), light (1) or with a coloured case (2); the face is
+    the top for flat ones, the front for upright ones."""
+    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], ("black", "white", "body")[k.v])
+    thin = int(np.argmin([k.w, k.d, k.h]))
     lo = np.array([-k.w, -k.d, k.bottom]) * 0.85
     hi = np.array([k.w, k.d, k.h]) * 0.85
-    thin = int(np.argmin([k.w, k.d, k.h]))
-    lo[thin], hi[thin] = (k.h * 0.8, k.h) if thin == 2 else (hi[thin] * 0.9, hi[thin] / 0.85)
-    del big
+    full = np.array([k.w, k.d, k.h])
+    lo[thin], hi[thin] = full[thin] * 0.8, full[thin]
     k.box(lo, hi, "screen_dark")
 
 
@@ -531,35 +600,50 @@ def oventray(k: Kit) -> None:
 def mug(k: Kit) -> None:
     r = min(k.w, k.d) * 0.78
     k.cyl(-k.w + r, 0, r, k.bottom, k.h, "body" if k.v else "white")
-    k.cyl(-k.w + r, 0, r * 0.85, k.h - 0.004, k.h, "coffee" if k.v == 2 else "black")
     hx = -k.w + 2 * r
     k.box([hx, -0.006, -k.h * 0.5], [min(k.w, hx + r * 0.6), 0.006, k.h * 0.6], "body"
           if k.v else "white")
 
 
 def glass(k: Kit) -> None:
+    """A tumbler (0), a tapered glass (1), or one with juice in it (2)."""
     r = min(k.w, k.d)
+    if k.v == 1:
+        k.cyl(0, 0, r * 0.75, k.bottom, 0, "glass")
+        k.cyl(0, 0, r, 0, k.h, "glass")
+        return
     k.cyl(0, 0, r, k.bottom, k.h, "glass")
-    k.cyl(0, 0, r * 0.9, k.bottom, k.bottom + 0.01, "glass_dark")
+    if k.v == 2:
+        k.cyl(0, 0, r * 0.85, k.bottom + 0.005, k.h * 0.3, "accent")
 
 
 def wineglass(k: Kit) -> None:
     r = min(k.w, k.d)
     k.cyl(0, 0, r * 0.7, k.bottom, k.bottom + 0.005, "glass")
-    k.cyl(0, 0, 0.004, k.bottom, k.bottom + k.h, "glass")
-    k.ell([0, 0, k.h * 0.5], [r, r, k.h * 0.5], "glass")
+    k.ell([0, 0, k.h * 0.2], [r, r, k.h * 0.8], "glass")
 
 
 def plate(k: Kit) -> None:
+    """A round plate (0), one with a coloured rim (1), or a square one (2)."""
     r = min(k.w, k.d)
-    k.cyl(0, 0, r, k.bottom, k.h, "white" if k.v != 1 else "body")
-    k.cyl(0, 0, r * 0.6, k.h - 0.001, k.h, "body" if k.v == 2 else "white")
+    if k.v == 2:
+        k.box([-r, -r, k.bottom], [r, r, k.h], "white")
+        return
+    k.cyl(0, 0, r * 0.7 if k.v == 1 else r, k.bottom, k.h, "white")
+    if k.v == 1:
+        k.cyl(0, 0, r, k.h * 0.2, k.h, "body")
 
 
 def bowl(k: Kit) -> None:
+    """A round bowl (0), a straight-sided one (1), or one on a foot (2)."""
     r = min(k.w, k.d)
-    k.ell([0, 0, k.h], [r, r, 2 * k.h], "body")
-    k.cyl(0, 0, r * 0.85, k.h - 0.003, k.h, "white")
+    if k.v == 1:
+        k.cyl(0, 0, r, k.bottom, k.h, "body")
+    elif k.v == 2:
+        k.cyl(0, 0, r * 0.5, k.bottom, k.bottom + k.h * 0.4, "body")
+        k.ell([0, 0, k.h], [r, r, k.h * 1.6], "white")
+    else:
+        k.ell([0, 0, k.h], [r, r, 2 * k.h], "body")
 
 
 def pot(k: Kit) -> None:
@@ -588,18 +672,31 @@ def book(k: Kit) -> None:
 
 
 def bottle(k: Kit) -> None:
+    """A bottle with a neck (0), a pump bottle (1), or a squat flask (2)."""
     r = min(k.w, k.d)
+    if k.v == 2:
+        k.box([-k.w, -k.d * 0.6, k.bottom], [k.w, k.d * 0.6, k.h * 0.6], "body")
+        k.cyl(0, 0, r * 0.3, k.h * 0.6, k.h, "accent")
+        return
     neck = k.h - 2 * k.h * 0.3
     k.cyl(0, 0, r, k.bottom, neck, "body")
-    k.cyl(0, 0, r * 0.4, neck, k.h - 0.015, "body" if k.v != 1 else "glass")
-    k.cyl(0, 0, r * 0.45, k.h - 0.015, k.h, "accent")
-    k.cyl(0, 0, r * 1.0, k.bottom + 2 * k.h * 0.2, k.bottom + 2 * k.h * 0.45, "label")
+    if k.v == 1:
+        k.cyl(0, 0, r * 0.25, neck, k.h, "white")
+        k.box([0, -0.004, k.h - 0.015], [r, 0.004, k.h], "white")
+    else:
+        k.cyl(0, 0, r * 0.4, neck, k.h, "accent")
 
 
 def jar(k: Kit) -> None:
+    """A jar with a lid (0), a shaker with a cap (1), or a rounded pot (2)."""
     r = min(k.w, k.d)
-    k.cyl(0, 0, r, k.bottom, k.h - 0.02, "body")
-    k.cyl(0, 0, r * 0.95, k.h - 0.02, k.h, "accent")
+    if k.v == 2:
+        k.ell([0, 0, -k.h * 0.1], [r, r, k.h * 0.9], "body")
+        k.cyl(0, 0, r * 0.5, k.h * 0.7, k.h, "accent")
+        return
+    lid = k.h - min(0.03, k.h * 0.3)
+    k.cyl(0, 0, r if k.v == 0 else r * 0.8, k.bottom, lid, "body" if k.v == 0 else "glass")
+    k.cyl(0, 0, r, lid, k.h, "accent" if k.v == 0 else "metal")
 
 
 def carton(k: Kit) -> None:
@@ -625,18 +722,19 @@ def tube(k: Kit) -> None:
 
 
 def utensil(k: Kit) -> None:
+    """Cutlery and tools: a handle and a blade or head along the long axis; steel (0),
+    dark handle (1) or wooden handle (2)."""
     big = int(np.argmax([k.w, k.d, k.h]))
     half = np.array([k.w, k.d, k.h])
-    hi = half.copy()
-    lo = -half
     split = -half[big] + 2 * half[big] * 0.55
-    hi_handle = hi.copy()
+    hi_handle = half.copy()
     hi_handle[big] = split
-    k.box(lo, hi_handle, "black" if k.v else "metal")
-    lo2 = lo.copy()
-    lo2[big] = split
-    k.box(lo2 * np.where(np.arange(3) == big, 1, 0.6), hi * np.where(np.arange(3) == big, 1,
-                                                                     0.6), "chrome")
+    k.box(-half, hi_handle, ("metal", "black", "wood")[k.v])
+    lo_head = -half * 0.6
+    lo_head[big] = split
+    hi_head = half * 0.6
+    hi_head[big] = half[big]
+    k.box(lo_head, hi_head, "chrome")
 
 
 def toothbrush(k: Kit) -> None:
@@ -652,8 +750,13 @@ def toothbrush(k: Kit) -> None:
 
 
 def fruit(k: Kit) -> None:
+    """A round fruit (0), a flatter one (1), or one with a stalk and leaf (2)."""
+    if k.v == 1:
+        k.ell([0, 0, -k.h * 0.15], [k.w, k.d, k.h * 0.85], "body")
+        return
     k.ell([0, 0, 0], [k.w, k.d, k.h], "body")
-    k.cyl(0, 0, 0.004, k.h * 0.8, k.h, "leaf")
+    if k.v == 2:
+        k.box([0, -0.002, k.h * 0.7], [min(k.w, 0.03), 0.002, k.h], "leaf")
 
 
 def bananas(k: Kit) -> None:
@@ -668,8 +771,7 @@ def bananas(k: Kit) -> None:
 
 def cake(k: Kit) -> None:
     r = min(k.w, k.d)
-    k.cyl(0, 0, r, k.bottom, k.h * 0.4, "body")
-    k.cyl(0, 0, r * 0.98, k.h * 0.4, k.h, "white")
+    k.cyl(0, 0, r, k.bottom, k.h, "body")
 
 
 def cupcake(k: Kit) -> None:
@@ -679,19 +781,33 @@ def cupcake(k: Kit) -> None:
 
 
 def slab(k: Kit) -> None:
-    """Flat things: paper, towels, slices, meat, folders."""
-    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "body")
+    """Flat things (paper, towels, folders, slices): a slab (0), one with a band (1), or
+    two stacked (2)."""
+    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h if k.v != 2 else 0], "body")
+    if k.v == 1:
+        k.box([-k.w, -k.d * 0.2, k.bottom], [k.w, k.d * 0.2, k.h], "accent")
+    elif k.v == 2:
+        k.box([-k.w * 0.9, -k.d * 0.9, 0], [k.w * 0.85, k.d * 0.9, k.h], "body")
 
 
 def rounded(k: Kit) -> None:
-    """Soft things: pillows, sponges, buns."""
-    k.ell([0, 0, 0], [k.w, k.d, k.h], "body")
+    """Soft things (pillows, sponges, buns): an ellipsoid (0), a cushion with a seam (1),
+    or a roll (2)."""
+    if k.v == 1:
+        k.ell([0, 0, 0], [k.w, k.d, k.h], "fabric")
+        k.box([-k.w * 0.7, -k.d * 0.7, -k.h * 0.1], [k.w * 0.7, k.d * 0.7, k.h * 0.1], "accent")
+    elif k.v == 2:
+        long = 0 if k.w > k.d else 1
+        half = np.array([k.w, k.d, k.h])
+        k.rod([0, 0, 0], long, float(min(half[1 - long], k.h)), half[long], "body",
+              kind="capsule")
+    else:
+        k.ell([0, 0, 0], [k.w, k.d, k.h], "body")
 
 
 def candle(k: Kit) -> None:
     r = min(k.w, k.d)
-    k.cyl(0, 0, r, k.bottom, k.h - 0.015, "white")
-    k.cyl(0, 0, 0.002, k.h - 0.015, k.h, "black")
+    k.cyl(0, 0, r, k.bottom, k.h, "white")
 
 
 def plant(k: Kit) -> None:
@@ -703,14 +819,12 @@ def plant(k: Kit) -> None:
 
 def garbagecan(k: Kit) -> None:
     r = min(k.w, k.d)
-    k.cyl(0, 0, r, k.bottom, k.h - 0.02, "metal")
-    k.cyl(0, 0, r, k.h - 0.02, k.h, "black")
+    k.cyl(0, 0, r, k.bottom, k.h, "metal")
 
 
 def bucket(k: Kit) -> None:
     r = min(k.w, k.d)
     k.cyl(0, 0, r, k.bottom, k.h, "body")
-    k.cyl(0, 0, r * 0.9, k.h - 0.005, k.h, "black")
 
 
 def knifeblock(k: Kit) -> None:
@@ -729,8 +843,17 @@ def toy(k: Kit) -> None:
 
 
 def box_generic(k: Kit) -> None:
-    k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "body")
-    k.box([-k.w, -k.d * 0.05, k.h - 0.003], [k.w, k.d * 0.05, k.h], "accent")
+    """A box: taped (0), with a lid (1), or open with flaps (2)."""
+    if k.v == 1:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h * 0.6], "body")
+        k.box([-k.w, -k.d, k.h * 0.6], [k.w, k.d, k.h], "accent")
+    elif k.v == 2:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h * 0.7], "body")
+        k.box([-k.w, -k.d, k.h * 0.7], [k.w, -k.d * 0.9, k.h], "body")
+        k.box([-k.w, k.d * 0.9, k.h * 0.7], [k.w, k.d, k.h], "body")
+    else:
+        k.box([-k.w, -k.d, k.bottom], [k.w, k.d, k.h], "body")
+        k.box([-k.w, -k.d * 0.05, k.h - 0.003], [k.w, k.d * 0.05, k.h], "accent")
 
 
 def generic_furniture(k: Kit) -> None:
@@ -823,13 +946,40 @@ MODELS: dict[str, Builder] = {
     "chocolatesyrup": bottle, "whippedcream": bottle, "condimentbottle": bottle,
     "condimentshaker": jar, "breadslice": slab, "cutlets": slab, "salmon": slab,
     "mincedmeat": slab, "chicken": rounded, "creamybuns": rounded,
+    # classes the knowledge base can add
+    "addressbook": book, "diary": book, "notepad": book, "homework": slab, "bills": slab,
+    "check": slab, "document": slab, "drawing": slab, "envelope": slab, "form": slab,
+    "mail": slab, "receipt": slab, "newspaper": slab, "printingpaper": slab,
+    "papertowel": jar, "napkin": slab, "clothnapkin": slab, "placemat": slab,
+    "tablecloth": slab, "sheets": slab, "comforter": slab, "rag": slab, "cd": plate,
+    "coin": plate, "creditcard": slab, "cards": slab, "deckofcards": package,
+    "boardgame": package, "scrabble": package, "chessboard": slab, "stamp": slab,
+    "aftershave": bottle, "alcohol": bottle, "beer": bottle, "wine": bottle, "oil": bottle,
+    "sauce": bottle, "cleaningsolution": bottle, "detergent": bottle,
+    "laundrydetergent": bottle, "facialcleanser": bottle, "foundation": jar,
+    "nailpolish": bottle, "shavingcream": bottle, "glue": tube, "jelly": jar,
+    "coffee": jar, "groundcoffee": jar, "tea": package, "teabag": slab,
+    "coffeefilter": bowl, "drypasta": package, "pasta": package, "groceries": package,
+    "bag": package, "purse": package, "shoeshinekit": box_generic, "band-aids": package,
+    "bandaids": package, "pen": utensil, "pencil": utensil, "mechanicalpencil": utensil,
+    "highlighter": utensil, "crayon": utensil, "laserpointer": utensil, "needle": utensil,
+    "broom": utensil, "mop": utensil, "dustpan": slab, "brush": utensil, "scissors": utensil,
+    "keys": utensil, "lighter": package, "electricshaver": phone, "controller": phone,
+    "videogamecontroller": phone, "microphone": bottle, "hairdryer": toaster,
+    "blowdryer": toaster, "iron": toaster, "vacuumcleaner": appliance, "lightbulb": fruit,
+    "spectacles": utensil, "thread": jar, "tape": jar, "button": plate, "dough": rounded,
+    "ice": package, "dirt": rounded, "hair": rounded, "teeth": rounded, "cat": rounded,
+    "dog": rounded, "instrumentguitar": bananas, "instrumentviolin": bananas,
+    "centerpiece": plant, "toothbrushholder": glass, "ovenmitts": rounded,
+    "pajamas": clothes_flat, "basketforclothes": bucket, "bookmark": slab,
 }
 """Class (spelled without underscores) -> builder."""
 
 _WORDS: tuple[tuple[str, Builder], ...] = (
-    ("lamp", tablelamp), ("glass", glass), ("cup", mug), ("bottle", bottle),
+    ("food", generic_food), ("cloth", clothes_flat), ("lamp", tablelamp), ("glass", glass),
+    ("cup", mug), ("bottle", bottle),
     ("table", table), ("chair", chair), ("sofa", sofa), ("cabinet", cabinet),
-    ("shelf", shelf), ("clothes", clothes_flat), ("food", generic_food), ("book", book),
+    ("shelf", shelf), ("book", book),
     ("knife", utensil), ("spoon", utensil), ("soap", rounded), ("paper", slab),
 )
 """Words inside a class name (checked in order) for classes without a model of their own."""
@@ -842,7 +992,10 @@ _CATEGORIES: dict[str, Builder] = {
 
 VARIANTS: dict[Builder, int] = {
     sofa: 3, chair: 3, table: 3, desk: 2, bed: 3, ceilinglamp: 3, tablelamp: 3, tv: 2,
-    picture: 3, book: 4, mug: 3, plate: 3, bottle: 2, plant: 2, tvstand: 2, shelf: 3,
+    picture: 3, book: 4, mug: 3, plate: 3, bottle: 3, plant: 2, tvstand: 2, shelf: 3,
+    drawers: 3, wallshelf: 3, rug: 3, curtains: 3, hanger: 3, clothes_flat: 3,
+    clothespile: 3, walllamp: 3, plate_on_wall: 3, phone: 3, glass: 3, bowl: 3, fruit: 3,
+    slab: 3, rounded: 3, box_generic: 3, jar: 3, utensil: 3,
 }
 """Builders that take a variant and how many they have (others draw one model)."""
 
@@ -867,9 +1020,8 @@ def variant_of(class_name: str, seed: int, key: int = 0) -> int:
 
 def _clamp(s: Shape, half: np.ndarray) -> Shape:
     """Shrink a shape so its box stays inside [-half, half]."""
-    lo = np.maximum(s.center - s.half, -half)
-    hi = np.minimum(s.center + s.half, half)
-    hi = np.maximum(hi, lo + 2e-3)
+    lo = np.clip(s.center - s.half, -half, half - 2e-3)
+    hi = np.clip(s.center + s.half, lo + 2e-3, half)
     hs = (hi - lo) / 2
     if s.kind in ("cylinder", "capsule"):  # keep the section round
         across = [a for a in range(3) if a != s.axis]

@@ -31,6 +31,19 @@ _FIXED: dict[str, tuple[float, float, float]] = {
     "tablelamp": (0.95, 0.85, 0.55),
     "lightswitch": (0.97, 0.97, 0.97),
     "character": (0.90, 0.60, 0.45),
+    "pillow": (0.88, 0.84, 0.74),
+    "towel": (0.85, 0.88, 0.92),
+    "plate": (0.95, 0.95, 0.93),
+    "dishbowl": (0.93, 0.90, 0.84),
+    "mug": (0.80, 0.22, 0.18),
+    "toilet": (0.96, 0.96, 0.95),
+    "bathtub": (0.96, 0.96, 0.95),
+    "sink": (0.80, 0.81, 0.83),
+    "curtains": (0.72, 0.62, 0.48),
+    "apple": (0.75, 0.12, 0.10),
+    "bananas": (0.95, 0.85, 0.25),
+    "lime": (0.45, 0.75, 0.20),
+    "orchid": (0.85, 0.55, 0.80),
 }
 _DIM = 0.92  # class colours are drawn a little darker than white so lamps stand out
 

@@ -88,15 +88,22 @@ class Props:
         return "r" if "r" not in self.held else "l"
 
     def handle_local(self, node_id: int, agent_xy: np.ndarray) -> np.ndarray:
-        """Where a hand takes a hinged front, in its hinge body's frame (closed): near the
-        free edge, on the face toward the agent, at about 1 m (within the panel)."""
+        """Where a hand takes a hinged front, in its hinge body's frame (closed): on its
+        handle or knob (the model's chrome part) where it has one, else near the free
+        edge at about 1 m; on the face toward the agent."""
         part = self.scene.layout.part(node_id)
         if part is None or part.hinge is None:
             raise ExecutionError(f"node {node_id} has no hinged front")
         h = part.hinge
-        p = 1.8 * h.panel.center  # the panel's centre lies half way to its free edge
         thin = int(np.argmin(h.panel.half[:2]))
         side = 1.0 if agent_xy[thin] >= h.pivot[thin] + h.panel.center[thin] else -1.0
+        handles = [sh for sh in getattr(h, "shapes", ()) if sh.role == "chrome"]
+        if handles:
+            grip = handles[-1]
+            p = np.array(grip.center, float)
+            p[thin] += side * float(grip.half[thin])
+            return p
+        p = 1.8 * h.panel.center  # the panel's centre lies half way to its free edge
         p[thin] = h.panel.center[thin] + side * (h.panel.half[thin] + HANDLE_OUT)
         margin = min(0.08, 0.5 * h.panel.half[2])
         lo = h.panel.center[2] - h.panel.half[2] + margin

@@ -14,11 +14,19 @@ from homesim.errors import HomesimError
 from homesim.render.gl import BACKEND, mujoco
 from homesim.render.scene import SceneModel
 
+HIDDEN_GROUP = 5
+"""Geom group of the static geoms a camera cannot see (not drawn)."""
+
 
 class Renderer:
-    """Draws a `SceneModel` from its fixed cameras at one resolution."""
+    """Draws a `SceneModel` from its fixed cameras at one resolution.
 
-    def __init__(self, scene: SceneModel, width: int, height: int):
+    `shadows`: the light of the camera's room casts shadows in colour draws. One more
+    pass over the scene per frame: about twice the colour draw's time with OSMesa
+    (llvmpipe), little on a GPU; by default on with EGL only."""
+
+    def __init__(self, scene: SceneModel, width: int, height: int,
+                 shadows: bool | None = None):
         model = scene.model
         if width > model.vis.global_.offwidth or height > model.vis.global_.offheight:
             raise HomesimError(f"{width}x{height} is larger than the scene was built for "
@@ -41,7 +49,15 @@ class Renderer:
         self._rgb = np.empty((height, width, 3), np.uint8)
         self._depth = np.empty((height, width), np.float32)
         self._seg4: np.ndarray | None = None
-        self._lut: np.ndarray | None = None
+        self._luts: dict[int, np.ndarray] = {}  # camera -> segid + 1 -> geom id
+        self._camera_now = -1
+        self._groups = self._cull_groups()
+        self._opt.geomgroup[HIDDEN_GROUP] = 0
+        # The light of the room a camera is in casts shadows in its colour draws.
+        self._shadow_light = {c: scene.room_light.get(spec.room_id, -1)
+                              for c, spec in enumerate(scene.cameras)}
+        self._shadow_now: int | None = None
+        self.shadows = BACKEND == "egl" if shadows is None else shadows
         extent = model.stat.extent
         self.znear = float(model.vis.map.znear * extent)
         self.zfar = float(model.vis.map.zfar * extent)
@@ -53,8 +69,9 @@ class Renderer:
         self.close()
 
     def close(self) -> None:
-        """Free the GL resources (safe to call twice)."""
+        """Free the GL resources and restore the model's geom groups (safe to call twice)."""
         if getattr(self, "_gl", None) is not None:
+            self.scene.model.geom_group[:] = self._groups[-1]
             self._con.free()
             self._gl.free()
             self._gl = None
@@ -76,9 +93,39 @@ class Renderer:
         nodes = self.scene.geom_node[ids[ids >= 0]]
         return [float(np.count_nonzero(nodes == n)) / ids.size for n in node_ids]
 
+    def _cull_groups(self) -> dict[int, np.ndarray]:
+        """Per camera, the geom groups that hide static geoms outside its view (-1: the
+        model's own groups). MuJoCo draws every geom it is given; a room camera sees a
+        fraction of a home, so this saves most of each draw. Hidden geoms cannot show in
+        the image, so colour, depth and segmentation are the same as without culling."""
+        m = self.scene.model
+        data = mujoco.MjData(m)
+        mujoco.mj_kinematics(m, data)
+        mujoco.mj_camlight(m, data)  # camera poses
+        groups = {-1: m.geom_group.copy()}
+        static = m.geom_bodyid == 0
+        centers, radii = data.geom_xpos, m.geom_rbound
+        tan_y = np.tan(np.radians(np.array([c.fovy for c in self.scene.cameras])) / 2)
+        for cam in range(m.ncam):
+            axes = data.cam_xmat[cam].reshape(3, 3)  # columns: right, up, backward
+            rel = (centers - data.cam_xpos[cam]) @ axes
+            depth = -rel[:, 2]
+            ty = tan_y[cam] if cam < len(tan_y) else 1.0
+            tx = ty * self.width / self.height
+            # Distance of each bounding sphere's centre outside the four side planes.
+            out_x = (np.abs(rel[:, 0]) - tx * depth) / np.sqrt(1 + tx * tx)
+            out_y = (np.abs(rel[:, 1]) - ty * depth) / np.sqrt(1 + ty * ty)
+            hidden = static & ((out_x > radii) | (out_y > radii) | (depth < -radii))
+            groups[cam] = np.where(hidden, HIDDEN_GROUP, groups[-1]).astype(np.int32)
+        return groups
+
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
               rect: mujoco.MjrRect | None = None) -> None:
         self._gl.make_current()
+        # Set on every draw (a small copy): another renderer of the same model may have
+        # changed the groups since.
+        self.scene.model.geom_group[:] = self._groups.get(camera_id, self._groups[-1])
+        self._camera_now = camera_id
         self._cam.fixedcamid = camera_id
         mujoco.mjv_updateScene(self.scene.model, data, self._opt, None, self._cam,
                                mujoco.mjtCatBit.mjCAT_ALL, self._scn)
@@ -86,8 +133,20 @@ class Renderer:
         self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
         mujoco.mjr_render(rect or self._rect, self._scn, self._con)
 
+    def _cast_shadows(self, camera_id: int) -> None:
+        """Only the light of the camera's room casts shadows (one shadow pass a frame)."""
+        light = self._shadow_light.get(camera_id, -1) if self.shadows else -1
+        if light == self._shadow_now:
+            return
+        flags = self.scene.model.light_castshadow
+        flags[:] = 0
+        if light >= 0:
+            flags[light] = 1
+        self._shadow_now = light
+
     def rgb(self, data: mujoco.MjData, camera_id: int) -> np.ndarray:
         """(H, W, 3) uint8 colour image."""
+        self._cast_shadows(camera_id)
         self._draw(data, camera_id, segment=False)
         mujoco.mjr_readPixels(self._rgb, None, self._rect, self._con)
         return self._rgb[::-1].copy()  # GL rows start at the bottom
@@ -106,14 +165,14 @@ class Renderer:
             self._seg4 = np.zeros((h, w, 4), np.uint8)
         self._seg4[..., :3] = buf[::-1]
         seg = self._seg4.view("<u4")[..., 0]  # segid + 1 (0: no geom), little-endian RGB
-        lut = self._segid_lut()
+        lut = self._segid_lut(self._camera_now)
         return lut[np.minimum(seg, len(lut) - 1)]
 
-    def _segid_lut(self) -> np.ndarray:
+    def _segid_lut(self, camera: int) -> np.ndarray:
         """segid + 1 -> geom id. The scene lists the same geoms in the same order every
-        frame, so the table is rebuilt only when a spot check disagrees."""
+        frame of a camera, so its table is rebuilt only when a spot check disagrees."""
         scn, n = self._scn, self._scn.ngeom
-        lut = self._lut
+        lut = self._luts.get(camera)
         if lut is not None and len(lut) == n + 2:
             ok = True
             for i in (0, n // 2, n - 1):
@@ -127,7 +186,7 @@ class Renderer:
             g = scn.geoms[i]
             if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
                 lut[g.segid + 1] = g.objid
-        self._lut = lut
+        self._luts[camera] = lut
         return lut
 
     def _metric_depth(self, raw: np.ndarray) -> np.ndarray:

@@ -153,8 +153,8 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
   <statistic extent="20" center="0 0 1"/>
   <visual>
     <global offwidth="{width}" offheight="{height}"/>
-    <quality shadowsize="{SHADOW_SIZE}" offsamples="0" numquads="1" numslices="16"
-             numstacks="8"/>
+    <quality shadowsize="{SHADOW_SIZE}" offsamples="0" numquads="1" numslices="12"
+             numstacks="6"/>
     <map znear="0.002" zfar="3" shadowclip="6" shadowscale="0.6"/>
     <headlight ambient="0.3 0.3 0.3" diffuse="0.3 0.3 0.3" specular="0.05 0.05 0.05"/>
   </visual>

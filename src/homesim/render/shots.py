@@ -1,49 +1,175 @@
 """Close-ups of interactions: one virtual camera per hands-on step, as the paper films.
 
 For each `Interaction` of a timeline (a hand reaching an object, from the start of the
-reach to its return), the cameras of the room where it happens are tried: each one's
-position is kept, it is turned toward the hand and the object, and its field of view is
-narrowed until they fill the frame (with a margin). The camera kept is the one that sees
-the object and the hand best at the moment of the effect (rays cast with `mj_ray`
-against every geom), nearer ones first. A step is never filmed from another room: a room
-without cameras gets no close-up.
+reach to its return), the cameras of the room where it happens are tried, each at its
+place, swung around the action and moved part of the way toward it (staying in the
+room): it is turned toward the hand and the object, and its field of view is narrowed
+until they fill the frame (with a margin). The camera kept is the one that shows the
+object (and the hand) best at the moment of the effect: candidates are ranked by rays
+cast with `mj_ray` against every geom, and the best few drawn in segmentation at a small
+size. A step is never filmed from another room: a room without cameras gets no
+close-up.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import replace
 
 import numpy as np
 
 from homesim.render.animate import Interaction, Timeline
 from homesim.render.cameras import CameraSpec, look_at
+from homesim.render.flow import intrinsics, project, world_to_cam
 from homesim.render.gl import mujoco
+from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel
 
 MARGIN = 1.3
 """The frame spans this many times the angular extent of hand and object."""
-MIN_FOVY = 18.0
+MIN_FOVY = 8.0
 MAX_FOVY = 80.0
 """Degrees: the narrowest and widest close-up."""
 FRAMED = 5
-"""Hand positions sampled along the reach (start to peak) that the shot must contain."""
+"""Hand positions sampled along the second half of the reach (to the effect) that the
+shot must contain."""
+DOLLY = (0.0, 0.3, 0.55)
+"""Each room camera is also tried moved this share of the way toward the action (at its
+height, inside the room, out of furniture)..."""
+ORBIT = (0.0, 0.45, -0.45, 0.9, -0.9)
+"""... and swung around the action by these angles (radians) first."""
+DRAWN = 16
+"""Candidate views (the best by rays) drawn to choose the close-up."""
+PROBE_HEIGHT = 120
+"""Pixels: the height of those drawings."""
+GOOD_SHARE = 0.02
+"""An object covering this share of the drawing is seen well enough; beyond it, the hand
+being seen counts more."""
+MIN_RANGE = 1.5
+"""Metres: a camera is not moved closer than this to the action."""
 
 
-def plan_shots(scene: SceneModel, timeline: Timeline, aspect: float) -> list[CameraSpec]:
+def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
+               ) -> list[CameraSpec]:
     """A close-up camera for each interaction whose room has cameras (`CameraSpec.shot`
-    is the interaction's index); `aspect` = width / height of the images."""
+    is the interaction's index), for images of `size` (width, height).
+
+    Candidates are ranked by rays (object and hand seen at the effect); the best `DRAWN`
+    are aimed and drawn in segmentation at a small size, and the one kept shows the
+    object well (`GOOD_SHARE` of the view) and the hand, else most of the object."""
     data = mujoco.MjData(scene.model)
-    shots = []
+    aspect = size[0] / size[1]
+    plans = []
     for k, it in enumerate(timeline.interactions):
-        cams = [c for c in scene.cameras if c.room_id == it.room and c.shot < 0]
+        framed = _framed_points(scene, timeline, it, data)
+        cams = _positions(scene, it.room, 0.5 * (framed.min(axis=0) + framed.max(axis=0)))
         if not cams:
             continue
-        framed = _framed_points(scene, timeline, it, data)
         _pose(scene, timeline, it.peak, data)
         targets = _targets(scene, it, data)
-        best = max(cams, key=lambda c: _score(scene, data, c, it, targets))
-        shots.append(_aim(best, framed, aspect, k, it.step))
+        scored = sorted(((_score(scene, data, c, it, targets), i) for i, c in enumerate(cams)),
+                        reverse=True)[:DRAWN]
+        plans.append((it, [(_aim(cams[i], framed, aspect, k, it.step), hand)
+                           for (_, hand), i in scored]))
+    if not plans:
+        return []
+    probe = (max(2, min(size[0], round(PROBE_HEIGHT * aspect))), min(size[1], PROBE_HEIGHT))
+    shots = []
+    with Renderer(scene, *probe) as renderer, _spare_camera(scene) as spare:
+        for it, aimed in plans:
+            _pose(scene, timeline, it.peak, data)
+            arm = _arm_bodies(scene, it.side)
+            drawn = [(*spare.view(renderer, data, spec, it, arm), n)
+                     for n, (spec, _) in enumerate(aimed)]
+            best = max(drawn, key=lambda d: (_view_score(d[0], d[1], aimed[d[2]][0]), -d[2]))
+            shots.append(aimed[best[2]][0])
     return shots
+
+
+def _view_score(share: float, hand: bool, spec: CameraSpec) -> float:
+    """A drawn candidate's worth: the object seen well (up to `GOOD_SHARE`), the hand
+    seen, more of the object; a view too wide to frame them (at `MAX_FOVY`) counts less."""
+    cramped = spec.fovy >= MAX_FOVY - 1e-6
+    return min(share / GOOD_SHARE, 1.0) + 0.5 * hand + share - 0.5 * cramped
+
+
+class _SpareCamera:
+    """Room camera 0 lent to draw candidate views (put back afterwards)."""
+
+    def __init__(self, scene: SceneModel):
+        self.scene = scene
+        m = scene.model
+        self.saved = (m.cam_pos[0].copy(), m.cam_quat[0].copy(), float(m.cam_fovy[0]))
+
+    def view(self, renderer: Renderer, data: mujoco.MjData, spec: CameraSpec,
+             it: Interaction, arm: frozenset[int]) -> tuple[float, bool]:
+        """Drawn from `spec` at the renderer's (small) size: the share of the view the
+        acted-on object covers, and whether the hand shows (its pixel is on the arm)."""
+        m = self.scene.model
+        mat = np.stack([spec.xaxis, spec.yaxis, np.cross(spec.xaxis, spec.yaxis)], axis=1)
+        quat = np.zeros(4)
+        mujoco.mju_mat2Quat(quat, mat.reshape(-1))
+        m.cam_pos[0], m.cam_quat[0], m.cam_fovy[0] = spec.pos, quat, spec.fovy
+        mujoco.mj_camlight(m, data)
+        ids, _ = renderer.ids_depth(data, 0)
+        nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
+        share = float(np.count_nonzero(nodes == it.nodes[0])) / ids.size
+        h, w = ids.shape
+        k = intrinsics(w, h, spec.fovy)
+        uv, z = project(data.site_xpos[self.scene.hand_sites[it.side]][None], k,
+                        world_to_cam(data.cam_xpos[0], data.cam_xmat[0]))
+        u, v = np.round(uv[0]).astype(int)
+        if z[0] <= 0 or not (0 <= u < w and 0 <= v < h) or ids[v, u] < 0:
+            return share, False
+        g = int(ids[v, u])
+        return share, int(m.geom_bodyid[g]) in arm
+
+    def restore(self) -> None:
+        m = self.scene.model
+        m.cam_pos[0], m.cam_quat[0], m.cam_fovy[0] = self.saved
+
+
+@contextmanager
+def _spare_camera(scene: SceneModel) -> Iterator[_SpareCamera]:
+    spare = _SpareCamera(scene)
+    try:
+        yield spare
+    finally:
+        spare.restore()
+
+
+def _positions(scene: SceneModel, room: int | None, subject: np.ndarray) -> list[CameraSpec]:
+    """The room's cameras, and each swung around `subject` (`ORBIT`) and moved part of
+    the way toward it (`DOLLY`), at its height, where that stays inside the room and out
+    of furniture."""
+    floor = scene.layout.room_floors.get(room) if room is not None else None
+    blockers = [b for p in scene.layout.parts
+                if p.class_name not in ("floor", "ceiling", "wall", "doorjamb")
+                for b in p.boxes]
+
+    def fits(pos: np.ndarray) -> bool:
+        return (floor is not None and float(np.linalg.norm(pos - subject)) >= MIN_RANGE
+                and bool(np.all(np.abs(pos[:2] - floor.center[:2]) <= floor.half[:2] - 0.2))
+                and not any(np.all(np.abs(pos - b.center) < b.half + 0.1) for b in blockers))
+
+    out = []
+    for cam in scene.cameras:
+        if cam.room_id != room or cam.shot >= 0:
+            continue
+        out.append(cam)
+        for angle in ORBIT:
+            c, s = math.cos(angle), math.sin(angle)
+            rel = cam.pos[:2] - subject[:2]
+            turned = np.array([c * rel[0] - s * rel[1], s * rel[0] + c * rel[1]])
+            swung = np.r_[subject[:2] + turned, cam.pos[2]]
+            for t in DOLLY:
+                pos = swung.copy()
+                pos[:2] += t * (subject[:2] - pos[:2])
+                if (angle or t) and fits(pos):
+                    out.append(replace(cam, pos=pos))
+    return out
 
 
 def _pose(scene: SceneModel, timeline: Timeline, frame: int, data: mujoco.MjData) -> None:
@@ -67,11 +193,11 @@ def node_corners(scene: SceneModel, data: mujoco.MjData, node: int) -> np.ndarra
 
 def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
                    data: mujoco.MjData) -> np.ndarray:
-    """What the shot must contain: the hand along the reach, the objects at its start
-    and at the effect."""
+    """What the shot must contain: the hand as it comes to the object, the objects at
+    the start of the reach and at the effect."""
     site = scene.hand_sites[it.side]
     pts = []
-    for f in np.linspace(it.start, it.peak, FRAMED).round().astype(int):
+    for f in np.linspace((it.start + it.peak) / 2, it.peak, FRAMED).round().astype(int):
         _pose(scene, timeline, int(f), data)
         pts.append(data.site_xpos[site].copy()[None])
     for f in (it.start, it.peak):
@@ -81,19 +207,21 @@ def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
 
 
 def _targets(scene: SceneModel, it: Interaction, data: mujoco.MjData) -> list[np.ndarray]:
-    """Points to see at the effect: the acted-on object's centre and four points around
-    it (its box shrunk by half)."""
+    """Points to see at the effect: the acted-on object's centre and the corners of its
+    box shrunk to 60 %."""
     corners = node_corners(scene, data, it.nodes[0])
     if len(corners) == 0:
         return []
-    c = corners.mean(axis=0)
-    return [c] + [c + 0.5 * (p - c) for p in corners[[0, 3, 5, 6]]]
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    c = 0.5 * (lo + hi)
+    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    return [c, *(c + 0.3 * signs * (hi - lo))]
 
 
 def visible(scene: SceneModel, data: mujoco.MjData, eye: np.ndarray, point: np.ndarray,
-            nodes: tuple[int, ...]) -> bool:
+            nodes: tuple[int, ...], bodies: frozenset[int] = frozenset()) -> bool:
     """Whether the first geom on the ray from `eye` to `point` belongs to one of `nodes`
-    (or nothing stands before the point)."""
+    or of `bodies` (or nothing stands before the point)."""
     vec = point - eye
     dist = float(np.linalg.norm(vec))
     if dist < 1e-6:
@@ -102,19 +230,35 @@ def visible(scene: SceneModel, data: mujoco.MjData, eye: np.ndarray, point: np.n
     hit = mujoco.mj_ray(scene.model, data, eye, vec / dist, None, 1, -1, geom)
     if hit < 0 or hit >= dist - 1e-3:
         return True
-    return int(scene.geom_node[geom[0]]) in nodes
+    g = int(geom[0])
+    return bool(int(scene.geom_node[g]) in nodes or int(scene.model.geom_bodyid[g]) in bodies)
+
+
+def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
+    """The bodies of a forearm and what hangs from it (hand, fingers)."""
+    m = scene.model
+    root = int(m.site_bodyid[scene.hand_sites[side]])
+    out = {root}
+    for b in range(m.nbody):
+        p = b
+        while p > 0 and p not in out:
+            p = int(m.body_parentid[p])
+        if p in out:
+            out.add(b)
+    return frozenset(out)
 
 
 def _score(scene: SceneModel, data: mujoco.MjData, cam: CameraSpec, it: Interaction,
-           targets: list[np.ndarray]) -> float:
+           targets: list[np.ndarray]) -> tuple[float, bool]:
     """How well a camera position sees the object (2 per share of points seen) and the
-    hand (1 when seen) at the effect; nearer cameras win ties."""
+    hand (1 when seen) at the effect, nearer cameras winning ties; and whether it sees
+    the hand."""
     seen = sum(visible(scene, data, cam.pos, p, it.nodes) for p in targets)
     obj = seen / len(targets) if targets else 0.0
     hand = data.site_xpos[scene.hand_sites[it.side]]
-    hand_seen = visible(scene, data, cam.pos, hand, (scene.character_id, *it.nodes))
+    hand_seen = visible(scene, data, cam.pos, hand, it.nodes, _arm_bodies(scene, it.side))
     dist = float(np.linalg.norm(hand - cam.pos))
-    return 2.0 * obj + float(hand_seen) - 0.05 * dist
+    return 2.0 * obj + float(hand_seen) - 0.05 * dist, hand_seen
 
 
 def _aim(cam: CameraSpec, points: np.ndarray, aspect: float, shot: int,

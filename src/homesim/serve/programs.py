@@ -18,13 +18,17 @@ from starlette.concurrency import run_in_threadpool
 
 from homesim.ground.pipeline import Run, run_program
 from homesim.ground.search import unground
-from homesim.limits import INLINE_PROGRAM_CHARS, MAX_RENDER_PIXEL_FRAMES
+from homesim.limits import (
+    INLINE_PROGRAM_CHARS,
+    MAX_RENDER_PIXEL_FRAMES,
+    MAX_RENDER_VIDEO_PIXEL_FRAMES,
+)
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.serve.errors import ApiError, SafeJSONResponse
 from homesim.serve.homes import get_home
 from homesim.serve.results import program_json, step_lines
-from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest
+from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest, VideoRequest
 from homesim.sim.execute import binding_problems
 from homesim.world.graph import EnvironmentGraph
 
@@ -97,6 +101,14 @@ def keyframe_renderer() -> Callable[..., Any]:
     return iter_keyframes
 
 
+def video_renderer() -> Callable[..., Any]:
+    """`homesim.render.render_video`; 501 when the render extra is not installed."""
+    keyframe_renderer()  # the same import, the same message
+    from homesim.render import render_video
+
+    return render_video
+
+
 def render_plan(request: RenderRequest) -> dict[str, Any]:
     """Check a render request before queueing it: the program parses, the home exists and
     frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the line of each key frame."""
@@ -111,10 +123,10 @@ def render_plan(request: RenderRequest) -> dict[str, Any]:
     return {"lines": lines}
 
 
-def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
-    """Key frames of a program (the frame at the end of each step), one at a time, as
-    (step index, RGB array); runs in a render worker process."""
-    function = keyframe_renderer()
+def _grounded(request: RenderRequest) -> tuple[Program, EnvironmentGraph, dict[str, Any]]:
+    """A render request's program as `run_program` grounds it (422 with the line when it
+    cannot be), the home it runs in, and ``standing=`` (where grounding stood the agent
+    for each step) for a renderer."""
     program, lines = parse_request(request.program)
     graph = get_home(request.home)
     ran = run_request(program, graph, None, request.seed, trace=False)
@@ -122,12 +134,36 @@ def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
         index = None if ran.failed_step is None else ran.failed_step - 1
         where: dict[str, Any] = {} if index is None else {"line": lines[index], "index": index}
         raise ApiError(422, "grounding", ran.message, None, **where)
-    extra = {}
-    # Where grounding stood the agent for each step, once the renderer walks there.
-    if ran.grounding.standing and "standing" in inspect.signature(function).parameters:
-        extra["standing"] = ran.grounding.standing
-    return function(ran.grounding.program, ran.graph, width=request.width,
-                    height=request.height, seed=request.seed, **extra)
+    standing = {"standing": ran.grounding.standing} if ran.grounding.standing else {}
+    return ran.grounding.program, ran.graph, standing
+
+
+def _takes(function: Callable[..., Any], extra: dict[str, Any]) -> dict[str, Any]:
+    """The keyword arguments of `extra` that `function` takes."""
+    names = inspect.signature(function).parameters
+    return {k: v for k, v in extra.items() if k in names}
+
+
+def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
+    """Key frames of a program (the frame at the end of each step), one at a time, as
+    (step index, RGB array); runs in a render worker process."""
+    function = keyframe_renderer()
+    program, graph, standing = _grounded(request)
+    return function(program, graph, width=request.width, height=request.height,
+                    seed=request.seed, **_takes(function, standing))
+
+
+def render_video_file(request: VideoRequest, path: str,
+                      progress: Callable[[int, int], None]) -> int:
+    """The video of a whole program into the MP4 file `path` (the frames `homesim render`
+    records), calling ``progress(done, total)`` per frame; returns the frame count.
+    Runs in a render worker process."""
+    function = video_renderer()
+    program, graph, standing = _grounded(request)
+    limit = (MAX_RENDER_VIDEO_PIXEL_FRAMES, "MAX_RENDER_VIDEO_PIXEL_FRAMES")
+    return function(program, graph, path, width=request.width, height=request.height,
+                    fps=request.fps, seed=request.seed, progress=progress, limit=limit,
+                    **_takes(function, standing))
 
 
 def is_large(request: ProgramRequest | ExecuteRequest | RenderRequest) -> bool:

@@ -1,4 +1,5 @@
-"""Render jobs: ``POST /api/render`` queues one, the client then fetches its frames by URL.
+"""Render jobs: ``POST /api/render`` (key frames) or ``POST /api/render/video`` (the whole
+program as one MP4) queues one; the client then fetches its frames or video by URL.
 
 Rendering is CPU-heavy and slow (MuJoCo), so it never runs in the server process:
 
@@ -8,8 +9,11 @@ Rendering is CPU-heavy and slow (MuJoCo), so it never runs in the server process
 - Each job runs in its own worker process (niced), which writes one PNG per key frame
   into the job's folder as soon as it is drawn, so memory holds one frame at a time.
   A job running longer than `RENDER_TIMEOUT_S` is killed.
-- ``GET /api/render/{id}`` tells the job's status and the frames ready so far;
-  ``GET /api/render/{id}/frames/{index}`` is one PNG; ``DELETE`` cancels a job.
+- A video job's worker writes the MP4 frame by frame (memory holds one frame) and its
+  progress (frames drawn of the total) as it goes; the file appears when it is complete.
+- ``GET /api/render/{id}`` tells the job's status and the frames ready so far (of a
+  video: frames drawn); ``GET /api/render/{id}/frames/{index}`` is one PNG,
+  ``GET /api/render/{id}/video`` the MP4; ``DELETE`` cancels a job.
 - Finished jobs are kept `RENDER_KEEP_S` seconds, the newest `RENDER_KEEP_JOBS` of them.
 """
 
@@ -29,7 +33,7 @@ from pathlib import Path
 from typing import Any
 
 from fastapi import APIRouter, Request
-from fastapi.responses import Response
+from fastapi.responses import FileResponse, Response
 from starlette.concurrency import run_in_threadpool
 
 from homesim.limits import (
@@ -42,8 +46,8 @@ from homesim.limits import (
 from homesim.serve import programs
 from homesim.serve.errors import ApiError, SafeJSONResponse, error_of
 from homesim.serve.images import encode_png
-from homesim.serve.programs import is_large, render_frames, render_plan
-from homesim.serve.schemas import RenderRequest
+from homesim.serve.programs import is_large, render_frames, render_plan, render_video_file
+from homesim.serve.schemas import RenderRequest, VideoRequest
 from homesim.serve.workers import ProcessContext, busy, lower_priority, worker_context
 
 router = APIRouter(prefix="/api", tags=["programs"])
@@ -51,7 +55,14 @@ router = APIRouter(prefix="/api", tags=["programs"])
 FrameSource = Callable[[Any], Iterable[tuple[int, Any]]]
 """``source(request) -> (step index, RGB frame) ...``, called in the worker process."""
 
+VideoSource = Callable[[Any, str, Callable[[int, int], None]], int]
+"""``source(request, mp4_path, progress) -> frames``, called in the worker process;
+``progress(done, total)`` after each frame."""
+
 _POLL_S = 0.05
+VIDEO = "video.mp4"
+PROGRESS = "progress.json"
+_PROGRESS_EVERY_S = 0.2
 
 
 def frame_name(index: int) -> str:
@@ -77,19 +88,52 @@ def run_job(source: FrameSource, request: Any, out_dir: str) -> None:
             count += 1
         _write_atomically(out / "done.json", json.dumps({"frames": count}).encode())
     except Exception as e:  # reported to the client through the job's status
-        status, body = error_of(e)
-        _write_atomically(out / "error.json",
-                          json.dumps({"status": status, **body}).encode())
+        _fail(out, e)
+
+
+def _fail(out: Path, e: Exception) -> None:
+    status, body = error_of(e)
+    _write_atomically(out / "error.json", json.dumps({"status": status, **body}).encode())
+
+
+class _ProgressFile:
+    """``progress(done, total)`` into a JSON file, at most every `_PROGRESS_EVERY_S`
+    (and always for the last frame)."""
+
+    def __init__(self, path: Path):
+        self.path, self.last = path, 0.0
+
+    def __call__(self, done: int, total: int) -> None:
+        now = time.monotonic()
+        if done == total or now - self.last >= _PROGRESS_EVERY_S:
+            self.last = now
+            _write_atomically(self.path, json.dumps({"done": done, "total": total}).encode())
+
+
+def run_video_job(source: VideoSource, request: Any, out_dir: str) -> None:
+    """The body of a video worker process: the MP4 (complete, or not there at all) and
+    ``progress.json`` as it goes, then ``done.json`` or ``error.json``."""
+    out = Path(out_dir)
+    lower_priority()
+    try:
+        part = out / "video.part.mp4"  # the extension tells ffmpeg the container
+        frames = source(request, str(part), _ProgressFile(out / PROGRESS))
+        os.replace(part, out / VIDEO)
+        _write_atomically(out / "done.json", json.dumps({"frames": frames}).encode())
+    except Exception as e:  # reported to the client through the job's status
+        _fail(out, e)
 
 
 @dataclass
 class Job:
-    """One render request: its folder, the line of each key frame and its state."""
+    """One render request: its folder, the line of each step, its kind (``keyframes``
+    or ``video``) and its state."""
 
     id: str
     folder: Path
     request: RenderRequest
     lines: list[int]
+    kind: str = "keyframes"
     state: str = "queued"  # queued, running, done, failed, cancelled
     created: float = field(default_factory=time.monotonic)
     started: float | None = None
@@ -107,31 +151,47 @@ class Job:
             return 0
         return sum(1 for name in os.listdir(self.folder) if name.endswith(".png"))
 
+    def progress(self) -> tuple[int, int]:
+        """A video job's (frames drawn, frames in all); the total is 0 until known."""
+        try:
+            data = json.loads((self.folder / PROGRESS).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return 0, 0
+        return int(data["done"]), int(data["total"])
+
     def to_json(self) -> dict[str, Any]:
-        ready = self.ready()
         url = f"/api/render/{self.id}"
-        return {
-            "id": self.id, "url": url, "status": self.state,
+        answer = {
+            "id": self.id, "url": url, "kind": self.kind, "status": self.state,
             "home": self.request.home, "width": self.request.width,
-            "height": self.request.height, "total": self.total, "ready": ready,
-            "frames": [{"index": i, "line": self.lines[i], "url": f"{url}/frames/{i}"}
-                       for i in range(ready)],
-            "error": self.error,
+            "height": self.request.height, "error": self.error,
         }
+        if self.kind == "video":
+            done, total = self.progress()
+            return {**answer, "fps": getattr(self.request, "fps", None), "total": total,
+                    "ready": done, "frames": [],
+                    "video": f"{url}/video" if self.state == "done" else None}
+        ready = self.ready()
+        return {**answer, "total": self.total, "ready": ready, "video": None,
+                "frames": [{"index": i, "line": self.lines[i], "url": f"{url}/frames/{i}"}
+                           for i in range(ready)]}
 
 
 class RenderJobs:
     """The queue and worker processes of render jobs (one process per running job).
 
-    `source` draws the frames in the worker; `context` starts workers (default: the fork
-    server of `homesim.serve.workers`; tests pass ``fork`` to use local functions).
+    `source` draws the key frames in the worker, `video_source` writes a video; `context`
+    starts workers (default: the fork server of `homesim.serve.workers`; tests pass
+    ``fork`` to use local functions).
     """
 
     def __init__(self, source: FrameSource = render_frames, workers: int = RENDER_WORKERS,
                  queue: int = RENDER_QUEUE, timeout: float = RENDER_TIMEOUT_S,
                  keep_jobs: int = RENDER_KEEP_JOBS, keep_s: float = RENDER_KEEP_S,
-                 context: ProcessContext | None = None):
+                 context: ProcessContext | None = None,
+                 video_source: VideoSource = render_video_file):
         self.source = source
+        self.video_source = video_source
         self.context = context
         self.workers = workers
         self.queue = queue
@@ -157,6 +217,9 @@ class RenderJobs:
     def frame(self, job_id: str, index: int) -> bytes:
         """The PNG of a frame that is ready; 404 or 409 (not yet, or the job failed)."""
         job = self.get(job_id)
+        if job.kind == "video":
+            raise ApiError(404, "render", f"render job {job_id} is a video: fetch "
+                           f"/api/render/{job_id}/video")
         if not 0 <= index < job.total:
             raise ApiError(404, "render", f"render job {job_id} has frames 0..{job.total - 1}, "
                            f"not {index}")
@@ -171,8 +234,23 @@ class RenderJobs:
             raise ApiError(409, "render", f"frame {index} of render job {job_id} was not "
                            f"rendered: {why}") from None
 
+    def video(self, job_id: str) -> Path:
+        """The MP4 file of a finished video job; 404 for a key-frame job, 409 when it
+        is not done (yet, or ever)."""
+        job = self.get(job_id)
+        if job.kind != "video":
+            raise ApiError(404, "render", f"render job {job_id} is key frames, not a video")
+        path = job.folder / VIDEO
+        if job.state != "done" or not path.is_file():
+            done, total = job.progress()
+            why = (f"{done} of {total or '?'} frames drawn" if job.state in ("queued", "running")
+                   else job.error["message"] if job.error else f"the job is {job.state}")
+            raise ApiError(409, "render", f"the video of render job {job_id} is not ready: "
+                           f"{why}")
+        return path
+
     # ------------------------------------------------------------------ changes
-    def submit(self, request: RenderRequest, lines: list[int]) -> Job:
+    def submit(self, request: RenderRequest, lines: list[int], kind: str = "keyframes") -> Job:
         """Queue a job; 503 when the queue is full."""
         waiting = len(self._in_state("queued"))
         if len(self._in_state("running")) >= self.workers and waiting >= self.queue:
@@ -181,7 +259,7 @@ class RenderJobs:
         if self._root is None:
             self._root = Path(tempfile.mkdtemp(prefix="homesim-render-"))
         job_id = secrets.token_hex(8)
-        job = Job(job_id, self._root / job_id, request, lines)
+        job = Job(job_id, self._root / job_id, request, lines, kind)
         self.jobs[job_id] = job
         self._start_ready()
         loop = asyncio.get_running_loop()
@@ -216,8 +294,10 @@ class RenderJobs:
         free = self.workers - len(self._in_state("running"))
         for job in sorted(self._in_state("queued"), key=lambda j: j.created)[:max(free, 0)]:
             job.folder.mkdir(parents=True)
+            target, source = ((run_video_job, self.video_source) if job.kind == "video"
+                              else (run_job, self.source))
             job.process = (self.context or worker_context()).Process(
-                target=run_job, args=(self.source, job.request, str(job.folder)),
+                target=target, args=(source, job.request, str(job.folder)),
                 name=f"homesim-render-{job.id}", daemon=True)
             job.process.start()
             job.state, job.started = "running", time.monotonic()
@@ -281,9 +361,8 @@ def _jobs(http: Request) -> RenderJobs:
     return http.app.state.renders
 
 
-@router.post("/render", status_code=202, response_class=SafeJSONResponse)
-async def render(request: RenderRequest, http: Request) -> Response:
-    """Queue a render of a program's key frames (one per step); 202 with the job's URL."""
+async def _queue(request: RenderRequest, http: Request, kind: str) -> Response:
+    """Check a render request (501 without the render extra) and queue it; 202."""
     # In a thread: the first look imports mujoco (seconds), which must not stop the loop.
     await run_in_threadpool(programs.keyframe_renderer)  # 501 without the render extra
     if is_large(request):
@@ -293,8 +372,20 @@ async def render(request: RenderRequest, http: Request) -> Response:
         plan = json.loads(checked.body)
     else:
         plan = await run_in_threadpool(render_plan, request)
-    job = _jobs(http).submit(request, plan["lines"])
+    job = _jobs(http).submit(request, plan["lines"], kind)
     return SafeJSONResponse(job.to_json(), status_code=202)
+
+
+@router.post("/render", status_code=202, response_class=SafeJSONResponse)
+async def render(request: RenderRequest, http: Request) -> Response:
+    """Queue a render of a program's key frames (one per step); 202 with the job's URL."""
+    return await _queue(request, http, "keyframes")
+
+
+@router.post("/render/video", status_code=202, response_class=SafeJSONResponse)
+async def render_video(request: VideoRequest, http: Request) -> Response:
+    """Queue a render of a program's whole video (MP4); 202 with the job's URL."""
+    return await _queue(request, http, "video")
 
 
 @router.get("/render/{job_id}", response_class=SafeJSONResponse)
@@ -312,6 +403,16 @@ async def render_frame(job_id: str, index: int, http: Request) -> Response:
     png = _jobs(http).frame(job_id, index)
     return Response(png, media_type="image/png",
                     headers={"Cache-Control": "private, max-age=600"})
+
+
+@router.get("/render/{job_id}/video", response_class=FileResponse,
+            responses={200: {"content": {"video/mp4": {}}}})
+async def render_video_file_route(job_id: str, http: Request) -> Response:
+    """The video of a finished video job, as MP4 (H.264); range requests are answered."""
+    jobs = _jobs(http)
+    jobs._tick()
+    return FileResponse(jobs.video(job_id), media_type="video/mp4",
+                        headers={"Cache-Control": "private, max-age=600"})
 
 
 @router.delete("/render/{job_id}", response_class=SafeJSONResponse)

@@ -4,9 +4,15 @@ from __future__ import annotations
 
 from pydantic import BaseModel, Field
 
-from homesim.limits import MAX_RENDER_HEIGHT, MAX_RENDER_WIDTH, MAX_STEPS, MIN_RENDER_SIDE
+from homesim.limits import (
+    MAX_RENDER_HEIGHT,
+    MAX_RENDER_VIDEO_FPS,
+    MAX_RENDER_WIDTH,
+    MAX_STEPS,
+    MIN_RENDER_SIDE,
+)
 
-__all__ = ["MAX_STEPS", "ExecuteRequest", "ProgramRequest", "RenderRequest"]
+__all__ = ["MAX_STEPS", "ExecuteRequest", "ProgramRequest", "RenderRequest", "VideoRequest"]
 
 
 class ProgramRequest(BaseModel):
@@ -39,3 +45,9 @@ class RenderRequest(BaseModel):
     width: int = Field(default=320, ge=MIN_RENDER_SIDE, le=MAX_RENDER_WIDTH)
     height: int = Field(default=240, ge=MIN_RENDER_SIDE, le=MAX_RENDER_HEIGHT)
     seed: int = 0
+
+
+class VideoRequest(RenderRequest):
+    """A program to render as one video of the whole program (MP4, H.264)."""
+
+    fps: int = Field(default=12, ge=1, le=MAX_RENDER_VIDEO_FPS)

@@ -11,13 +11,19 @@ Glossary:
 The program is written ungrounded (``<cup> (1)``: instance numbers count distinct nodes of
 a class within the program); it is an `ActivityProgram` whose `home` names the built-in home
 and whose `bindings` keep the nodes it used.
+
+Descriptions: ``"people"`` (the default) are written by the paraphrase grammar of
+`homesim.synth.describe`, from a random source of their own seeded by the program id;
+``"templates"`` are the fixed task phrases of `homesim.synth.templates` (the text of the
+learning figures before the paraphrase grammar). The template phrases are drawn in both
+styles, so one seed gives the same programs whichever style describes them.
 """
 
 from __future__ import annotations
 
 import random
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache
 
 from homesim.knowledge.datasets import ActivityProgram
@@ -26,6 +32,7 @@ from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
 from homesim.synth import templates
+from homesim.synth.describe import Act, Thing, describe
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 from homesim.world.vocab import (
@@ -35,6 +42,7 @@ from homesim.world.vocab import (
     HAS_SWITCH,
     INSIDE,
     LOOKABLE,
+    ON,
     SITTABLE,
     SURFACES,
 )
@@ -236,6 +244,9 @@ TASKS: dict[str, tuple[float, Task]] = {
 }
 """Task name -> (weight, expansion function): the grammar's choices for one task."""
 
+STYLES: tuple[str, ...] = ("people", "templates")
+"""Description styles: the paraphrase grammar (default), or the fixed templates."""
+
 _TASK_COUNTS = (1, 2, 2, 3, 3, 4)
 _TRIES_PER_TASK = 12
 _STAND_UP_PHRASE = "stand_up"
@@ -252,8 +263,11 @@ class Grammar:
     True
     """
 
-    def __init__(self, homes: tuple[str, ...] = DEFAULT_HOMES):
+    def __init__(self, homes: tuple[str, ...] = DEFAULT_HOMES, style: str = "people"):
+        if style not in STYLES:
+            raise ValueError(f"description style {style!r}: choose one of {', '.join(STYLES)}")
         self.homes = homes
+        self.style = style
 
     def sample(self, rng: random.Random, program_id: str) -> ActivityProgram:
         """One program; every random choice comes from `rng`."""
@@ -262,7 +276,10 @@ class Grammar:
             ctx = _Context(_home(home), rng)
             chosen = self._expand(ctx, rng.choice(_TASK_COUNTS))
             if chosen:
-                return _write(program_id, home, chosen, ctx, rng)
+                sp = _write(program_id, home, chosen, ctx, rng)
+                if self.style == "templates":
+                    return sp
+                return _redescribe(sp, chosen, ctx)
 
     def _expand(self, ctx: _Context, n_tasks: int) -> list[Expansion]:
         names = list(TASKS)
@@ -313,11 +330,37 @@ def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
     return ActivityProgram(program_id, program, SOURCE, home=home, bindings=bindings)
 
 
-def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES
-             ) -> Iterator[ActivityProgram]:
-    """`n` programs; the same seed gives the same programs."""
+def _redescribe(sp: ActivityProgram, chosen: list[Expansion], ctx: _Context
+                ) -> ActivityProgram:
+    """The program described by the paraphrase grammar (seeded by its id)."""
+    graph = ctx.graph
+    things = {i: Thing(i, graph.node(i).class_name, i in graph.room_ids, _where(graph, i))
+              for exp in chosen for _, ids in exp.steps for i in ids}
+    acts: list[Act] = [(key, tuple(things[i] for i in ids))
+                       for exp in chosen for key, ids in exp.steps]
+    text = describe(acts, random.Random(f"describe:{sp.id}"), sp.program.title).text
+    return replace(sp, program=replace(sp.program, description=text))
+
+
+def _where(graph: EnvironmentGraph, node: int) -> tuple[str, str] | None:
+    """Where a node is in the home: on or in a piece of furniture, else in its room."""
+    if node in graph.room_ids:
+        return None
+    for relation, preposition in ((ON, "on"), (INSIDE, "in")):
+        holders = sorted(h for h in graph.targets(node, relation) - graph.room_ids
+                         if graph.node(h).class_name not in _STRUCTURE)
+        if holders:
+            return preposition, graph.node(holders[0]).class_name
+    room = graph.room_of(node)
+    return None if room is None else ("in", graph.node(room).class_name)
+
+
+def generate(n: int, seed: int, homes: tuple[str, ...] = DEFAULT_HOMES,
+             style: str = "people") -> Iterator[ActivityProgram]:
+    """`n` programs described in `style` (`STYLES`); the same seed gives the same
+    programs, and the same programs in either style."""
     rng = random.Random(seed)
-    grammar = Grammar(homes)
+    grammar = Grammar(homes, style)
     for i in range(n):
         yield grammar.sample(rng, f"synth-{seed}-{i}")
 

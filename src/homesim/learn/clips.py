@@ -1,0 +1,234 @@
+"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame features.
+
+Glossary:
+    frame encoder: a small CNN over a pooled RGB frame (trained here), or for *oracle
+        perception* an MLP over the frame's ground-truth class pixel shares.
+    TRN: temporal relation network (Zhou et al.): for k = 2..`MAX_SCALE`, ordered subsets of
+        k of the clip's `FRAMES` sampled frames are concatenated and passed through an MLP
+        g_k; the mean over subsets, summed over scales, is the clip feature.
+    single-frame: the clip feature is the middle frame's feature (the baseline).
+Two linear heads read the clip feature: the clip's action and its step (action and object
+classes). Scores are mean per-class accuracy (recall averaged over the test classes;
+classes never seen in training count with 0).
+"""
+
+from __future__ import annotations
+
+import random
+from collections import Counter, defaultdict
+from dataclasses import asdict, dataclass
+from itertools import combinations
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+from torch import nn
+
+from homesim.learn.videodata import Episode
+
+FRAMES = 8
+"""Frames sampled evenly from a clip."""
+MAX_SCALE = 4
+SUBSETS = 4
+"""Ordered frame subsets per scale (evenly spread over all of them)."""
+KINDS = ("trn", "single")
+INPUTS = ("rgb", "oracle")
+
+
+@dataclass
+class ClipConfig:
+    """A clip model; saved with its checkpoint."""
+
+    kind: str  # "trn" | "single"
+    input: str  # "rgb" | "oracle"
+    n_classes: int  # oracle input width
+    n_actions: int
+    n_steps: int
+    feature: int = 64
+    epochs: int = 8
+    batch_size: int = 32
+    lr: float = 2e-3
+    seed: int = 0
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _subsets(k: int) -> list[tuple[int, ...]]:
+    every = list(combinations(range(FRAMES), k))
+    picks = np.linspace(0, len(every) - 1, SUBSETS).round().astype(int)
+    return [every[i] for i in sorted(set(picks.tolist()))]
+
+
+class FrameEncoder(nn.Module):
+    """(N, 3, 24, 32) uint8 frames or (N, C) class shares -> (N, feature)."""
+
+    def __init__(self, cfg: ClipConfig):
+        super().__init__()
+        self.oracle = cfg.input == "oracle"
+        if self.oracle:
+            self.net: nn.Module = nn.Sequential(nn.Linear(cfg.n_classes, 128), nn.ReLU(),
+                                                nn.Linear(128, cfg.feature), nn.ReLU())
+        else:
+            self.net = nn.Sequential(
+                nn.Conv2d(3, 16, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
+                nn.Conv2d(16, 32, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
+                nn.Conv2d(32, 64, 3, padding=1), nn.ReLU(), nn.AdaptiveAvgPool2d(1),
+                nn.Flatten(), nn.Linear(64, cfg.feature), nn.ReLU())
+
+    def forward(self, x: torch.Tensor) -> torch.Tensor:
+        if self.oracle:
+            return self.net(x * 10.0)  # shares are small: scale them up
+        return self.net(x.float() / 255.0 - 0.5)
+
+
+class ClipModel(nn.Module):
+    """Frame encoder, temporal module (TRN or single frame) and two heads."""
+
+    def __init__(self, cfg: ClipConfig):
+        super().__init__()
+        self.cfg = cfg
+        self.frames = FrameEncoder(cfg)
+        f = cfg.feature
+        self.scales = list(range(2, MAX_SCALE + 1)) if cfg.kind == "trn" else []
+        self.relations = nn.ModuleList(
+            nn.Sequential(nn.Linear(k * f, 128), nn.ReLU(), nn.Linear(128, f), nn.ReLU())
+            for k in self.scales)
+        self.drop = nn.Dropout(0.3)
+        self.action_head = nn.Linear(f, cfg.n_actions)
+        self.step_head = nn.Linear(f, cfg.n_steps)
+
+    def features(self, clips: torch.Tensor) -> torch.Tensor:
+        """(B, FRAMES, ...) inputs -> (B, feature) clip features."""
+        b = clips.shape[0]
+        per_frame = self.frames(clips.flatten(0, 1)).view(b, FRAMES, -1)
+        if not self.scales:
+            return per_frame[:, FRAMES // 2]
+        out = torch.zeros_like(per_frame[:, 0])
+        for k, g in zip(self.scales, self.relations, strict=True):
+            subs = _subsets(k)
+            out = out + sum(g(per_frame[:, list(s)].flatten(1)) for s in subs) / len(subs)
+        return out
+
+    def forward(self, clips: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        h = self.drop(self.features(clips))
+        return self.action_head(h), self.step_head(h)
+
+
+@dataclass
+class ClipSet:
+    """Clips as tensors: inputs (N, FRAMES, ...), and their action and step texts."""
+
+    inputs: torch.Tensor
+    actions: list[str]
+    steps: list[str]
+
+
+def clip_inputs(ep: Episode, a: int, b: int, kind: str) -> np.ndarray:
+    """`FRAMES` evenly spaced frames of [a, b) as the model's input."""
+    idx = np.linspace(a, b - 1, FRAMES).round().astype(int)
+    return ep.frames[idx] if kind == "rgb" else ep.classes[idx]
+
+
+def clip_set(episodes: list[Episode], kind: str) -> ClipSet:
+    """Every labelled clip of the episodes."""
+    inputs, actions, steps = [], [], []
+    for ep in episodes:
+        for a, b, label in ep.clips():
+            inputs.append(clip_inputs(ep, a, b, kind))
+            actions.append(label.split("]")[0].strip("["))
+            steps.append(label)
+    return ClipSet(torch.from_numpy(np.stack(inputs)), actions, steps)
+
+
+@dataclass
+class Labels:
+    """Class names of the heads (from the training clips)."""
+
+    actions: list[str]
+    steps: list[str]
+
+    @classmethod
+    def build(cls, data: ClipSet) -> Labels:
+        return cls(sorted(set(data.actions)), sorted(set(data.steps)))
+
+    def ids(self, names: list[str], table: list[str]) -> torch.Tensor:
+        index = {n: i for i, n in enumerate(table)}
+        return torch.tensor([index.get(n, -100) for n in names])
+
+
+def class_weights(ids: torch.Tensor, n: int) -> torch.Tensor:
+    """(n,) inverse class frequencies normalised to mean 1 over the classes present: the
+    loss then matches the metric (mean per-class accuracy) rather than favouring walking."""
+    counts = torch.bincount(ids[ids >= 0], minlength=n).float()
+    weights = torch.where(counts > 0, 1.0 / counts.clamp(min=1), torch.zeros_like(counts))
+    return weights * (counts > 0).sum() / weights.sum().clamp(min=1e-9)
+
+
+def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
+                     device: str = "cpu") -> ClipModel:
+    """Class-weighted cross-entropy on both heads (`class_weights`); the same seed gives
+    the same weights."""
+    torch.manual_seed(cfg.seed)
+    model = ClipModel(cfg).to(device)
+    opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
+    y_a = labels.ids(data.actions, labels.actions)
+    y_s = labels.ids(data.steps, labels.steps)
+    w_a = class_weights(y_a, cfg.n_actions).to(device)
+    w_s = class_weights(y_s, cfg.n_steps).to(device)
+    rng = random.Random(cfg.seed)
+    order = list(range(len(data.steps)))
+    model.train()
+    for _ in range(cfg.epochs):
+        rng.shuffle(order)
+        for i in range(0, len(order), cfg.batch_size):
+            batch = torch.tensor(order[i:i + cfg.batch_size])
+            logit_a, logit_s = model(data.inputs[batch].to(device))
+            loss = (F.cross_entropy(logit_a, y_a[batch].to(device), w_a, ignore_index=-100)
+                    + F.cross_entropy(logit_s, y_s[batch].to(device), w_s, ignore_index=-100))
+            opt.zero_grad()
+            loss.backward()
+            opt.step()
+    return model.eval()
+
+
+@torch.no_grad()
+def predict_clips(model: ClipModel, data: ClipSet, labels: Labels,
+                  batch_size: int = 128) -> tuple[list[str], list[str]]:
+    """Predicted action and step names of every clip."""
+    model.eval()
+    device = next(model.parameters()).device
+    actions: list[str] = []
+    steps: list[str] = []
+    for i in range(0, len(data.steps), batch_size):
+        logit_a, logit_s = model(data.inputs[i:i + batch_size].to(device))
+        actions += [labels.actions[j] for j in logit_a.argmax(1).tolist()]
+        steps += [labels.steps[j] for j in logit_s.argmax(1).tolist()]
+    return actions, steps
+
+
+@torch.no_grad()
+def clip_features(model: ClipModel, inputs: torch.Tensor) -> torch.Tensor:
+    """(N, feature) clip features (no dropout)."""
+    model.eval()
+    device = next(model.parameters()).device
+    if len(inputs) == 0:
+        return torch.zeros(0, model.cfg.feature)
+    return model.features(inputs.to(device)).cpu()
+
+
+def random_retrieval(train: list[str], n: int, seed: int) -> list[str]:
+    """The label of a random training clip for each of n test clips."""
+    rng = random.Random(seed)
+    return [rng.choice(train) for _ in range(n)]
+
+
+def mean_class_accuracy(pred: list[str], truth: list[str]) -> float:
+    """Recall of each true class, averaged over the classes (a percentage)."""
+    hits: dict[str, int] = defaultdict(int)
+    counts = Counter(truth)
+    for p, t in zip(pred, truth, strict=True):
+        hits[t] += p == t
+    if not counts:
+        return 0.0
+    return 100.0 * sum(hits[c] / n for c, n in counts.items()) / len(counts)

@@ -1,0 +1,86 @@
+import shutil
+import signal
+
+import pytest
+
+from homesim.dataset import generate_dataset
+from homesim.dataset.layout import Layout
+from homesim.dataset.manifest import read_manifest
+from homesim.dataset.replay import replay_from_dataset
+from homesim.dataset.verify import verify_dataset
+from homesim.errors import HomesimError
+from tests.cli.subprocess_cli import start_cli, wait_for
+from tests.dataset.conftest import BAD_PROGRAM, PROGRAMS, tiny_config, tree_hashes
+
+
+def test_a_dataset_is_complete_and_verifies(tiny_dataset):
+    report = verify_dataset(tiny_dataset)
+    assert report.problems == []
+    assert (report.shards, report.episodes, report.ok) == (2, 3, 3)
+    rows = read_manifest(tiny_dataset / "episodes.parquet")
+    assert [r["key"] for r in rows] == ["ep-000000", "ep-000001", "ep-000002"]
+    assert all(r["status"] == "ok" and r["num_frames"] > 5 for r in rows)
+    assert not list((tiny_dataset / "staging").iterdir())
+    assert sorted(p.name for p in (tiny_dataset / "shards").iterdir()) == [
+        "shard-000000.json", "shard-000000.tar", "shard-000001.json", "shard-000001.tar"]
+
+
+def test_replay_gives_the_same_bytes(tiny_dataset, tmp_path):
+    outcome, expected = replay_from_dataset(tiny_dataset, "ep-000001", tmp_path / "ep.tar")
+    assert outcome.ok and outcome.sha256 == expected
+
+
+def test_running_again_changes_nothing(tiny_dataset, program_file):
+    before = tree_hashes(tiny_dataset)
+    summary = generate_dataset(tiny_config(program_file), tiny_dataset, workers=0)
+    assert summary.ok == 3 and tree_hashes(tiny_dataset) == before
+
+
+def test_other_options_in_the_same_folder_are_refused(tiny_dataset, program_file):
+    with pytest.raises(HomesimError, match=r"other options \(n\)"):
+        generate_dataset(tiny_config(program_file, n=4), tiny_dataset, workers=0)
+
+
+def test_verify_finds_a_changed_shard(tiny_dataset, tmp_path):
+    copy = tmp_path / "copy"
+    shutil.copytree(tiny_dataset, copy)
+    shard = copy / "shards" / "shard-000001.tar"
+    data = bytearray(shard.read_bytes())
+    data[2000] ^= 0xFF
+    shard.write_bytes(bytes(data))
+    problems = verify_dataset(copy).problems
+    assert any("shard-000001.tar: checksum differs" in p for p in problems)
+    # A damaged shard is made again on the next run.
+    assert Layout(copy).shard_info(1) is None
+
+
+def test_a_failing_episode_is_recorded_and_the_run_goes_on(gl, tmp_path):
+    programs = tmp_path / "programs.jsonl"
+    from homesim.knowledge.datasets import ActivityProgram, write_jsonl
+    from homesim.program.parse import parse_program
+
+    write_jsonl([ActivityProgram("bad", parse_program(BAD_PROGRAM)),
+                 ActivityProgram("good", parse_program(PROGRAMS))], programs)
+    out = tmp_path / "data"
+    summary = generate_dataset(tiny_config(programs, n=2), out, workers=0)
+    assert (summary.ok, summary.failed) == (1, 1)
+    bad = read_manifest(out / "episodes.parquet")[0]
+    assert bad["status"] == "failed" and bad["stage"] == "grounding"
+    assert "[Sit] <television> (1)" in bad["reason"]
+    assert verify_dataset(out).problems == []
+
+
+def test_killed_and_restarted_gives_the_same_bytes(tiny_dataset, program_file, tmp_path):
+    out = tmp_path / "killed"
+    config = tiny_config(program_file)
+    args = ["dataset", "generate", "--out", str(out), "--programs", str(program_file),
+            "--n", "3", "--width", "32", "--height", "24", "--fps", "2", "--homes", "scene1",
+            "--shard-size", "2", "--workers", "0"]
+    proc = start_cli(args)
+    # Kill it once the first episode is staged (the second is being rendered).
+    wait_for(lambda: (out / "staging" / "ep-000000.json").exists(), proc)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert not (out / "episodes.parquet").exists()
+    generate_dataset(config, out, workers=0)
+    assert tree_hashes(out) == tree_hashes(tiny_dataset)

@@ -1,0 +1,47 @@
+"""One evaluation run on tiny synthetic data: every row, seeded, cached, summarised."""
+
+from homesim.cli.main import main
+from homesim.learn.experiment import RunSpec, block, cached_run, run
+from homesim.learn.report import MODEL_ROW, evaluation_markdown
+
+
+def _examples(result: dict) -> dict:
+    return {row: r["examples"] for row, r in result["rows"].items()}
+
+
+def test_same_seed_same_scores_and_the_cache_is_reused(tmp_path):
+    spec = RunSpec("synthetic", "stratified", 3, synth_n=40, mle_epochs=1, embeddings="none")
+    a = run(spec, tmp_path / "a")
+    b = run(spec, tmp_path / "b")
+    assert _examples(a) == _examples(b)
+    assert {"Title-medoid", "NN (description)", "Rule parser (upper bound)", MODEL_ROW,
+            "MLE + constrained decoding"} <= set(a["rows"])
+    assert all(e["simulator"] == 1.0 for e in a["rows"]["MLE + constrained decoding"]["examples"])
+    assert all(e["solved"] == 0.0 for e in a["rows"]["Empty program"]["examples"])
+    assert _examples(cached_run(spec, tmp_path / "a")) == _examples(a)
+    summary = block([a], MODEL_ROW, ("Title-medoid",))
+    text = evaluation_markdown({"synthetic": {"stratified": summary}}, "box", "v")
+    assert "| Empty program | 1 | 0.000 ± 0.000 |" in text
+    assert "Goal (steps LCS at least 0.05 above Title-medoid):" in text
+
+
+def test_table_command_summarises_cached_runs(tmp_path, capsys):
+    spec = RunSpec("synthetic", "stratified", 0, synth_n=30)
+    run(spec, tmp_path, with_model=False)
+    md = tmp_path / "results.md"
+    args = ["learn", "table", "--out", str(tmp_path), "--data", "synthetic", "--seeds", "2",
+            "--synth-n", "30", "--only-cached", "--markdown", str(md)]
+    assert main(args) == 0
+    text = md.read_text()
+    assert "### Synthetic data, stratified split" in text and "Seeds 0;" in text
+    assert "| Rule parser (upper bound) | 1 | 1.000 ± 0.000 |" in text
+    assert main(["learn", "rules", "--synth-n", "30"]) == 0
+    assert "rule parser: steps LCS 1.000 on 30 programs" in capsys.readouterr().out
+
+
+def test_real_runs_do_not_depend_on_the_synthetic_size():
+    stored = RunSpec("real", "stratified", 0, synth_n=5000).to_dict()
+    assert RunSpec("real", "stratified", 0, synth_n=2000).matches(stored)
+    assert not RunSpec("real", "stratified", 1, synth_n=5000).matches(stored)
+    synthetic = RunSpec("synthetic", "stratified", 0, synth_n=5000).to_dict()
+    assert not RunSpec("synthetic", "stratified", 0, synth_n=2000).matches(synthetic)

@@ -1,0 +1,53 @@
+import numpy as np
+import pytest
+
+import homesim
+from homesim.render.api import prepare
+from homesim.render.recorder import record
+from homesim.render.renderer import Renderer
+from homesim.render.shots import shot_frames
+
+pytestmark = pytest.mark.render
+
+PROGRAM = "[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n"
+
+
+@pytest.fixture(scope="module")
+def prepared():
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    g = EnvironmentGraph.from_dict(box_home_dict())
+    return prepare(homesim.parse_program(PROGRAM), g, width=64, height=48, fps=6, seed=0,
+                   bindings=None, agent="male1")
+
+
+def test_each_interaction_gets_a_close_up_from_its_own_room(prepared):
+    scene, tl, _ = prepared
+    assert [it.step for it in tl.interactions] == [1, 3]
+    shots = [c for c in scene.cameras if c.shot >= 0]
+    assert [c.step for c in shots] == [1, 3]
+    rooms = [c for c in scene.cameras if c.shot < 0]
+    for cam in shots:
+        it = tl.interactions[cam.shot]
+        assert cam.room_id == it.room == 1
+        # placed where a camera of the room is, or on the way from one to the action
+        assert any(np.allclose(cam.pos[2], c.pos[2]) for c in rooms)
+    assert shots[0].fovy < 0.75 * min(c.fovy for c in rooms)  # the cup: narrowed to it
+
+
+def test_recording_films_interactions_with_their_close_up(prepared, gl):
+    scene, tl, _ = prepared
+    per_frame = shot_frames(scene, tl)
+    with Renderer(scene, 64, 48) as r:
+        frames = list(record(scene, tl, r))
+    for it in tl.interactions:
+        cams = {frames[f].camera for f in range(it.start, it.end + 1)}
+        (cam,) = cams
+        assert scene.cameras[cam].shot >= 0 and scene.cameras[cam].room_id == it.room
+        assert per_frame[it.peak] == cam
+        seen = frames[it.peak].instance_seg == it.nodes[0]
+        assert seen.mean() >= 0.005  # the object fills a fair part of the frame
+    others = {f.camera for f in frames if per_frame[f.index] < 0}
+    assert all(scene.cameras[c].shot < 0 for c in others)
