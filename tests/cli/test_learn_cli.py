@@ -23,8 +23,8 @@ def test_train_then_eval_prints_table_3(tmp_path, capsys):
 
 
 def test_unknown_task_and_missing_checkpoints_are_one_line(tmp_path, capsys):
-    assert main(["learn", "train", "--task", "video2prog", "--out", str(tmp_path)]) == 2
-    assert "--task video2prog: only text2prog" in capsys.readouterr().err
+    assert main(["learn", "train", "--task", "prog2dance", "--out", str(tmp_path)]) == 2
+    assert "--task prog2dance: choose from text2prog, video2prog" in capsys.readouterr().err
     assert main(["learn", "eval", "--runs", str(tmp_path), "--data", "real"]) == 2
     err = capsys.readouterr().err
     assert "checkpoint not found" in err and "Traceback" not in err
