@@ -130,11 +130,15 @@ def clip_inputs(ep: Episode, a: int, b: int, kind: str) -> np.ndarray:
     return ep.frames[idx] if kind == "rgb" else ep.classes[idx]
 
 
-def clip_set(episodes: list[Episode], kind: str) -> ClipSet:
-    """Every labelled clip of the episodes."""
+TRAIN_HOP = 1.0
+"""Seconds between the starts of training clips (overlapping: twice the clips)."""
+
+
+def clip_set(episodes: list[Episode], kind: str, hop: float | None = None) -> ClipSet:
+    """Every labelled clip of the episodes (every `hop` s; default non-overlapping)."""
     inputs, actions, steps = [], [], []
     for ep in episodes:
-        for a, b, label in ep.clips():
+        for a, b, label in ep.clips(hop=hop):
             inputs.append(clip_inputs(ep, a, b, kind))
             actions.append(label.split("]")[0].strip("["))
             steps.append(label)

@@ -48,11 +48,14 @@ class Episode:
     step_texts: list[str]
     example: Example
 
-    def clips(self, seconds: float = CLIP_SECONDS) -> list[tuple[int, int, str]]:
-        """Non-overlapping windows (start, end, step class) that show a step."""
+    def clips(self, seconds: float = CLIP_SECONDS, hop: float | None = None
+              ) -> list[tuple[int, int, str]]:
+        """Windows (start, end, step class) that show a step, every `hop` seconds
+        (default: non-overlapping)."""
         length = max(1, round(seconds * self.fps))
+        step = max(1, round((hop or seconds) * self.fps))
         out = []
-        for a in range(0, len(self.step) - length + 1, length):
+        for a in range(0, len(self.step) - length + 1, step):
             shown = [int(s) for s in self.step[a:a + length] if s >= 0]
             if shown:
                 main = Counter(shown).most_common(1)[0][0]

@@ -100,7 +100,7 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
     models = {}
     for inp, kind in CLIP_MODELS:
         start = time.perf_counter()
-        data = C.clip_set(parts["train"], inp)
+        data = C.clip_set(parts["train"], inp, C.TRAIN_HOP)
         labels = C.Labels.build(data)
         cfg = C.ClipConfig(kind, inp, len(classes), len(labels.actions), len(labels.steps),
                            epochs=config.clip_epochs, seed=config.seed)
