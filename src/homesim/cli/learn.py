@@ -214,7 +214,8 @@ def _machine(device: str = "cpu") -> str:
     import torch
 
     gpu = torch.cuda.get_device_name() if device == "cuda" else "no GPU used"
-    return (f"{platform.machine()} CPU, {os.cpu_count()} cores, torch {torch.__version__} "
+    return (f"{platform.machine()} CPU, {os.cpu_count()} cores (load average "
+            f"{os.getloadavg()[0]:.1f} when written), torch {torch.__version__} "
             f"with {torch.get_num_threads()} thread(s), {gpu}")
 
 
@@ -297,8 +298,11 @@ def table(
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
+        note = (f"Summarised with --only-cached from the runs scored under {out} so far; a row "
+                f"with fewer than {seeds} seeds had not finished for the others."
+                if only_cached else "")
         text = evaluation_markdown(blocks, _machine(device), _versions(),
-                                   None if only_cached else seconds)
+                                   None if only_cached else seconds, note)
         write_text(markdown, text, force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
 
