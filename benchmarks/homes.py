@@ -4,8 +4,8 @@ For each seed: generate the home (time it, wall clock and CPU time of the proces
 shared machine the wall clock mostly measures waiting; load a built-in home as the
 reference in the same run), check it (`check_home`), generate again and compare bytes;
 then run the 518 real programs (ungrounded, as in benchmarks/grounding.py) through
-`homesim.run_program` and count the executable ones and the objects preparation added. The built-in homes
-(full, with boxes) are measured the same way for comparison. In the homes of
+`homesim.run_program` and count the executable ones and the objects preparation added.
+The built-in homes (full, with boxes) are measured the same way for comparison. In the homes of
 `--render-seeds` (and the built-in ones), two typical real programs (the first that
 watches TV from the sofa, the first that grabs a glass to drink) are grounded and
 rendered with `render_keyframes` (small frames: what can fail is walking to the

@@ -78,7 +78,9 @@ def measure(ran, home: str, seed: int, width: int, height: int) -> dict:
     state = SceneState(scene, tl)
     for a in tl.attaches:  # the wrist joint (the hand's grip point lies beyond it)
         d = state.apply(a.frame)
-        box = Box(tl.mocap[a.frame][scene.mocap[a.node]], to_mujoco(g.node(a.node)).half)
+        box = to_mujoco(g.node(a.node))
+        if a.node in scene.mocap:  # a movable object: where it is now
+            box = Box(tl.mocap[a.frame][scene.mocap[a.node]], box.half)
         out["wrist"].append(box_gap(box, d.site(f"j:{a.side}_wrist").xpos))
     steps = ran.grounding.program.steps
     with Renderer(scene, width, height) as r:

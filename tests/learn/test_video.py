@@ -117,3 +117,12 @@ def test_video_data_without_class_maps_is_refused(tmp_path):
 
     with pytest.raises(HomesimError, match="no finished shards"):
         load_episodes(tmp_path)
+
+
+def test_class_weights_balance_classes():
+    import torch
+
+    from homesim.learn.clips import class_weights
+
+    w = class_weights(torch.tensor([0, 0, 0, 1]), 3)
+    assert w[0] * 3 == pytest.approx(w[1] * 1) and w[2] == 0

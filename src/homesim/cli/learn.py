@@ -111,7 +111,7 @@ def train(
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
     device: DeviceOption = "auto",
-    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 8,
+    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 30,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
     if task not in TASKS:

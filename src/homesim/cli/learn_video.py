@@ -17,9 +17,11 @@ def train_video2prog(out: Path, data: str, seed: int, clip_epochs: int,
     """Train the clip models and the video -> program models into OUT."""
     from homesim.learn.videotable import VideoRunConfig, train_video
 
-    if not Path(data).is_dir():
-        raise HomesimError(f"--data {data}: with --task video2prog, name a data set folder "
-                           "written by 'homesim dataset generate'")
+    for folder in data.split(","):
+        if not Path(folder).is_dir():
+            raise HomesimError(f"--data {folder}: with --task video2prog, name data set "
+                               "folders written by 'homesim dataset generate' (commas "
+                               "between several)")
     if (out / "train.json").exists() and not force:
         raise HomesimError(f"{out / 'train.json'}: already exists; pass --force to replace "
                            "the checkpoints")

@@ -130,11 +130,15 @@ def clip_inputs(ep: Episode, a: int, b: int, kind: str) -> np.ndarray:
     return ep.frames[idx] if kind == "rgb" else ep.classes[idx]
 
 
-def clip_set(episodes: list[Episode], kind: str) -> ClipSet:
-    """Every labelled clip of the episodes."""
+TRAIN_HOP = 1.0
+"""Seconds between the starts of training clips (overlapping: twice the clips)."""
+
+
+def clip_set(episodes: list[Episode], kind: str, hop: float | None = None) -> ClipSet:
+    """Every labelled clip of the episodes (every `hop` s; default non-overlapping)."""
     inputs, actions, steps = [], [], []
     for ep in episodes:
-        for a, b, label in ep.clips():
+        for a, b, label in ep.clips(hop=hop):
             inputs.append(clip_inputs(ep, a, b, kind))
             actions.append(label.split("]")[0].strip("["))
             steps.append(label)
@@ -157,14 +161,25 @@ class Labels:
         return torch.tensor([index.get(n, -100) for n in names])
 
 
+def class_weights(ids: torch.Tensor, n: int) -> torch.Tensor:
+    """(n,) inverse class frequencies normalised to mean 1 over the classes present: the
+    loss then matches the metric (mean per-class accuracy) rather than favouring walking."""
+    counts = torch.bincount(ids[ids >= 0], minlength=n).float()
+    weights = torch.where(counts > 0, 1.0 / counts.clamp(min=1), torch.zeros_like(counts))
+    return weights * (counts > 0).sum() / weights.sum().clamp(min=1e-9)
+
+
 def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
                      device: str = "cpu") -> ClipModel:
-    """Cross-entropy on both heads; the same seed gives the same weights."""
+    """Class-weighted cross-entropy on both heads (`class_weights`); the same seed gives
+    the same weights."""
     torch.manual_seed(cfg.seed)
     model = ClipModel(cfg).to(device)
     opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
     y_a = labels.ids(data.actions, labels.actions)
     y_s = labels.ids(data.steps, labels.steps)
+    w_a = class_weights(y_a, cfg.n_actions).to(device)
+    w_s = class_weights(y_s, cfg.n_steps).to(device)
     rng = random.Random(cfg.seed)
     order = list(range(len(data.steps)))
     model.train()
@@ -173,8 +188,8 @@ def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
         for i in range(0, len(order), cfg.batch_size):
             batch = torch.tensor(order[i:i + cfg.batch_size])
             logit_a, logit_s = model(data.inputs[batch].to(device))
-            loss = (F.cross_entropy(logit_a, y_a[batch].to(device), ignore_index=-100)
-                    + F.cross_entropy(logit_s, y_s[batch].to(device), ignore_index=-100))
+            loss = (F.cross_entropy(logit_a, y_a[batch].to(device), w_a, ignore_index=-100)
+                    + F.cross_entropy(logit_s, y_s[batch].to(device), w_s, ignore_index=-100))
             opt.zero_grad()
             loss.backward()
             opt.step()

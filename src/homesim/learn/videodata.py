@@ -48,11 +48,14 @@ class Episode:
     step_texts: list[str]
     example: Example
 
-    def clips(self, seconds: float = CLIP_SECONDS) -> list[tuple[int, int, str]]:
-        """Non-overlapping windows (start, end, step class) that show a step."""
+    def clips(self, seconds: float = CLIP_SECONDS, hop: float | None = None
+              ) -> list[tuple[int, int, str]]:
+        """Windows (start, end, step class) that show a step, every `hop` seconds
+        (default: non-overlapping)."""
         length = max(1, round(seconds * self.fps))
+        step = max(1, round((hop or seconds) * self.fps))
         out = []
-        for a in range(0, len(self.step) - length + 1, length):
+        for a in range(0, len(self.step) - length + 1, step):
             shown = [int(s) for s in self.step[a:a + length] if s >= 0]
             if shown:
                 main = Counter(shown).most_common(1)[0][0]
@@ -87,11 +90,25 @@ def class_index(names: list[str]) -> dict[str, int]:
     return {n: i for i, n in enumerate(["background", *sorted(set(names) - {"background"})])}
 
 
-def load_episodes(folder: Path) -> tuple[list[Episode], dict[str, int]]:
-    """Every episode of a data set folder (needs the rgb and class modalities)."""
-    raw = list(read_episodes(folder, ("rgb", "class")))
-    if not raw:
-        raise HomesimError(f"{folder}: no finished shards (run 'homesim dataset generate')")
+def _read(folders: list[Path]) -> list[dict]:
+    """Episodes of the folders; with several, keys become ``<folder name>/<key>``."""
+    raw = []
+    for folder in folders:
+        got = list(read_episodes(folder, ("rgb", "class")))
+        if not got:
+            raise HomesimError(f"{folder}: no finished shards (run 'homesim dataset generate')")
+        for r in got:
+            r["key"] = f"{folder.name}/{r['key']}" if len(folders) > 1 else r["key"]
+        raw += got
+    return raw
+
+
+def load_episodes(source: Path | str) -> tuple[list[Episode], dict[str, int]]:
+    """Every episode of a data set folder, or of several separated by commas (needs the
+    rgb and class modalities)."""
+    folders = [Path(p) for p in str(source).split(",")]
+    raw = _read(folders)
+    folder = source
     index = class_index([n for r in raw for n in r["meta"]["classes"]])
     episodes = []
     for r in raw:

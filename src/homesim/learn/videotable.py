@@ -43,9 +43,9 @@ class VideoRunConfig:
 
     data: str
     seed: int = 0
-    clip_epochs: int = 8
-    mle_epochs: int = 30
-    pg_epochs: int = 3
+    clip_epochs: int = 30
+    mle_epochs: int = 60
+    pg_epochs: int = 10
     batch_size: int = 16
     pg_lr: float = 5e-4
 
@@ -92,7 +92,7 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
                 report: Report | None = None) -> dict:
     """Train the three clip models and the three video -> program models; see the module."""
     out.mkdir(parents=True, exist_ok=True)
-    episodes, classes = load_episodes(Path(config.data))
+    episodes, classes = load_episodes(config.data)
     parts = video_split(episodes, config.seed)
     if not parts["train"]:
         raise HomesimError(f"{config.data}: no training episodes (seen homes, train agents)")
@@ -100,7 +100,7 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
     models = {}
     for inp, kind in CLIP_MODELS:
         start = time.perf_counter()
-        data = C.clip_set(parts["train"], inp)
+        data = C.clip_set(parts["train"], inp, C.TRAIN_HOP)
         labels = C.Labels.build(data)
         cfg = C.ClipConfig(kind, inp, len(classes), len(labels.actions), len(labels.steps),
                            epochs=config.clip_epochs, seed=config.seed)
@@ -195,7 +195,7 @@ def evaluate_video(out: Path, device: str = "cpu") -> dict:
         raise HomesimError(f"{path}: not found; run 'homesim learn train --task video2prog'")
     summary = json.loads(path.read_text(encoding="utf-8"))
     config = VideoRunConfig(**summary["config"])
-    episodes, _ = load_episodes(Path(config.data))
+    episodes, _ = load_episodes(config.data)
     parts = video_split(episodes, config.seed)
     start = time.perf_counter()
     result = {"train": summary, "clips": _clip_rows(out, parts, config.seed, device),
