@@ -202,8 +202,9 @@ def evaluate(
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        write_text(markdown, markdown_table(results, eval_seconds=seconds, machine=_machine()),
-                   force=force)
+        from homesim.learn.videoreport import with_table2
+        text = markdown_table(results, eval_seconds=seconds, machine=_machine())
+        write_text(markdown, with_table2(markdown, text), force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
 
 
@@ -303,7 +304,8 @@ def table(
                 if only_cached else "")
         text = evaluation_markdown(blocks, _machine(device), _versions(),
                                    None if only_cached else seconds, note)
-        write_text(markdown, text, force=force)
+        from homesim.learn.videoreport import with_table2
+        write_text(markdown, with_table2(markdown, text), force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
 
 

@@ -76,6 +76,16 @@ def table2_markdown(result: dict, machine: str) -> str:
         "with the paper.", END, ""])
 
 
+def with_table2(path: Path, text: str) -> str:
+    """`text` followed by the Table 2 section `path` holds now, if any: the text task's
+    writers replace the file but keep the video task's section."""
+    old = path.read_text(encoding="utf-8") if path.is_file() else ""
+    if START not in old or END not in old or START in text:
+        return text
+    section = START + old.split(START, 1)[1].split(END, 1)[0] + END + "\n"
+    return text.rstrip("\n") + "\n\n" + section
+
+
 def write_section(path: Path, section: str) -> None:
     """Replace the Table 2 section of `path` (or append it); the rest is kept."""
     text = path.read_text(encoding="utf-8") if path.is_file() else ""
