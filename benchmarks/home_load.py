@@ -163,25 +163,16 @@ def _ref_edge(raw: Any, nodes: Mapping[int, Node], where: str) -> tuple[int, str
 
 
 # ------------------------------------------------------------------------ timing
-def best_of(fn: Callable[[], Any], repeat: int) -> float:
-    """Best wall time of `repeat` calls, in seconds."""
+def best_of(fn: Callable[[], Any], repeat: int,
+            clock: Callable[[], float] = time.perf_counter) -> float:
+    """Best time of `repeat` calls by `clock`, in seconds. With `time.process_time`, time
+    spent waiting for a core on a busy machine does not count, so it is close to a quiet
+    machine's wall time for single-threaded work like loading."""
     best = math.inf
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = clock()
         fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
-def best_cpu(fn: Callable[[], Any], repeat: int) -> float:
-    """Best CPU time of `repeat` calls (`time.process_time`, seconds): time spent waiting
-    for a core on a busy machine does not count, so it is close to a quiet machine's wall
-    time for single-threaded work like loading."""
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.process_time()
-        fn()
-        best = min(best, time.process_time() - t0)
+        best = min(best, clock() - t0)
     return best
 
 
@@ -244,8 +235,8 @@ def main() -> None:
             print(f"{label:<30} {t_ours * 1e3:>10.2f} {json_cols} {t_old * 1e3:>14.2f} "
                   f"{t_old / t_ours:>5.1f}x")
         scene1 = todo[0]
-        cpu = [best_cpu(fn, args.repeat) * 1e3 for fn in (scene1[1], scene1[2], scene1[3])
-               if fn is not None]
+        cpu = [best_of(fn, args.repeat, time.process_time) * 1e3
+               for fn in (scene1[1], scene1[2], scene1[3]) if fn is not None]
     load_ms = times["load scene1 (built-in)"] * 1e3
     print(f"\nload scene1, CPU time (process_time): homesim {cpu[0]:.2f} ms, JSON loader "
           f"{cpu[1]:.2f} ms ({cpu[1] / cpu[0]:.1f}x), old loader {cpu[2]:.2f} ms "
