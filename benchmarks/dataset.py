@@ -7,7 +7,7 @@ not Ray's start-up. The loader is timed with 2 workers against 0 workers in the 
 
 Goals (issue 14): 2 workers >= 1.8x the episodes/hour of 1; <= 100 KB per frame.
 
-    python benchmarks/dataset.py [--n 4] [--width 320 --height 240 --fps 15]
+    python benchmarks/dataset.py [--n 8] [--width 320 --height 240 --fps 15]
     python benchmarks/dataset.py --data DIR     # the loader only, on a data set made before
 """
 
@@ -71,7 +71,7 @@ def time_loader(root: Path) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=4, help="episodes per run")
+    parser.add_argument("--n", type=int, default=8, help="episodes per run")
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--fps", type=int, default=15)

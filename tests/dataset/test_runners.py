@@ -8,3 +8,23 @@ def test_ray_tasks_make_the_same_bytes_as_the_serial_run(tiny_dataset, program_f
     summary = generate_dataset(tiny_config(program_file), out, workers=2)
     assert summary.ok == 3
     assert tree_hashes(out) == tree_hashes(tiny_dataset)
+
+
+def test_longest_episodes_are_submitted_first():
+    from homesim.dataset.runners import longest_last
+    from homesim.dataset.spec import EpisodeSpec
+
+    def spec(index: int, steps: int) -> EpisodeSpec:
+        program = "Title\nDescription\n\n" + "\n".join(["[Walk] <sofa> (1)"] * steps)
+        return EpisodeSpec(index, f"p{index}", program, "scene1", "male1", 0, 0, 0, 0, 1.0)
+
+    order = longest_last([spec(0, 2), spec(1, 5), spec(2, 1), spec(3, 5)])
+    taken = [order.pop().index for _ in range(4)]
+    assert taken == [1, 3, 0, 2]
+
+
+def test_cpu_tasks_rasterize_in_their_own_thread():
+    from homesim.dataset.runners import task_environment
+
+    assert task_environment(False)["LP_NUM_THREADS"] == "0"
+    assert task_environment(True) == {"MUJOCO_GL": "egl"}

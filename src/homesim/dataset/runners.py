@@ -58,14 +58,11 @@ def ray_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
         _init(ray, options)
     try:
         gpus = float(ray.cluster_resources().get("GPU", 0))
-        # Workers inherit this process's environment (local) or the node's (cluster);
-        # with GPUs they render with EGL.
-        extra = {"runtime_env": {"env_vars": {"MUJOCO_GL": "egl"}}} if gpus > 0 else {}
         task = ray.remote(max_calls=MAX_CALLS)(stage_episode).options(
             num_cpus=1, num_gpus=TASK_GPU if gpus > 0 else 0, memory=TASK_MEMORY,
-            max_retries=1, **extra)
+            max_retries=1, runtime_env={"env_vars": task_environment(gpus > 0)})
         slots = max(1, int(ray.cluster_resources().get("CPU", 1))) * 2
-        todo = list(reversed(specs))
+        todo = longest_last(specs)
         pending: list = []
         while todo or pending:
             while todo and len(pending) < slots:
@@ -75,6 +72,25 @@ def ray_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
     finally:
         if started:
             ray.shutdown()
+
+
+def task_environment(gpu: bool) -> dict[str, str]:
+    """Environment of an episode task: EGL on GPU nodes; on CPU, OSMesa rasterizing in the
+    task's own thread (llvmpipe otherwise adds a thread per core), so a task uses the one
+    CPU it declares and N workers do N times the work of one."""
+    return {"MUJOCO_GL": "egl"} if gpu else {"MUJOCO_GL": "osmesa", "LP_NUM_THREADS": "0"}
+
+
+def longest_last(specs: Sequence[EpisodeSpec]) -> list[EpisodeSpec]:
+    """The episodes in submission order from the end (``pop()`` takes the longest first):
+    long episodes start early so no worker is left with one at the end (LPT scheduling;
+    an episode's length is about its number of steps). Ties keep index order."""
+    return sorted(specs, key=lambda s: (program_steps(s.program), -s.index))
+
+
+def program_steps(text: str) -> int:
+    """Lines of a program's text that are steps (``[Action] ...``)."""
+    return sum(1 for line in text.splitlines() if line.lstrip().startswith("["))
 
 
 def _import_ray():
