@@ -381,9 +381,9 @@ def _arm_radius(s: AgentShape) -> float:
     return (0.046 if s.sex == "male" else 0.041) * s.scale * s.build ** 0.5
 
 
-PALM_HEEL = 0.035
+PALM_HEEL = 0.025
 """Metres (for a 1.75 m person) from the wrist to the palm's contact point (``{side}_palm``),
-on the palm's surface: a palm grasp puts this point against the object."""
+on the palm's surface near its heel: a palm grasp puts this point against the object."""
 
 
 def _hand(side: str, s: AgentShape) -> str:
@@ -412,7 +412,7 @@ def _hand(side: str, s: AgentShape) -> str:
         + _geom(f"{side}_hand", "ellipsoid", (0.044 * k, 0.019 * k, 0.050 * k), skin,
                 pos=(0.0, 0.0, -0.045 * k))
         + _site(f"{side}_hand", (0.0, inward * 0.030 * k, -0.085 * k))
-        + _site(f"{side}_palm", (0.0, inward * 0.019 * k, -PALM_HEEL * k))
+        + _site(f"{side}_palm", (0.0, inward * 0.0175 * k, -PALM_HEEL * k))
         + f'<body name="a:{side}_fingers" pos="0 0 {-0.088 * k:.4f}">'
         + _hinge(f"{side}_fingers", axis, lo, hi) + fingers
         + f'<body name="a:{side}_fingertips" pos="0 0 {-0.045 * k:.4f}">'
