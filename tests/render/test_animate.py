@@ -248,3 +248,32 @@ def test_palm_grasp_brings_the_wrist_to_the_object_and_the_arm_never_snaps(anima
     # 0.38 m in one frame between still ones)
     spikes = moves[1:-1] - np.maximum(moves[:-2], moves[2:])
     assert spikes.max() < 0.06, spikes.max()
+
+
+def test_a_front_never_swings_through_the_agent(box_home):
+    """Sent to stand in the middle of the fridge door's sweep, the agent steps aside
+    before it opens the door (the door used to pass through it: 0 m)."""
+    from homesim.render.animate import BODY_CLEAR
+
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(PROGRAM), box_home, trace=True,
+                             reference=True)
+    h = scene.layout.part(23).hinge
+    half = scene.hinge_open[23] / 2
+    c, s = np.cos(half), np.sin(half)
+    p = h.panel.center[:2]
+    middle = tuple(h.pivot[:2] + np.array([c * p[0] - s * p[1], s * p[0] + c * p[1]]))
+    tl = Animator(scene, box_home, AGENTS["male1"], fps=10,
+                  standing={4: middle, 5: middle}).run(result)
+    hinge = scene.hinge_qpos[23]
+
+    def clearance(q):
+        a = q[hinge]
+        rel = q[:2] - h.pivot[:2]
+        local = np.array([np.cos(a) * rel[0] + np.sin(a) * rel[1],
+                          -np.sin(a) * rel[0] + np.cos(a) * rel[1]])
+        return np.linalg.norm(np.maximum(np.abs(local - p) - h.panel.half[:2], 0.0))
+
+    swinging = [f for f in range(1, len(tl)) if tl.qpos[f][hinge] != tl.qpos[f - 1][hinge]]
+    assert len(swinging) > 10  # it opens and closes
+    assert min(clearance(tl.qpos[f]) for f in swinging) >= BODY_CLEAR - 1e-6

@@ -142,7 +142,7 @@ BODY_HINGES: tuple[str, ...] = (
 """The hinges a pose sets by name (`Pose.joints`), radians."""
 
 WRIST_RANGE: dict[str, tuple[float, float]] = {
-    "wrist_twist": (-1.2, 1.2), "wrist_flex": (-0.9, 1.0), "wrist_dev": (-0.5, 0.5),
+    "wrist_twist": (-1.5, 1.5), "wrist_flex": (-1.1, 1.2), "wrist_dev": (-0.5, 0.5),
 }
 """Wrist hinge ranges (radians): twist about the forearm (the forearm is round, so a twist
 there looks like the forearm's own), flexion toward the palm, deviation in the palm's

@@ -25,6 +25,7 @@ from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK, Grasp
 from homesim.render.interact import (
+    COMFORT_LEAN,
     TOUCH,
     GraspOf,
     ReachPlanner,
@@ -66,6 +67,12 @@ SWING_SECONDS = 1.0
 """How long a door or an appliance's front takes to swing open or closed."""
 HANDLE_SLIP = 0.03
 """Metres: the hand lets go of a swinging handle once the arm cannot follow it closer."""
+BODY_CLEAR = 0.25
+"""Metres: a swinging front stays this far from the point the agent stands on."""
+SWING_STAND = (0.45, 0.55, 0.65)
+"""Metres from a handle of the standing points tried out of the front's way..."""
+MAX_SWING_SPOTS = 12
+"""... at most this many (the nearest to the agent first)."""
 
 Standing = Mapping[int, tuple[float, float]]
 """Step index -> (x, z) standing spot chosen by grounding (Unity frame = MuJoCo x, y)."""
@@ -708,8 +715,12 @@ def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
         if S_CLOSED in after else start
     side = props.free_side()
     local = props.handle_local(target, anim.pose.xy)
-    done = anim.reach(side, props.handle_world(target, local, start), 0.5, back=False,
-                      hold=0.1)
+    handle = props.handle_world(target, local, start)
+    if anim.posture == "stand" and props.swept(target, anim.pose.xy, start, goal, BODY_CLEAR):
+        spot = _beside_swing(anim, target, side, handle, start, goal)
+        if spot is not None:
+            anim.step_to(spot, handle)
+    done = anim.reach(side, handle, 0.5, back=False, hold=0.1)
     pose, holding = done.pose, True
     n = max(1, round(SWING_SECONDS * anim.fps))
     for i in range(1, n + 1):
@@ -724,6 +735,23 @@ def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
     anim.move_to(done.rest, 0.5)
     anim.reaching = frozenset()
     anim.note_interaction((target,), side, done.start, peak)
+
+
+def _beside_swing(anim: Animator, target: int, side: str, handle: np.ndarray,
+                  start: float, goal: float) -> np.ndarray | None:
+    """A floor point out of the way of a front swinging from `start` to `goal` from which
+    the hand takes its handle without bowing much (the nearest to the agent), if any."""
+    planner = anim.planner
+    spots = [handle[:2] + r * np.array([math.cos(a), math.sin(a)])
+             for r in SWING_STAND for a in np.linspace(0.0, 2 * math.pi, 16, endpoint=False)]
+    spots = sorted((xy for xy in spots if planner.fits(xy)
+                    and not anim.props.swept(target, xy, start, goal, BODY_CLEAR)),
+                   key=lambda xy: float(np.hypot(*(xy - anim.pose.xy))))
+    for xy in spots[:MAX_SWING_SPOTS]:
+        plan = planner.reach_from(xy, side, handle)
+        if plan.gap <= TOUCH and plan.pose.joints.get("spine_pitch", 0.0) <= COMFORT_LEAN:
+            return xy
+    return None
 
 
 ANIMATIONS: dict[str, Animation] = {key: MOTIONS[a.motion] for key, a in ACTIONS.items()

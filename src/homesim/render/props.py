@@ -121,6 +121,23 @@ class Props:
         return h.pivot + np.array([c * local[0] - s * local[1], s * local[0] + c * local[1],
                                    local[2]])
 
+    def swept(self, node_id: int, xy: np.ndarray, start: float, goal: float,
+              clearance: float) -> bool:
+        """Whether a hinged front swinging from angle `start` to `goal` passes within
+        `clearance` metres (horizontally) of the floor point `xy`."""
+        part = self.scene.layout.part(node_id)
+        if part is None or part.hinge is None:
+            return False
+        h = part.hinge
+        rel = np.asarray(xy, float)[:2] - h.pivot[:2]
+        for a in np.linspace(start, goal, 13):
+            c, s = np.cos(a), np.sin(a)
+            local = np.array([c * rel[0] + s * rel[1], -s * rel[0] + c * rel[1]])
+            out = np.maximum(np.abs(local - h.panel.center[:2]) - h.panel.half[:2], 0.0)
+            if float(np.linalg.norm(out)) < clearance:
+                return True
+        return False
+
     def placement(self, obj: int, rel: str, dest: int, agent_xy: np.ndarray) -> np.ndarray:
         """Where an object ends up when put ON or INSIDE a destination."""
         box = self.box_of(dest)
