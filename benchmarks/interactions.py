@@ -75,7 +75,7 @@ def measure(ran, home: str, seed: int, width: int, height: int) -> dict:
     from homesim.render.agent import AGENTS
 
     out = {"attach": [a.gap for a in tl.attaches], "release": [r.gap for r in tl.releases],
-           "cover": [], "mouth": [], "rooms_ok": 0, "wrist": []}
+           "cover": [], "mouth": [], "rooms_ok": 0, "wrist": [], "missed": []}
     state = SceneState(scene, tl)
     for a in tl.attaches:  # the wrist joint (the hand's grip point lies beyond it)
         d = state.apply(a.frame)
@@ -96,6 +96,9 @@ def measure(ran, home: str, seed: int, width: int, height: int) -> dict:
             nodes = scene.geom_node[ids[ids >= 0]]
             out["cover"].append(float(np.count_nonzero(nodes == it.nodes[0])) / ids.size)
             key = steps[it.step].action.key
+            if out["cover"][-1] < COVER:
+                out["missed"].append(f"{key} {g.node(it.nodes[0]).class_name} "
+                                     f"{out['cover'][-1] * 100:.2f} %")
             if key in MOUTH_ACTIONS and it.nodes[0] in scene.mocap:
                 half = to_mujoco(g.node(it.nodes[0])).half
                 out["mouth"].append(mouth_gap(scene, d, it.nodes[0], half,
@@ -123,7 +126,8 @@ def main() -> int:
               f"gap {max(m['wrist'], default=0) * 100:.1f} cm (palm "
               f"{max(m['attach'], default=0) * 100:.1f} cm); interactions "
               f"{len(m['cover'])}, covered >= 0.5 %: "
-              f"{sum(c >= COVER for c in m['cover'])}", flush=True)
+              f"{sum(c >= COVER for c in m['cover'])}"
+              + (f" (under: {'; '.join(m['missed'])})" if m["missed"] else ""), flush=True)
     a = np.array(attach)
     w = np.array(wrist)
     c = np.array(cover)
