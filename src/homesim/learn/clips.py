@@ -14,6 +14,7 @@ classes never seen in training count with 0).
 
 from __future__ import annotations
 
+import copy
 import random
 from collections import Counter, defaultdict
 from dataclasses import asdict, dataclass
@@ -100,10 +101,10 @@ class ClipModel(nn.Module):
 
     def features(self, clips: torch.Tensor) -> torch.Tensor:
         """(B, FRAMES, ...) inputs -> (B, feature) clip features."""
+        if not self.scales:
+            return self.frames(clips[:, FRAMES // 2])
         b = clips.shape[0]
         per_frame = self.frames(clips.flatten(0, 1)).view(b, FRAMES, -1)
-        if not self.scales:
-            return per_frame[:, FRAMES // 2]
         out = torch.zeros_like(per_frame[:, 0])
         for k, g in zip(self.scales, self.relations, strict=True):
             subs = _subsets(k)
@@ -169,10 +170,26 @@ def class_weights(ids: torch.Tensor, n: int) -> torch.Tensor:
     return weights * (counts > 0).sum() / weights.sum().clamp(min=1e-9)
 
 
-def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
-                     device: str = "cpu") -> ClipModel:
-    """Class-weighted cross-entropy on both heads (`class_weights`); the same seed gives
-    the same weights."""
+def clip_score(model: ClipModel, data: ClipSet, labels: Labels) -> float:
+    """Mean of the action and step mean per-class accuracies (%): what chooses the epoch."""
+    actions, steps = predict_clips(model, data, labels)
+    return (mean_class_accuracy(actions, data.actions)
+            + mean_class_accuracy(steps, data.steps)) / 2
+
+
+@dataclass
+class ClipTraining:
+    """A trained clip model, the epoch kept and each epoch's validation score."""
+
+    model: ClipModel
+    best_epoch: int | None
+    val_scores: list[float]
+
+
+def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels, val: ClipSet | None = None,
+                     device: str = "cpu") -> ClipTraining:
+    """Class-weighted cross-entropy on both heads (`class_weights`); with `val`, the weights
+    of the epoch scoring best on it (`clip_score`) are kept. Same seed, same weights."""
     torch.manual_seed(cfg.seed)
     model = ClipModel(cfg).to(device)
     opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
@@ -182,8 +199,10 @@ def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
     w_s = class_weights(y_s, cfg.n_steps).to(device)
     rng = random.Random(cfg.seed)
     order = list(range(len(data.steps)))
-    model.train()
-    for _ in range(cfg.epochs):
+    scores: list[float] = []
+    best: tuple[float, int, dict] | None = None
+    for epoch in range(cfg.epochs):
+        model.train()
         rng.shuffle(order)
         for i in range(0, len(order), cfg.batch_size):
             batch = torch.tensor(order[i:i + cfg.batch_size])
@@ -193,7 +212,13 @@ def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
             opt.zero_grad()
             loss.backward()
             opt.step()
-    return model.eval()
+        if val is not None and val.steps:
+            scores.append(clip_score(model, val, labels))
+            if best is None or scores[-1] > best[0]:
+                best = (scores[-1], epoch, copy.deepcopy(model.state_dict()))
+    if best is not None:
+        model.load_state_dict(best[2])
+    return ClipTraining(model.eval(), best[1] if best else None, scores)
 
 
 @torch.no_grad()
