@@ -1,12 +1,15 @@
-"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame features.
+"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame vectors.
 
 Glossary:
-    frame encoder: a small CNN over a pooled RGB frame (trained here), or for *oracle
-        perception* an MLP over the frame's ground-truth class pixel shares.
+    descriptor: one vector per frame. RGB: the feature of the frame CNN trained here
+        (`homesim.learn.framecnn`, the backbone); *oracle perception*: the frame's
+        ground-truth class pixel shares. Both models below are the same but for it, so
+        the gap between them is how much of the task is perception.
+    frame encoder: an MLP over a frame's descriptor.
     TRN: temporal relation network (Zhou et al.): for k = 2..`MAX_SCALE`, ordered subsets of
         k of the clip's `FRAMES` sampled frames are concatenated and passed through an MLP
         g_k; the mean over subsets, summed over scales, is the clip feature.
-    single-frame: the clip feature is the middle frame's feature (the baseline).
+    single-frame: the clip feature is the middle frame's encoding (the baseline).
 Two linear heads read the clip feature: the clip's action and its step (action and object
 classes). Scores are mean per-class accuracy (recall averaged over the test classes;
 classes never seen in training count with 0).
@@ -27,6 +30,8 @@ from torch import nn
 
 from homesim.learn.videodata import Episode
 
+Descriptors = dict[str, np.ndarray]
+"""Episode key -> (frames, width) float32: one vector per frame (CNN feature or shares)."""
 FRAMES = 8
 """Frames sampled evenly from a clip."""
 MAX_SCALE = 4
@@ -42,7 +47,7 @@ class ClipConfig:
 
     kind: str  # "trn" | "single"
     input: str  # "rgb" | "oracle"
-    n_classes: int  # oracle input width
+    n_inputs: int  # descriptor width
     n_actions: int
     n_steps: int
     feature: int = 64
@@ -61,26 +66,21 @@ def _subsets(k: int) -> list[tuple[int, ...]]:
     return [every[i] for i in sorted(set(picks.tolist()))]
 
 
+INPUT_SCALE = {"rgb": 1.0, "oracle": 10.0}
+"""Descriptors are multiplied by this (class pixel shares are small)."""
+
+
 class FrameEncoder(nn.Module):
-    """(N, 3, 24, 32) uint8 frames or (N, C) class shares -> (N, feature)."""
+    """(N, n_inputs) frame descriptors -> (N, feature)."""
 
     def __init__(self, cfg: ClipConfig):
         super().__init__()
-        self.oracle = cfg.input == "oracle"
-        if self.oracle:
-            self.net: nn.Module = nn.Sequential(nn.Linear(cfg.n_classes, 128), nn.ReLU(),
-                                                nn.Linear(128, cfg.feature), nn.ReLU())
-        else:
-            self.net = nn.Sequential(
-                nn.Conv2d(3, 16, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
-                nn.Conv2d(16, 32, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
-                nn.Conv2d(32, 64, 3, padding=1), nn.ReLU(), nn.AdaptiveAvgPool2d(1),
-                nn.Flatten(), nn.Linear(64, cfg.feature), nn.ReLU())
+        self.scale = INPUT_SCALE[cfg.input]
+        self.net = nn.Sequential(nn.Linear(cfg.n_inputs, 128), nn.ReLU(),
+                                 nn.Linear(128, cfg.feature), nn.ReLU())
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
-        if self.oracle:
-            return self.net(x * 10.0)  # shares are small: scale them up
-        return self.net(x.float() / 255.0 - 0.5)
+        return self.net(x * self.scale)
 
 
 class ClipModel(nn.Module):
@@ -100,7 +100,7 @@ class ClipModel(nn.Module):
         self.step_head = nn.Linear(f, cfg.n_steps)
 
     def features(self, clips: torch.Tensor) -> torch.Tensor:
-        """(B, FRAMES, ...) inputs -> (B, feature) clip features."""
+        """(B, FRAMES, width) descriptors -> (B, feature) clip features."""
         if not self.scales:
             return self.frames(clips[:, FRAMES // 2])
         b = clips.shape[0]
@@ -118,32 +118,35 @@ class ClipModel(nn.Module):
 
 @dataclass
 class ClipSet:
-    """Clips as tensors: inputs (N, FRAMES, ...), and their action and step texts."""
+    """Clips as tensors: inputs (N, FRAMES, descriptor width), their action and step
+    texts."""
 
     inputs: torch.Tensor
     actions: list[str]
     steps: list[str]
 
 
-def clip_inputs(ep: Episode, a: int, b: int, kind: str) -> np.ndarray:
-    """`FRAMES` evenly spaced frames of [a, b) as the model's input."""
-    idx = np.linspace(a, b - 1, FRAMES).round().astype(int)
-    return ep.frames[idx] if kind == "rgb" else ep.classes[idx]
+def clip_inputs(vectors: np.ndarray, a: int, b: int) -> np.ndarray:
+    """(`FRAMES`, width): the descriptors of `FRAMES` evenly spaced frames of [a, b)."""
+    return vectors[np.linspace(a, b - 1, FRAMES).round().astype(int)]
 
 
 TRAIN_HOP = 1.0
 """Seconds between the starts of training clips (overlapping: twice the clips)."""
 
 
-def clip_set(episodes: list[Episode], kind: str, hop: float | None = None) -> ClipSet:
+def clip_set(episodes: list[Episode], descriptors: Descriptors, hop: float | None = None
+             ) -> ClipSet:
     """Every labelled clip of the episodes (every `hop` s; default non-overlapping)."""
     inputs, actions, steps = [], [], []
     for ep in episodes:
         for a, b, label in ep.clips(hop=hop):
-            inputs.append(clip_inputs(ep, a, b, kind))
+            inputs.append(clip_inputs(descriptors[ep.key], a, b))
             actions.append(label.split("]")[0].strip("["))
             steps.append(label)
-    return ClipSet(torch.from_numpy(np.stack(inputs)), actions, steps)
+    width = next(iter(descriptors.values())).shape[1] if descriptors else 0
+    stacked = np.stack(inputs) if inputs else np.zeros((0, FRAMES, width), np.float32)
+    return ClipSet(torch.from_numpy(stacked.astype(np.float32)), actions, steps)
 
 
 @dataclass

@@ -32,7 +32,9 @@ from homesim.learn.videotable import (
     PROGRAM_MODELS,
     VideoRunConfig,
     clip_path,
+    descriptors,
     load_clip_model,
+    load_frame_cnn,
     read_data,
     seed_dir,
     video_features,
@@ -54,14 +56,15 @@ def mean_sd(values: list[float]) -> dict:
 
 
 def _clip_scores(folder: Path, rows: dict[str, list[Episode]], train: list[Episode],
-                 seed: int, device: str) -> dict[str, dict[str, dict[str, float]]]:
+                 vectors: dict[str, C.Descriptors], seed: int, device: str
+                 ) -> dict[str, dict[str, dict[str, float]]]:
     """{test row: {method: {action, step, n}}} for one seed."""
-    train_set = C.clip_set(train, "oracle")
+    train_set = C.clip_set(train, vectors["oracle"])
     models = {key: load_clip_model(clip_path(folder, key[1], key[0]), device)
               for key in CLIP_MODELS}
     out: dict[str, dict[str, dict[str, float]]] = {}
     for row, episodes in rows.items():
-        sets = {inp: C.clip_set(episodes, inp) for inp in ("rgb", "oracle")}
+        sets = {inp: C.clip_set(episodes, vectors[inp]) for inp in ("rgb", "oracle")}
         truth = sets["oracle"]
         n = len(truth.steps)
         out[row] = {"Random retrieval": {
@@ -79,11 +82,12 @@ def _clip_scores(folder: Path, rows: dict[str, list[Episode]], train: list[Episo
     return out
 
 
-def _predictors(folder: Path, tested: list[Episode], train: list[Episode], seed: int,
-                device: str) -> dict[str, Callable[[], list[Program]]]:
+def _predictors(folder: Path, tested: list[Episode], train: list[Episode],
+                rgb: C.Descriptors, seed: int, device: str
+                ) -> dict[str, Callable[[], list[Program]]]:
     """Method -> how it predicts the programs of `tested` (in order)."""
     clip_model, _ = load_clip_model(clip_path(folder, "trn", "rgb"), device)
-    features = video_features(clip_model, tested)
+    features = video_features(clip_model, tested, rgb)
     models = {}
     for name in PROGRAM_MODELS:
         base = Text2Prog.load(folder / f"{name}.pt", device)
@@ -102,12 +106,13 @@ def _predictors(folder: Path, tested: list[Episode], train: list[Episode], seed:
 
 
 def _program_scores(folder: Path, rows: dict[str, list[Episode]], train: list[Episode],
-                    seed: int, device: str) -> dict[str, dict[str, dict]]:
+                    rgb: C.Descriptors, seed: int, device: str
+                    ) -> dict[str, dict[str, dict]]:
     """{test row: {method: Scores dict}} for one seed."""
     tested = rows["all"] if "all" in rows else [e for v in rows.values() for e in v]
     at = {e.key: i for i, e in enumerate(tested)}
     out: dict[str, dict[str, dict]] = {row: {} for row in rows}
-    for method, predict in _predictors(folder, tested, train, seed, device).items():
+    for method, predict in _predictors(folder, tested, train, rgb, seed, device).items():
         programs = predict()
         flags = [executable(p, e.example) for p, e in zip(programs, tested, strict=True)]
         for row, episodes in rows.items():
@@ -139,12 +144,16 @@ def evaluate_video(out: Path, device: str = "cpu") -> dict:
     config = VideoRunConfig(**summary["config"])
     parts, _ = read_data(config)
     rows = test_rows({p: v for p, v in parts.items() if p != "train"})
+    everything = [e for v in parts.values() for e in v]
     start = time.perf_counter()
     clips, programs = [], []
     for seed in config.seeds:
         folder = seed_dir(out, seed)
-        clips.append(_clip_scores(folder, rows, parts["train"], seed, device))
-        programs.append(_program_scores(folder, rows, parts["train"], seed, device))
+        cnn = load_frame_cnn(folder / "frame_cnn.pt", device)
+        vectors = {inp: descriptors(everything, inp, cnn) for inp in ("rgb", "oracle")}
+        clips.append(_clip_scores(folder, rows, parts["train"], vectors, seed, device))
+        programs.append(_program_scores(folder, rows, parts["train"], vectors["rgb"], seed,
+                                        device))
     return {"train": summary, "rows": {r: len(v) for r, v in rows.items()},
             "clips": _over_seeds(clips), "programs": _over_seeds(programs),
             "eval_seconds": time.perf_counter() - start}

@@ -2,11 +2,12 @@
 
 `train_video(config, out)` reads the data set once (`videodata`, frames reduced and cached
 per shard), splits it (`videosplits`: train, val, test parts), and for each seed writes to
-``OUT/seed-<seed>/``: ``clip_<input>_<kind>.pt`` (clip models: config, head labels, class
-columns, weights), ``mle.pt``, ``pg_lcs.pt``, ``pg_lcs_sim.pt`` (`Text2Prog` checkpoints of
-the video model: config, step vocabulary, meta with the chosen epoch) and ``OUT/train.json``
-(config, sizes, wall times). Every model keeps the weights of its best epoch on the
-validation home. Scoring is `homesim.learn.videoeval`.
+``OUT/seed-<seed>/``: ``frame_cnn.pt`` (the RGB backbone, `homesim.learn.framecnn`),
+``clip_<input>_<kind>.pt`` (clip models: config, head labels, class columns, weights),
+``mle.pt``, ``pg_lcs.pt``, ``pg_lcs_sim.pt`` (`Text2Prog` checkpoints of the video model:
+config, step vocabulary, meta with the chosen epoch), and ``OUT/train.json`` (config,
+sizes, wall times). Every model keeps the weights of its best epoch on the validation
+home. Scoring is `homesim.learn.videoeval`.
 """
 
 from __future__ import annotations
@@ -23,6 +24,13 @@ import torch
 from homesim.errors import HomesimError
 from homesim.files import write_text
 from homesim.learn import clips as C
+from homesim.learn.framecnn import (
+    FrameCNN,
+    FrameCNNConfig,
+    frame_features,
+    frame_set,
+    train_frame_cnn,
+)
 from homesim.learn.train import BestOnDev, TrainConfig, train_mle, train_pg
 from homesim.learn.video2prog import Video2Prog, episode_features
 from homesim.learn.videocache import VideoFormat
@@ -44,6 +52,7 @@ class VideoRunConfig:
     frame_size: str = "64x48"
     fps: int = 8
     cache: str | None = str(DEFAULT_CACHE)
+    frame_epochs: int = 8
     clip_epochs: int = 30
     mle_epochs: int = 60
     pg_epochs: int = 10
@@ -97,25 +106,69 @@ def load_clip_model(path: Path, device: str = "cpu") -> tuple[C.ClipModel, C.Lab
     return model.eval(), C.Labels(data["actions"], data["steps"])
 
 
-def video_features(clip_model: C.ClipModel, episodes: list[Episode]
+def descriptors(episodes: list[Episode], inp: str, cnn: FrameCNN | None) -> C.Descriptors:
+    """Each episode's frame descriptors: class pixel shares (oracle) or CNN features."""
+    if inp == "oracle":
+        return {e.key: e.classes for e in episodes}
+    assert cnn is not None
+    return frame_features(cnn, episodes)
+
+
+def video_features(clip_model: C.ClipModel, episodes: list[Episode], rgb: C.Descriptors
                    ) -> dict[str, torch.Tensor]:
     """Each episode's sequence of RGB TRN clip features, by example id."""
-    return {e.example.id: episode_features(clip_model, e, "rgb") for e in episodes}
+    return {e.example.id: episode_features(clip_model, e, rgb[e.key]) for e in episodes}
+
+
+def save_frame_cnn(model: FrameCNN, best_epoch: int | None, path: Path) -> None:
+    torch.save({"config": model.cfg.to_dict(), "state": model.state_dict(),
+                "best_epoch": best_epoch}, path)
+
+
+def load_frame_cnn(path: Path, device: str = "cpu") -> FrameCNN:
+    """A frame CNN written by `save_frame_cnn`."""
+    try:
+        data = torch.load(path, map_location=device, weights_only=True)
+        model = FrameCNN(FrameCNNConfig(**data["config"])).to(device)
+        model.load_state_dict(data["state"])
+    except (OSError, KeyError, TypeError, RuntimeError) as e:
+        raise HomesimError(f"{path}: not a frame CNN checkpoint ({e})") from None
+    return model.eval()
+
+
+def _train_cnn(config: VideoRunConfig, parts: dict[str, list[Episode]], labels: C.Labels,
+               seed: int, folder: Path, device: str, report: Report | None) -> FrameCNN:
+    start = time.perf_counter()
+    train = frame_set(parts["train"], labels.actions, labels.steps)
+    val = frame_set(parts["val"], labels.actions, labels.steps) if parts["val"] else None
+    cfg = FrameCNNConfig(len(labels.actions), len(labels.steps), epochs=config.frame_epochs,
+                         seed=seed)
+    cnn, best_epoch, _ = train_frame_cnn(cfg, train, val, device)
+    save_frame_cnn(cnn, best_epoch, folder / "frame_cnn.pt")
+    _say(report, f"seed {seed} frame CNN: {len(train.frames)} frames, best epoch "
+         f"{best_epoch}, {time.perf_counter() - start:.0f} s")
+    return cnn
 
 
 def _train_clips(config: VideoRunConfig, parts: dict[str, list[Episode]],
                  classes: dict[str, int], seed: int, folder: Path, device: str,
-                 report: Report | None) -> tuple[C.ClipModel, dict[str, float]]:
-    """The three clip models of one seed; returns the RGB TRN model and wall times."""
-    seconds: dict[str, float] = {}
+                 report: Report | None) -> tuple[C.ClipModel, C.Descriptors, dict[str, float]]:
+    """The frame CNN and the three clip models of one seed; returns the RGB TRN model, the
+    RGB descriptors of every episode and wall times."""
+    start = time.perf_counter()
+    everything = [e for v in parts.values() for e in v]
+    oracle = descriptors(everything, "oracle", None)
+    labels = C.Labels.build(C.clip_set(parts["train"], oracle, C.TRAIN_HOP))
+    cnn = _train_cnn(config, parts, labels, seed, folder, device, report)
+    vectors = {"oracle": oracle, "rgb": descriptors(everything, "rgb", cnn)}
+    seconds = {"frame_cnn": time.perf_counter() - start}
     kept = None
     for inp, kind in CLIP_MODELS:
         start = time.perf_counter()
-        data = C.clip_set(parts["train"], inp, C.TRAIN_HOP)
-        labels = C.Labels.build(data)
-        cfg = C.ClipConfig(kind, inp, len(classes), len(labels.actions), len(labels.steps),
-                           epochs=config.clip_epochs, seed=seed)
-        val = C.clip_set(parts["val"], inp) if parts["val"] else None
+        data = C.clip_set(parts["train"], vectors[inp], C.TRAIN_HOP)
+        cfg = C.ClipConfig(kind, inp, data.inputs.shape[2], len(labels.actions),
+                           len(labels.steps), epochs=config.clip_epochs, seed=seed)
+        val = C.clip_set(parts["val"], vectors[inp]) if parts["val"] else None
         trained = C.train_clip_model(cfg, data, labels, val, device)
         save_clip_model(trained.model, labels, classes, clip_path(folder, kind, inp),
                         trained.best_epoch)
@@ -125,19 +178,19 @@ def _train_clips(config: VideoRunConfig, parts: dict[str, list[Episode]],
         _say(report, f"seed {seed} clip {inp} {kind}: {len(data.steps)} clips, best epoch "
              f"{trained.best_epoch}, {seconds[f'clip_{inp}_{kind}']:.0f} s")
     assert kept is not None
-    return kept, seconds
+    return kept, vectors["rgb"], seconds
 
 
 def _train_programs(config: VideoRunConfig, parts: dict[str, list[Episode]],
-                    clip_model: C.ClipModel, seed: int, folder: Path, device: str,
-                    report: Report | None) -> dict[str, float]:
+                    clip_model: C.ClipModel, rgb: C.Descriptors, seed: int, folder: Path,
+                    device: str, report: Report | None) -> dict[str, float]:
     """MLE, then PG (LCS) and PG (LCS+Sim) from it; each keeps its best epoch on val."""
     seconds: dict[str, float] = {}
     start = time.perf_counter()
     train = [e.example for e in parts["train"]]
     val = [e.example for e in parts["val"]]
     v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, device)
-    v2p.features = video_features(clip_model, parts["train"] + parts["val"])
+    v2p.features = video_features(clip_model, parts["train"] + parts["val"], rgb)
     best = BestOnDev(v2p, val)
     cfg = TrainConfig(epochs=config.mle_epochs, batch_size=config.batch_size, seed=seed)
     history = train_mle(v2p, train, cfg, after_epoch=best if val else None)
@@ -180,13 +233,13 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
     for seed in config.seeds:
         folder = seed_dir(out, seed)
         folder.mkdir(exist_ok=True)
-        clip_model, clip_seconds = _train_clips(config, parts, classes, seed, folder, device,
-                                                report)
+        clip_model, rgb, clip_seconds = _train_clips(config, parts, classes, seed, folder,
+                                                     device, report)
         seconds[str(seed)] = {**clip_seconds, **_train_programs(
-            config, parts, clip_model, seed, folder, device, report)}
+            config, parts, clip_model, rgb, seed, folder, device, report)}
     summary = {"config": asdict(config), "episodes": {p: len(v) for p, v in parts.items()},
                "clips": {p: sum(len(e.clips()) for e in v) for p, v in parts.items()},
-               "train_clips": len(C.clip_set(parts["train"], "oracle", C.TRAIN_HOP).steps),
+               "train_clips": sum(len(e.clips(hop=C.TRAIN_HOP)) for e in parts["train"]),
                "load_seconds": load_seconds, "train_seconds": seconds,
                "total_seconds": time.perf_counter() - start, "device": device}
     write_text(out / "train.json", json.dumps(summary, indent=2) + "\n")
