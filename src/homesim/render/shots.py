@@ -40,6 +40,8 @@ DOLLY = (0.0, 0.3, 0.55)
 height, inside the room, out of furniture)..."""
 ORBIT = (0.0, 0.45, -0.45, 0.9, -0.9)
 """... and swung around the action by these angles (radians) first..."""
+NEAR_DEST = 0.4
+"""Metres: a close-up frames a put's destination this far around the object."""
 LOW_HEIGHT = 1.5
 """... and each of those also lowered to this height (metres), to see into furniture."""
 DRAWN = 16
@@ -205,9 +207,10 @@ def node_corners(scene: SceneModel, data: mujoco.MjData, node: int) -> np.ndarra
 
 def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
                    data: mujoco.MjData) -> np.ndarray:
-    """What the shot must contain: the hand as it comes to the object, the objects at
-    the effect, and those that do not ride in a hand (fronts swinging) at the start of
-    the reach too (a carried object's place at the start would only widen the view)."""
+    """What the shot must contain: the hand as it comes to the object; the object at the
+    effect, and at the start of the reach too unless it rides in a hand (a carried
+    object's place then would only widen the view); of where it goes (a put's table,
+    fridge), the part within `NEAR_DEST` of it."""
     site = scene.hand_sites[it.side]
     pts = []
     for f in np.linspace((it.start + it.peak) / 2, it.peak, FRAMED).round().astype(int):
@@ -215,8 +218,15 @@ def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
         pts.append(data.site_xpos[site].copy()[None])
     for f in (it.start, it.peak):
         _pose(scene, timeline, f, data)
-        pts.extend(node_corners(scene, data, n)[None] for n in it.nodes
+        pts.extend(node_corners(scene, data, n)[None] for n in it.nodes[:1]
                    if f == it.peak or n not in scene.mocap)
+    first = node_corners(scene, data, it.nodes[0])  # at the effect
+    near = 0.5 * (first.min(axis=0) + first.max(axis=0)) if len(first) else None
+    for n in it.nodes[1:]:  # where it goes: the part of it near the object
+        corners = node_corners(scene, data, n)
+        if near is not None:
+            corners = np.clip(corners, near - NEAR_DEST, near + NEAR_DEST)
+        pts.append(corners[None])
     return np.concatenate([p.reshape(-1, 3) for p in pts])
 
 
