@@ -4,8 +4,9 @@
                                   [--width 640 --height 480 --seed 0 --only watch_tv]
 
 Each program is prepared and grounded in each home (`homesim.run_program`, the same seed),
-animated, and the last frame of every step is drawn at WIDTH x HEIGHT
-(`render_keyframes`, the camera that sees the agent best). The sheet goes to
+animated, and the key frame of every step (`render_keyframes`: a hands-on step at its
+effect from its close-up, any other at its end from the camera that sees the agent best)
+is drawn at WIDTH x HEIGHT. The sheet goes to
 ``docs/render/sheets/<home>_<program>_<tag>.jpg``. ``--tag before`` run with
 ``PYTHONPATH`` on another checkout's ``src`` makes the "before" sheets of that code (this
 tool uses only the public API).

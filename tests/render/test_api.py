@@ -83,3 +83,16 @@ def test_render_video_writes_the_recordings_frames_as_mp4_only(box_home, tmp_pat
     assert info["size"] == (64, 48) and info["fps"] == 5
     assert sum(1 for _ in reader) == n
     assert {x.name for x in tmp_path.iterdir()} == {"v.mp4", "rec"}  # no ground truth
+
+
+def test_a_hands_on_step_is_shown_at_its_effect(box_home):
+    """Key frames: the hand on the object (what its close-up is aimed at), not the arm
+    back at rest; other steps at their last frame."""
+    from homesim.render.api import key_frames, prepare
+
+    p = homesim.parse_program("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Walk] <tv> (22)\n")
+    _, tl, _ = prepare(p, box_home, width=32, height=24, fps=10, seed=0, bindings=None,
+                       agent="male1")
+    (grab,) = tl.interactions
+    assert key_frames(tl) == [tl.step_frames[0][1], grab.peak, tl.step_frames[2][1]]
+    assert grab.peak < tl.step_frames[1][1]

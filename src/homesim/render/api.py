@@ -203,7 +203,9 @@ def render_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 
                      agent: str | None = None,
                      standing: Mapping[int, tuple[float, float]] | None = None
                      ) -> list[tuple[int, np.ndarray]]:
-    """(step index, RGB frame at the end of that step) for each step; nothing is written.
+    """(step index, RGB key frame of that step) for each step; nothing is written. A
+    hands-on step's key frame is its effect (the hand on the object, seen by the step's
+    close-up; `key_frames`), any other step's its last frame.
 
     `standing`: as for `render_program`."""
     return list(iter_keyframes(program, graph, width=width, height=height, seed=seed,
@@ -219,7 +221,16 @@ def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 32
     _check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
                                  seed=seed, bindings=bindings, agent=agent, standing=standing)
-    ends = [end for _, end in timeline.step_frames]
+    keys = key_frames(timeline)
     with Renderer(scene, width, height, shadows=True) as renderer:  # stills: no rush
-        for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, ends)):
+        for step, (_, rgb) in enumerate(iter_still_frames(scene, timeline, renderer, keys)):
             yield step, rgb
+
+
+def key_frames(timeline: Timeline) -> list[int]:
+    """Per step, the frame that shows it: the effect of its last hands-on action (the
+    frame its close-up is chosen for) if it has one, else its last frame."""
+    keys = [end for _, end in timeline.step_frames]
+    for it in timeline.interactions:
+        keys[it.step] = it.peak
+    return keys
