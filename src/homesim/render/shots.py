@@ -259,7 +259,8 @@ def visible(scene: SceneModel, data: mujoco.MjData, eye: np.ndarray, point: np.n
 
 
 def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
-    """The bodies of a forearm and what hangs from it (hand, fingers)."""
+    """The bodies of a hand and what hangs from it (fingers, thumb): where the hand's
+    site must show for the hand to count as seen."""
     m = scene.model
     root = int(m.site_bodyid[scene.hand_sites[side]])
     out = {root}
