@@ -120,9 +120,18 @@ def baseline_jobs(splits: Splits, seed: int) -> list[Job]:
     ]
 
 
-def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
-    """Rows that learn: seq2seq (greedy, constrained), retrieve-and-edit, consensus."""
+HOLDOUT = {"stratified": "program", "leave-activities-out": "activity"}
+"""Split -> what the reranker's training queries may not see of the rest of training
+(`rerank.HOLDOUTS`), so that they are built the way the split builds its test set."""
+RERANK_ROW = "Reranker (retrieve, substitute, rerank)"
+
+
+def model_jobs(splits: Splits, seed: int, t2p: Text2Prog,
+               split_name: str = "stratified") -> list[Job]:
+    """Rows that learn: seq2seq (greedy, constrained), retrieve-and-edit, consensus, and
+    the learned reranker."""
     from homesim.learn.consensus import Consensus
+    from homesim.learn.rerank import Reranker
     from homesim.learn.retrieve import RetrieveEdit
 
     test = splits.test
@@ -139,6 +148,8 @@ def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
         ("Retrieve-and-edit", lambda: retrieval().predict(test)),
         ("Consensus (MLE + retrieval)",
          lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)),
+        (RERANK_ROW, lambda: Reranker.fit(splits.train, splits.dev,
+                                          HOLDOUT[split_name]).predict(test)),
     ]
 
 
@@ -205,7 +216,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     t2p = mle_model(spec, splits, folder, device, report) if with_model else None
     jobs = baseline_jobs(splits, spec.seed)
     if t2p is not None:
-        jobs += model_jobs(splits, spec.seed, t2p)
+        jobs += model_jobs(splits, spec.seed, t2p, spec.split)
     if spec.dataset == "synthetic":
         jobs.append(rule_job(splits))
     unseen = StepVocab.build(e.program for e in splits.train).unseen_share(
