@@ -1,5 +1,5 @@
 """Table 2 end to end on four tiny generated episodes: clip models, video -> program,
-the CLI and the results section (seconds at 32x24, 2 frames/s)."""
+the CLI and the results section (seconds at 32x24, 2 frames/s; two seeds)."""
 
 from __future__ import annotations
 
@@ -18,8 +18,8 @@ PROGRAMS = {"a_tv.txt": "Watch TV\nI turn on the TV.\n\n[Walk] <television> (1)\
                         "[SwitchOn] <television> (1)\n",
             "b_light.txt": "Lights on\nI turn on the light.\n\n[Walk] <light> (1)\n"
                            "[SwitchOn] <light> (1)\n"}
-PARTS = {"ep-000000": "train", "ep-000001": "train", "ep-000002": "test-seen",
-         "ep-000003": "test-unseen"}
+PARTS = {"ep-000000": "train", "ep-000001": "train", "ep-000002": "val",
+         "ep-000003": "test-seen"}
 
 
 @pytest.fixture(scope="module")
@@ -45,20 +45,60 @@ def tiny_video(tmp_path_factory) -> Path:
 def fixed_split(monkeypatch):
     from homesim.learn import videosplits
 
-    monkeypatch.setattr(videosplits, "part_of", lambda item, seed: PARTS[item.key])
+    monkeypatch.setattr(videosplits, "part_of", lambda item: PARTS[item.key])
 
 
-def test_split_declares_seen_and_unseen_homes():
+def test_split_declares_seen_and_unseen_homes_and_agents():
     from types import SimpleNamespace
 
-    from homesim.learn.videosplits import part_of, video_split
+    from homesim.learn.videosplits import part_of, test_rows, video_split
 
     eps = [SimpleNamespace(key=f"ep-{i}", home=h, agent=a) for i, (h, a) in enumerate(
-        [("scene1", "male1"), ("scene2", "female2"), ("scene5", "male1"), ("gen-0", "female1")])]
-    assert part_of(eps[1], 0) == "test-seen"  # a seen home, an agent not trained on
-    assert part_of(eps[2], 0) == part_of(eps[3], 0) == "test-unseen"
-    assert part_of(eps[0], 0) in ("train", "test-seen")
-    assert sum(len(v) for v in video_split(eps, 0).values()) == 4
+        [("scene1", "male1"), ("scene2_trimmed", "female2"), ("scene5", "male1"),
+         ("gen-0", "female1")])]
+    assert part_of(eps[0]) in ("train", "test-seen")
+    assert part_of(eps[1]) == "test-unseen-agents"  # a seen home, an agent not trained on
+    assert part_of(eps[2]) == "val" and part_of(eps[3]) == "test-unseen-homes"
+    parts = video_split(eps)
+    assert sum(len(v) for v in parts.values()) == 4
+    rows = test_rows(parts)
+    assert [e.key for e in rows["unseen-homes"]] == ["ep-2", "ep-3"]  # scene5 and gen-*
+    assert len(rows["all"]) == 4 - len(parts["train"])
+
+
+def test_frames_are_resampled_to_the_clip_rate():
+    from homesim.learn.videocache import VideoFormat, kept_frames
+
+    assert kept_frames(31, 15, 8).tolist() == [0, 2, 4, 6, 8, 9, 11, 13, 15, 17, 19, 21, 22,
+                                               24, 26, 28, 30]
+    assert kept_frames(5, 2, 8).tolist() == [0, 1, 2, 3, 4]  # never more than the source
+    assert VideoFormat.parse("96X72").tag == "96x72@4"
+
+
+def test_bad_frame_size_is_one_clear_error():
+    from homesim.errors import HomesimError
+    from homesim.learn.videocache import VideoFormat
+
+    with pytest.raises(HomesimError, match="WIDTHxHEIGHT"):
+        VideoFormat.parse("64by48")
+
+
+def test_reduced_shards_are_cached(tiny_video, tmp_path):
+    import numpy as np
+
+    from homesim.learn.videocache import VideoFormat
+    from homesim.learn.videodata import load_episodes
+
+    fmt = VideoFormat(16, 12, 4)
+    first, index = load_episodes(tiny_video, fmt, tmp_path)
+    assert len(list(tmp_path.glob("*-16x12@4-v*.npz"))) == 1
+    again, _ = load_episodes(tiny_video, fmt, tmp_path)
+    assert [e.key for e in again] == [e.key for e in first]
+    assert all(np.array_equal(a.frames, b.frames) and np.array_equal(a.classes, b.classes)
+               for a, b in zip(first, again, strict=True))
+    ep = first[0]
+    assert ep.frames.shape[1:] == (3, 12, 16) and ep.fps == 2
+    assert np.allclose(ep.classes.sum(1), 1.0) and len(index) == ep.classes.shape[1]
 
 
 def test_mean_class_accuracy_weighs_classes_equally():
@@ -90,9 +130,10 @@ def test_train_and_eval_video2prog(tiny_video, fixed_split, tmp_path):
     res = CliRunner().invoke(app, [
         "learn", "train", "--task", "video2prog", "--data", str(tiny_video), "--out",
         str(runs), "--clip-epochs", "2", "--mle-epochs", "2", "--pg-epochs", "1",
+        "--seeds", "2", "--frame-size", "32x24", "--video-cache", str(tmp_path / "cache"),
         "--device", "cpu"])
     assert res.exit_code == 0, res.output
-    model = Text2Prog.load(runs / "pg_lcs_sim.pt")
+    model = Text2Prog.load(runs / "seed-1" / "pg_lcs_sim.pt")
     assert model.model.config.feature_dim == 64 and len(model.steps) > 1  # config + vocab
     markdown = tmp_path / "results.md"
     markdown.write_text("# Table 3\n")
@@ -100,22 +141,28 @@ def test_train_and_eval_video2prog(tiny_video, fixed_split, tmp_path):
                                    str(runs), "--markdown", str(markdown), "--device", "cpu"])
     assert res.exit_code == 0, res.output
     result = json.loads((runs / "results.json").read_text())
-    truth = result["programs"]["test-seen"]["Ground truth (reference)"]
-    assert truth["steps"] == 1.0 and truth["simulator"] == 100.0
-    assert set(result["programs"]["test-unseen"]) >= {"Random retrieval", "MLE", "PG (LCS)",
-                                                        "PG (LCS+Sim)"}
-    clips = result["clips"]["test-seen"]
+    truth = result["programs"]["seen"]["Ground truth (reference)"]
+    assert truth["steps"]["mean"] == 1.0 and truth["simulator"]["values"] == [100.0, 100.0]
+    assert set(result["programs"]["unseen-homes"]) >= {
+        "Random retrieval", "MLE", "PG (LCS)", "PG (LCS+Sim)", "MLE + constrained decoding"}
+    constrained = result["programs"]["all"]["PG (LCS+Sim) + constrained decoding"]
+    assert constrained["simulator"]["mean"] == 100.0  # executable by construction
+    clips = result["clips"]["all"]
     assert {"Random retrieval", "TRN (RGB)", "Single frame (RGB)"} <= set(clips)
-    assert all(0 <= row["step"] <= 100 for row in clips.values())
+    assert all(0 <= row["step"]["mean"] <= 100 for m, row in clips.items() if "gap" not in m)
+    gap = clips["Oracle-perception gap (oracle TRN - RGB TRN)"]["action"]["values"]
+    assert gap == [o - r for o, r in zip(clips["TRN (oracle perception: class maps)"]["action"][
+        "values"], clips["TRN (RGB)"]["action"]["values"], strict=True)]
     text = markdown.read_text()
-    assert text.startswith("# Table 3\n") and "Table 2" in text
+    assert text.startswith("# Table 3\n") and "Table 2" in text and " ± " in text
+    assert "--seeds 2 --frame-size 32x24" in text  # the exact command
 
 
-def test_video_data_without_class_maps_is_refused(tmp_path):
+def test_a_folder_that_is_not_a_data_set_is_refused(tmp_path):
     from homesim.errors import HomesimError
     from homesim.learn.videodata import load_episodes
 
-    with pytest.raises(HomesimError, match="no finished shards"):
+    with pytest.raises(HomesimError, match="not a data set folder"):
         load_episodes(tmp_path)
 
 

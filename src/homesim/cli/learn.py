@@ -112,6 +112,13 @@ def train(
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
     device: DeviceOption = "auto",
     clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 30,
+    seeds: Annotated[int, typer.Option(
+        help="video2prog: train seeds SEED..SEED+N-1 (Table 2 gives mean ± sd).")] = 1,
+    frame_size: Annotated[str, typer.Option(
+        help="video2prog: WIDTHxHEIGHT the frames are reduced to.")] = "64x48",
+    video_cache: Annotated[Path | None, typer.Option(
+        help="video2prog: folder for the reduced shards (default ~/.cache/homesim/video).")
+    ] = None,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
     if task not in TASKS:
@@ -119,9 +126,12 @@ def train(
     device = _torch(threads, device)
     if task == "video2prog":
         from homesim.cli.learn_video import train_video2prog
+        from homesim.learn.videotable import DEFAULT_CACHE, VideoRunConfig
 
-        train_video2prog(out, data, seed, clip_epochs, mle_epochs, pg_epochs, batch_size,
-                         force, device)
+        video = VideoRunConfig(data, list(range(seed, seed + max(1, seeds))), frame_size,
+                               cache=str(video_cache or DEFAULT_CACHE),
+                               clip_epochs=clip_epochs, batch_size=batch_size)
+        train_video2prog(out, video, mle_epochs, pg_epochs, force, device)
         return
     datasets = _datasets(data)
     from homesim.learn.table import MODELS, RunConfig, train_dataset

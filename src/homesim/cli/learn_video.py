@@ -5,27 +5,30 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from homesim.cli.common import console
 from homesim.errors import HomesimError
 from homesim.files import write_text
 
+if TYPE_CHECKING:
+    from homesim.learn.videotable import VideoRunConfig
 
-def train_video2prog(out: Path, data: str, seed: int, clip_epochs: int,
-                     mle_epochs: int | None, pg_epochs: int | None, batch_size: int,
-                     force: bool, device: str) -> None:
+
+def train_video2prog(out: Path, config: VideoRunConfig, mle_epochs: int | None,
+                     pg_epochs: int | None, force: bool, device: str) -> None:
     """Train the clip models and the video -> program models into OUT."""
-    from homesim.learn.videotable import VideoRunConfig, train_video
+    from homesim.learn.videotable import train_video
 
-    for folder in data.split(","):
+    for folder in config.data.split(","):
         if not Path(folder).is_dir():
             raise HomesimError(f"--data {folder}: with --task video2prog, name data set "
                                "folders written by 'homesim dataset generate' (commas "
                                "between several)")
+    config.format  # noqa: B018 - a bad --frame-size fails here, before any work
     if (out / "train.json").exists() and not force:
         raise HomesimError(f"{out / 'train.json'}: already exists; pass --force to replace "
                            "the checkpoints")
-    config = VideoRunConfig(str(data), seed, clip_epochs, batch_size=batch_size)
     if mle_epochs is not None:
         config.mle_epochs = mle_epochs
     if pg_epochs is not None:
@@ -38,10 +41,11 @@ def train_video2prog(out: Path, data: str, seed: int, clip_epochs: int,
 
 def eval_video2prog(runs: Path, markdown: Path | None, device: str, machine: str) -> None:
     """Score Table 2, print it, write RUNS/results.json and the markdown section."""
+    from homesim.learn.videoeval import evaluate_video
     from homesim.learn.videoreport import table2_markdown, write_section
-    from homesim.learn.videotable import evaluate_video
 
     result = evaluate_video(runs, device)
+    result["runs"] = str(runs)
     write_text(runs / "results.json", json.dumps(result, indent=2) + "\n")
     section = table2_markdown(result, machine)
     console.print(section)

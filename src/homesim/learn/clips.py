@@ -1,12 +1,15 @@
-"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame features.
+"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame vectors.
 
 Glossary:
-    frame encoder: a small CNN over a pooled RGB frame (trained here), or for *oracle
-        perception* an MLP over the frame's ground-truth class pixel shares.
+    descriptor: one vector per frame. RGB: the feature of the frame CNN trained here
+        (`homesim.learn.framecnn`, the backbone); *oracle perception*: the frame's
+        ground-truth class pixel shares. Both models below are the same but for it, so
+        the gap between them is how much of the task is perception.
+    frame encoder: an MLP over a frame's descriptor.
     TRN: temporal relation network (Zhou et al.): for k = 2..`MAX_SCALE`, ordered subsets of
         k of the clip's `FRAMES` sampled frames are concatenated and passed through an MLP
         g_k; the mean over subsets, summed over scales, is the clip feature.
-    single-frame: the clip feature is the middle frame's feature (the baseline).
+    single-frame: the clip feature is the middle frame's encoding (the baseline).
 Two linear heads read the clip feature: the clip's action and its step (action and object
 classes). Scores are mean per-class accuracy (recall averaged over the test classes;
 classes never seen in training count with 0).
@@ -14,6 +17,7 @@ classes never seen in training count with 0).
 
 from __future__ import annotations
 
+import copy
 import random
 from collections import Counter, defaultdict
 from dataclasses import asdict, dataclass
@@ -26,6 +30,8 @@ from torch import nn
 
 from homesim.learn.videodata import Episode
 
+Descriptors = dict[str, np.ndarray]
+"""Episode key -> (frames, width) float32: one vector per frame (CNN feature or shares)."""
 FRAMES = 8
 """Frames sampled evenly from a clip."""
 MAX_SCALE = 4
@@ -41,7 +47,7 @@ class ClipConfig:
 
     kind: str  # "trn" | "single"
     input: str  # "rgb" | "oracle"
-    n_classes: int  # oracle input width
+    n_inputs: int  # descriptor width
     n_actions: int
     n_steps: int
     feature: int = 64
@@ -60,26 +66,21 @@ def _subsets(k: int) -> list[tuple[int, ...]]:
     return [every[i] for i in sorted(set(picks.tolist()))]
 
 
+INPUT_SCALE = {"rgb": 1.0, "oracle": 10.0}
+"""Descriptors are multiplied by this (class pixel shares are small)."""
+
+
 class FrameEncoder(nn.Module):
-    """(N, 3, 24, 32) uint8 frames or (N, C) class shares -> (N, feature)."""
+    """(N, n_inputs) frame descriptors -> (N, feature)."""
 
     def __init__(self, cfg: ClipConfig):
         super().__init__()
-        self.oracle = cfg.input == "oracle"
-        if self.oracle:
-            self.net: nn.Module = nn.Sequential(nn.Linear(cfg.n_classes, 128), nn.ReLU(),
-                                                nn.Linear(128, cfg.feature), nn.ReLU())
-        else:
-            self.net = nn.Sequential(
-                nn.Conv2d(3, 16, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
-                nn.Conv2d(16, 32, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
-                nn.Conv2d(32, 64, 3, padding=1), nn.ReLU(), nn.AdaptiveAvgPool2d(1),
-                nn.Flatten(), nn.Linear(64, cfg.feature), nn.ReLU())
+        self.scale = INPUT_SCALE[cfg.input]
+        self.net = nn.Sequential(nn.Linear(cfg.n_inputs, 128), nn.ReLU(),
+                                 nn.Linear(128, cfg.feature), nn.ReLU())
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
-        if self.oracle:
-            return self.net(x * 10.0)  # shares are small: scale them up
-        return self.net(x.float() / 255.0 - 0.5)
+        return self.net(x * self.scale)
 
 
 class ClipModel(nn.Module):
@@ -99,11 +100,11 @@ class ClipModel(nn.Module):
         self.step_head = nn.Linear(f, cfg.n_steps)
 
     def features(self, clips: torch.Tensor) -> torch.Tensor:
-        """(B, FRAMES, ...) inputs -> (B, feature) clip features."""
+        """(B, FRAMES, width) descriptors -> (B, feature) clip features."""
+        if not self.scales:
+            return self.frames(clips[:, FRAMES // 2])
         b = clips.shape[0]
         per_frame = self.frames(clips.flatten(0, 1)).view(b, FRAMES, -1)
-        if not self.scales:
-            return per_frame[:, FRAMES // 2]
         out = torch.zeros_like(per_frame[:, 0])
         for k, g in zip(self.scales, self.relations, strict=True):
             subs = _subsets(k)
@@ -117,32 +118,35 @@ class ClipModel(nn.Module):
 
 @dataclass
 class ClipSet:
-    """Clips as tensors: inputs (N, FRAMES, ...), and their action and step texts."""
+    """Clips as tensors: inputs (N, FRAMES, descriptor width), their action and step
+    texts."""
 
     inputs: torch.Tensor
     actions: list[str]
     steps: list[str]
 
 
-def clip_inputs(ep: Episode, a: int, b: int, kind: str) -> np.ndarray:
-    """`FRAMES` evenly spaced frames of [a, b) as the model's input."""
-    idx = np.linspace(a, b - 1, FRAMES).round().astype(int)
-    return ep.frames[idx] if kind == "rgb" else ep.classes[idx]
+def clip_inputs(vectors: np.ndarray, a: int, b: int) -> np.ndarray:
+    """(`FRAMES`, width): the descriptors of `FRAMES` evenly spaced frames of [a, b)."""
+    return vectors[np.linspace(a, b - 1, FRAMES).round().astype(int)]
 
 
 TRAIN_HOP = 1.0
 """Seconds between the starts of training clips (overlapping: twice the clips)."""
 
 
-def clip_set(episodes: list[Episode], kind: str, hop: float | None = None) -> ClipSet:
+def clip_set(episodes: list[Episode], descriptors: Descriptors, hop: float | None = None
+             ) -> ClipSet:
     """Every labelled clip of the episodes (every `hop` s; default non-overlapping)."""
     inputs, actions, steps = [], [], []
     for ep in episodes:
         for a, b, label in ep.clips(hop=hop):
-            inputs.append(clip_inputs(ep, a, b, kind))
+            inputs.append(clip_inputs(descriptors[ep.key], a, b))
             actions.append(label.split("]")[0].strip("["))
             steps.append(label)
-    return ClipSet(torch.from_numpy(np.stack(inputs)), actions, steps)
+    width = next(iter(descriptors.values())).shape[1] if descriptors else 0
+    stacked = np.stack(inputs) if inputs else np.zeros((0, FRAMES, width), np.float32)
+    return ClipSet(torch.from_numpy(stacked.astype(np.float32)), actions, steps)
 
 
 @dataclass
@@ -169,10 +173,26 @@ def class_weights(ids: torch.Tensor, n: int) -> torch.Tensor:
     return weights * (counts > 0).sum() / weights.sum().clamp(min=1e-9)
 
 
-def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
-                     device: str = "cpu") -> ClipModel:
-    """Class-weighted cross-entropy on both heads (`class_weights`); the same seed gives
-    the same weights."""
+def clip_score(model: ClipModel, data: ClipSet, labels: Labels) -> float:
+    """Mean of the action and step mean per-class accuracies (%): what chooses the epoch."""
+    actions, steps = predict_clips(model, data, labels)
+    return (mean_class_accuracy(actions, data.actions)
+            + mean_class_accuracy(steps, data.steps)) / 2
+
+
+@dataclass
+class ClipTraining:
+    """A trained clip model, the epoch kept and each epoch's validation score."""
+
+    model: ClipModel
+    best_epoch: int | None
+    val_scores: list[float]
+
+
+def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels, val: ClipSet | None = None,
+                     device: str = "cpu") -> ClipTraining:
+    """Class-weighted cross-entropy on both heads (`class_weights`); with `val`, the weights
+    of the epoch scoring best on it (`clip_score`) are kept. Same seed, same weights."""
     torch.manual_seed(cfg.seed)
     model = ClipModel(cfg).to(device)
     opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
@@ -182,8 +202,10 @@ def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
     w_s = class_weights(y_s, cfg.n_steps).to(device)
     rng = random.Random(cfg.seed)
     order = list(range(len(data.steps)))
-    model.train()
-    for _ in range(cfg.epochs):
+    scores: list[float] = []
+    best: tuple[float, int, dict] | None = None
+    for epoch in range(cfg.epochs):
+        model.train()
         rng.shuffle(order)
         for i in range(0, len(order), cfg.batch_size):
             batch = torch.tensor(order[i:i + cfg.batch_size])
@@ -193,7 +215,13 @@ def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels,
             opt.zero_grad()
             loss.backward()
             opt.step()
-    return model.eval()
+        if val is not None and val.steps:
+            scores.append(clip_score(model, val, labels))
+            if best is None or scores[-1] > best[0]:
+                best = (scores[-1], epoch, copy.deepcopy(model.state_dict()))
+    if best is not None:
+        model.load_state_dict(best[2])
+    return ClipTraining(model.eval(), best[1] if best else None, scores)
 
 
 @torch.no_grad()

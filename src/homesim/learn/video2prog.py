@@ -1,9 +1,10 @@
 """Video -> program: the text model's decoder and training code over clip features.
 
-An episode is read as the sequence of its 2-second clips' features (a trained clip model's
-TRN feature, `homesim.learn.clips`); `Seq2Seq` with `feature_dim` set encodes that sequence
-with its video encoder and decodes steps exactly as for descriptions, so MLE, policy
-gradient (`homesim.learn.train`) and constrained decoding are shared.
+An episode is read as the sequence of its 2-second clips' features (the RGB TRN clip
+model's feature over the frame CNN's descriptors, `homesim.learn.clips`); `Seq2Seq` with
+`feature_dim` set encodes that sequence with its video encoder and decodes steps exactly
+as for descriptions, so MLE, policy gradient (`homesim.learn.train`) and constrained
+decoding are shared.
 """
 
 from __future__ import annotations
@@ -24,13 +25,14 @@ VIDEO_SIZES = {"word_dim": 64, "hidden": 100, "step_dim": 100}
 """Sizes of the video model (the clip features are projected to `word_dim`)."""
 
 
-def episode_features(model: ClipModel, ep: Episode, kind: str) -> torch.Tensor:
-    """(clips, feature): features of the episode's consecutive 2-second windows."""
+def episode_features(model: ClipModel, ep: Episode, vectors: np.ndarray) -> torch.Tensor:
+    """(clips, feature): features of the episode's consecutive 2-second windows, from its
+    frame descriptors `vectors`."""
     length = max(1, round(CLIP_SECONDS * ep.fps))
     starts = list(range(0, max(1, len(ep.step) - length + 1), length))
-    inputs = np.stack([clip_inputs(ep, a, min(a + length, len(ep.step)), kind)
+    inputs = np.stack([clip_inputs(vectors, a, min(a + length, len(ep.step)))
                        for a in starts])
-    return clip_features(model, torch.from_numpy(inputs))
+    return clip_features(model, torch.from_numpy(inputs.astype(np.float32)))
 
 
 @dataclass

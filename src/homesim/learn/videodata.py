@@ -1,8 +1,9 @@
 """Episodes of an activity data set (`homesim dataset generate`) held small for learning.
 
-Each episode keeps, per frame, its RGB image average-pooled to `FRAME_SIZE` and the
-share of pixels of every object class (the *oracle perception* input: the ground-truth
-class segmentation instead of RGB), with the step each frame shows. 2-second clips are
+Each episode keeps, at the clip models' `VideoFormat` (`homesim.learn.videocache`: frame
+rate and size, cached per shard), its RGB frames and per frame the share of pixels of every
+object class (the *oracle perception* input: the ground-truth class segmentation instead of
+RGB), with the step each frame shows. 2-second clips are
 cut from it, labelled with the step they mostly show; the whole episode is a
 video -> program example.
 """
@@ -16,13 +17,12 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.dataset.read import read_episodes
+from homesim.dataset.layout import Layout
 from homesim.errors import HomesimError
 from homesim.learn.data import Example
+from homesim.learn.videocache import VideoFormat, shard_episodes
 from homesim.program.parse import parse_program
 
-FRAME_SIZE = (24, 32)
-"""(height, width) of the frames the clip models read."""
 CLIP_SECONDS = 2.0
 _INSTANCE = re.compile(r"\s*\(\d+\)")
 
@@ -63,64 +63,49 @@ class Episode:
         return out
 
 
-def _pool(rgb: np.ndarray) -> np.ndarray:
-    """(T, H, W, 3) uint8 -> (T, 3, h, w) uint8 averaged over blocks to `FRAME_SIZE`."""
-    t, height, width, _ = rgb.shape
-    h, w = FRAME_SIZE
-    if height % h or width % w:
-        raise HomesimError(f"frames of {width}x{height} do not pool to {w}x{h}: generate "
-                           f"with a size that is a multiple of it (e.g. --width 64 --height 48)")
-    blocks = rgb.reshape(t, h, height // h, w, width // w, 3).mean((2, 4))
-    return blocks.transpose(0, 3, 1, 2).round().astype(np.uint8)
-
-
-def _class_shares(classes: np.ndarray, names: list[str], index: dict[str, int]) -> np.ndarray:
-    """(T, H, W) per-episode class ids -> (T, len(index)) pixel shares of global classes."""
-    local_to_global = np.array([index.get(n, 0) for n in names], np.int64)
-    ids = local_to_global[np.clip(classes, 0, len(names) - 1)]
-    t = ids.shape[0]
-    out = np.zeros((t, len(index)), np.float32)
-    for i in range(t):
-        out[i] = np.bincount(ids[i].ravel(), minlength=len(index))[:len(index)]
-    return out / max(1, ids[0].size)
-
-
 def class_index(names: list[str]) -> dict[str, int]:
     """Global class name -> column (0 is background and unknown classes)."""
     return {n: i for i, n in enumerate(["background", *sorted(set(names) - {"background"})])}
 
 
-def _read(folders: list[Path]) -> list[dict]:
-    """Episodes of the folders; with several, keys become ``<folder name>/<key>``."""
-    raw = []
-    for folder in folders:
-        got = list(read_episodes(folder, ("rgb", "class")))
-        if not got:
-            raise HomesimError(f"{folder}: no finished shards (run 'homesim dataset generate')")
-        for r in got:
-            r["key"] = f"{folder.name}/{r['key']}" if len(folders) > 1 else r["key"]
-        raw += got
-    return raw
+def _global_shares(shares: np.ndarray, names: list[str], index: dict[str, int]
+                   ) -> np.ndarray:
+    """(T, local classes) shares -> (T, len(index)) shares of the global columns."""
+    columns = np.zeros((len(names), len(index)), np.float32)
+    columns[np.arange(len(names)), [index.get(n, 0) for n in names]] = 1.0
+    return shares @ columns
 
 
-def load_episodes(source: Path | str) -> tuple[list[Episode], dict[str, int]]:
-    """Every episode of a data set folder, or of several separated by commas (needs the
-    rgb and class modalities)."""
+def _folder_episodes(folder: Path, fmt: VideoFormat, cache: Path | None) -> list[dict]:
+    """The reduced episodes of a data set folder's finished shards (a run still going
+    gives the shards written so far)."""
+    if not (folder / "dataset.json").is_file():
+        raise HomesimError(f"{folder}: not a data set folder (run 'homesim dataset generate')")
+    layout = Layout(folder)
+    out = [e for s in layout.finished_shards()
+           for e in shard_episodes(layout.shards / s["name"], s["sha256"], fmt, cache)]
+    if not out:
+        raise HomesimError(f"{folder}: no finished shards (run 'homesim dataset generate')")
+    return out
+
+
+def load_episodes(source: Path | str, fmt: VideoFormat | None = None,
+                  cache: Path | None = None) -> tuple[list[Episode], dict[str, int]]:
+    """Every episode of a data set folder, or of several separated by commas (keys become
+    ``<folder name>/<key>``), at `fmt` (`videocache`; reduced shards are kept in `cache`).
+    Needs the rgb and class modalities."""
+    fmt = fmt or VideoFormat()
     folders = [Path(p) for p in str(source).split(",")]
-    raw = _read(folders)
-    folder = source
-    index = class_index([n for r in raw for n in r["meta"]["classes"]])
+    raw = [(folder, r) for folder in folders for r in _folder_episodes(folder, fmt, cache)]
+    index = class_index([n for _, r in raw for n in r["meta"]["classes"]])
     episodes = []
-    for r in raw:
+    for folder, r in raw:
         meta = r["meta"]
-        if "class" not in r or "rgb" not in r:
-            raise HomesimError(f"{folder}: episodes need --modalities rgb,class")
-        if meta["gt_stride"] != 1:
-            raise HomesimError(f"{folder}: class maps are needed on every frame (--gt-stride 1)")
+        key = f"{folder.name}/{meta['key']}" if len(folders) > 1 else meta["key"]
         program = parse_program(f"{meta['title']}\n{meta['description']}\n\n{meta['program']}")
-        example = Example(r["key"], program, source=str(folder), home=meta["home"])
+        example = Example(key, program, source=str(folder), home=meta["home"])
         episodes.append(Episode(
-            r["key"], meta["home"], meta["agent"], int(meta["fps"]), _pool(r["rgb"]),
-            _class_shares(r["class"], meta["classes"], index), np.asarray(r["step"], np.int64),
-            [s["step"] for s in meta["steps"]], example))
+            key, meta["home"], meta["agent"], int(meta["fps"]), r["frames"],
+            _global_shares(r["shares"], meta["classes"], index), r["step"], meta["steps"],
+            example))
     return episodes, index

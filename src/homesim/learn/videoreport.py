@@ -3,67 +3,103 @@ the description -> program tables around it are left as they are."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from homesim.files import write_text
+from homesim.learn.videosplits import TEST_ROWS
 
 START = "<!-- table2:start -->"
 END = "<!-- table2:end -->"
-PAPER_CLIPS = {"seen homes": (70.3, 23.8), "unseen homes": (31.3, 11.5)}
-"""The paper's TRN clip accuracy (action, steps), Table 2 left."""
-PAPER_PROGRAMS = {"PG (LCS+Sim), seen homes": (".341 / .364 / .358 steps (the paper's three "
-                                                "rows)", "19.4 / 19.0 / 22.4")}
-COMMAND = ("nice homesim dataset generate --n 72 --width 64 --height 48 --fps 8 "
-           "--modalities rgb,class --homes scene1,scene2,scene3,scene4,scene5,gen-0 "
-           "--shard-size 4 --workers 0 --out /tmp/video/vid72   # stopped after 40 episodes\n"
-           "    nice homesim dataset generate --n 40 --seed 1 --width 64 --height 48 --fps 8 "
-           "--modalities rgb,class --homes scene1,scene2,scene3,scene4 --shard-size 4 "
-           "--workers 0 --out /tmp/video/vidseen40   # stopped after 16 episodes\n"
-           "    nice homesim learn train --task video2prog "
-           "--data /tmp/video/vid72,/tmp/video/vidseen40 --out out/video --force\n"
-           "    nice homesim learn eval --task video2prog --runs out/video "
-           "--markdown docs/results.md")
-"""How the recorded table was made (generation was stopped when the time ran out: the
-finished shards are the data set; episodes depend only on their index and seed)."""
-PARTS = {"test-seen": "seen homes", "test-unseen": "unseen homes"}
+PAPER_CLIPS = {"seen": (70.3, 23.8), "unseen-homes": (31.3, 11.5)}
+"""The paper's TRN clip accuracy (action, steps), Table 2 left, by our test row."""
+GENERATE_OPTIONS = ("n", "seed", "width", "height", "fps", "gt_stride", "shard_size",
+                    "programs")
+
+
+def generate_command(folder: str) -> str:
+    """The `homesim dataset generate` command that made a data set folder (from its
+    dataset.json), or a note when it has none."""
+    path = Path(folder) / "dataset.json"
+    try:
+        config = json.loads(path.read_text(encoding="utf-8"))["config"]
+    except (OSError, ValueError, KeyError):
+        return f"# {folder}: no dataset.json here"
+    options = [f"--{k.replace('_', '-')} {config[k]}" for k in GENERATE_OPTIONS if k in config]
+    options += [f"--modalities {','.join(config['modalities'])}",
+                f"--homes {','.join(config['homes'])}"]
+    return f"nice homesim dataset generate {' '.join(options)} --out {folder}"
+
+
+def commands(result: dict) -> list[str]:
+    """The commands that make the data, train and score this table."""
+    cfg = result["train"]["config"]
+    seeds = cfg["seeds"]
+    runs = result.get("runs", "out/video")
+    train = (f"nice homesim learn train --task video2prog --data {cfg['data']} --out {runs} "
+             f"--seed {seeds[0]} --seeds {len(seeds)} --frame-size {cfg['frame_size']} "
+             f"--clip-epochs {cfg['clip_epochs']} --mle-epochs {cfg['mle_epochs']} "
+             f"--pg-epochs {cfg['pg_epochs']} --batch-size {cfg['batch_size']} --force")
+    return [*(generate_command(f) for f in cfg["data"].split(",")), train,
+            f"nice homesim learn eval --task video2prog --runs {runs} "
+            "--markdown docs/results.md"]
+
+
+def _value(cell: dict, fmt: str) -> str:
+    """mean, or mean ± sd over several seeds."""
+    text = format(cell["mean"], fmt)
+    return text + (f" ± {format(cell['sd'], fmt)}" if len(cell["values"]) > 1 else "")
 
 
 def _clip_lines(result: dict) -> list[str]:
-    lines = ["| Method | Homes | Clips | Action | Steps |", "|---|---|---:|---:|---:|"]
-    for part, homes in PARTS.items():
-        for row, s in result["clips"].get(part, {}).items():
-            lines.append(f"| {row} | {homes} | {s['n']} | {s['action']:.1f} | "
-                         f"{s['step']:.1f} |")
-        paper = PAPER_CLIPS[homes]
-        lines.append(f"| *paper: TRN* | {homes} | | *{paper[0]}* | *{paper[1]}* |")
+    lines = ["| Method | Test episodes | Clips | Action | Steps |", "|---|---|---:|---:|---:|"]
+    for row, (label, _) in TEST_ROWS.items():
+        for method, s in result["clips"].get(row, {}).items():
+            lines.append(f"| {method} | {label} | {s['n']} | {_value(s['action'], '.1f')} | "
+                         f"{_value(s['step'], '.1f')} |")
+        if row in PAPER_CLIPS:
+            paper = PAPER_CLIPS[row]
+            lines.append(f"| *paper: TRN* | {label} | | *{paper[0]}* | *{paper[1]}* |")
     return lines
 
 
 def _program_lines(result: dict) -> list[str]:
-    lines = ["| Method | Homes | Episodes | Action | Objects | Steps | Mean | Simulator % |",
-             "|---|---|---:|---:|---:|---:|---:|---:|"]
-    for part, homes in PARTS.items():
-        for row, s in result["programs"].get(part, {}).items():
-            lines.append(f"| {row} | {homes} | {s['n']} | {s['action']:.3f} | "
-                         f"{s['objects']:.3f} | {s['steps']:.3f} | {s['mean']:.3f} | "
-                         f"{s['simulator']:.1f} |")
+    lines = ["| Method | Test episodes | Episodes | Action | Objects | Steps | Mean | "
+             "Simulator % |", "|---|---|---:|---:|---:|---:|---:|---:|"]
+    for row, (label, _) in TEST_ROWS.items():
+        for method, s in result["programs"].get(row, {}).items():
+            cells = [_value(s[m], ".3f") for m in ("action", "objects", "steps", "mean")]
+            lines.append(f"| {method} | {label} | {s['n']} | {' | '.join(cells)} | "
+                         f"{_value(s['simulator'], '.1f')} |")
     return lines
+
+
+def _times(train: dict) -> str:
+    """Per-model training wall time, mean over seeds."""
+    per_seed = list(train["train_seconds"].values())
+    names = per_seed[0].keys() if per_seed else []
+    each = ", ".join(f"{k} {sum(s[k] for s in per_seed) / len(per_seed):.0f} s" for k in names)
+    return (f"reading the data {train['load_seconds']:.0f} s; per seed {each}; all seeds "
+            f"and reading {train['total_seconds']:.0f} s")
 
 
 def table2_markdown(result: dict, machine: str) -> str:
     """The section: how it was made, both halves, wall times."""
     train = result["train"]
     cfg = train["config"]
-    times = ", ".join(f"{k} {v:.0f} s" for k, v in train["train_seconds"].items())
     sizes = ", ".join(f"{k} {v} episodes / {train['clips'][k]} clips"
                       for k, v in train["episodes"].items())
     return "\n".join([
         START, "# Table 2: videos to programs (small CPU scale)", "",
         "Generated by `homesim learn eval --task video2prog`; regenerate with", "",
-        f"    {COMMAND}", "",
-        f"Data: `{cfg['data']}`; split (`homesim.learn.videosplits`): {sizes}. "
-        f"Seed {cfg['seed']}; clip epochs {cfg['clip_epochs']}, MLE epochs "
-        f"{cfg['mle_epochs']}, PG epochs {cfg['pg_epochs']}. Measured on: {machine}.", "",
+        *(f"    {c}" for c in commands(result)), "",
+        f"Data: `{cfg['data']}`, frames reduced to {cfg['frame_size']} at {cfg['fps']} "
+        f"frames/s; split (`homesim.learn.videosplits`): {sizes} ({train['train_clips']} "
+        f"training clips with the 1-s hop). Seeds {', '.join(map(str, cfg['seeds']))} "
+        "(mean ± sample sd over seeds; the split is the same for every seed); clip epochs "
+        f"{cfg['clip_epochs']}, MLE epochs {cfg['mle_epochs']}, PG epochs {cfg['pg_epochs']}"
+        " (each model keeps its best epoch on the validation home, scene5). "
+        f"Measured on: {machine}.", "",
         "## Left: step recognition in 2-second clips (mean per-class accuracy, %)", "",
         *_clip_lines(result), "",
         "## Right: whole videos to programs (LCS; Simulator % executes in the episode's "
@@ -71,7 +107,7 @@ def table2_markdown(result: dict, machine: str) -> str:
         *_program_lines(result), "",
         "Paper, PG (LCS+Sim): steps LCS .341 / .364 / .358 and Simulator 19.4 / 19.0 / 22.4 %"
         " (its three rows: all, seen, unseen homes).", "",
-        f"Training wall time: {times}; evaluation {result['eval_seconds']:.0f} s.", "",
+        f"Wall time: {_times(train)}; evaluation {result['eval_seconds']:.0f} s.", "",
         "See docs/learn.md (\"Videos to programs\") for the method and how these compare "
         "with the paper.", END, ""])
 
