@@ -91,7 +91,7 @@ def test_reduced_shards_are_cached(tiny_video, tmp_path):
 
     fmt = VideoFormat(16, 12, 4)
     first, index = load_episodes(tiny_video, fmt, tmp_path)
-    assert len(list(tmp_path.glob("*-16x12@4-v*.npz"))) == 1
+    assert len(list(tmp_path.glob("16x12@4/*.npz"))) == 4  # one per episode
     again, _ = load_episodes(tiny_video, fmt, tmp_path)
     assert [e.key for e in again] == [e.key for e in first]
     assert all(np.array_equal(a.frames, b.frames) and np.array_equal(a.classes, b.classes)
