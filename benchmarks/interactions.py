@@ -5,10 +5,11 @@ as `homesim render` runs it: prepared and grounded in a built-in home (scene1..s
 turn), executed, animated with grounding's standing spots (`homesim.render.api.prepare`).
 Printed:
 
-(a) the largest distance between the hand (its grip point, the ``{side}_hand`` site inside
-    the closed fist) and the grabbed object's box at the frame it is taken (goal <= 2 cm; the
-    object does not move before: it rides from where the hand touched it), the wrist
-    joint's distance then, and the largest distance a put object moves when let go;
+(a) the largest distance between the wrist joint (the ``j:{side}_wrist`` keypoint, the
+    heel of the hand) and the grabbed object's box at the frame it is taken (goal <= 2 cm;
+    the palm lies on the object, `homesim.render.interact.palm_grasp`; the object does not
+    move before: it rides from where the hand touched it), the palm's contact point's
+    distance then, and the largest distance a put object moves when let go;
 (b) the share of interaction steps (hands on an object: reach, use_held and let_go
     motions) whose object covers >= 0.5 % of the frame at the step's effect (the frame
     the hand arrives), drawn from the camera the recording uses then (goal >= 90 %);
@@ -118,16 +119,18 @@ def main() -> int:
         cover += m["cover"]
         mouth += m["mouth"]
         rooms += m["rooms_ok"]
-        print(f"real program #{k} in {home}: grabs {len(m['attach'])}, largest hand-object "
-              f"gap {max(m['attach'], default=0) * 100:.1f} cm; interactions "
+        print(f"real program #{k} in {home}: grabs {len(m['attach'])}, largest wrist-object "
+              f"gap {max(m['wrist'], default=0) * 100:.1f} cm (palm "
+              f"{max(m['attach'], default=0) * 100:.1f} cm); interactions "
               f"{len(m['cover'])}, covered >= 0.5 %: "
               f"{sum(c >= COVER for c in m['cover'])}", flush=True)
     a = np.array(attach)
+    w = np.array(wrist)
     c = np.array(cover)
-    print(f"\n(a) grabs: {len(a)}; largest hand-to-object distance at attach "
-          f"{a.max() * 100:.2f} cm (goal <= 2 cm; median {np.median(a) * 100:.2f} cm); "
-          f"over 2 cm: {int((a > 0.02).sum())}; the wrist joint then: largest "
-          f"{max(wrist) * 100:.1f} cm, median {np.median(wrist) * 100:.1f} cm")
+    print(f"\n(a) grabs: {len(w)}; largest wrist-to-object distance at attach "
+          f"{w.max() * 100:.2f} cm (goal <= 2 cm; median {np.median(w) * 100:.2f} cm); "
+          f"over 2 cm: {int((w > 0.02).sum())}; the palm's contact point then: largest "
+          f"{a.max() * 100:.2f} cm, median {np.median(a) * 100:.2f} cm")
     if release:
         print(f"    puts: {len(release)}; largest move of a put object when let go "
               f"{max(release) * 100:.2f} cm")

@@ -81,6 +81,11 @@ disk frame by frame, so it may be far longer than what one API request renders
 (`MAX_RENDER_PIXEL_FRAMES`), but not unbounded: a 1000-step program at 4096x4096 and 240
 fps would run for days and fill the disk."""
 
+MAX_WALK_CELLS = 16_000_000
+"""Most cells of the walk grid the renderer plans paths on (10 cm cells: a floor of
+400 m x 400 m; an apartment has ~30 000). A home spread wider is refused before the grid
+is allocated (a 1 byte per cell array)."""
+
 RENDER_WORKERS = 1
 """Render requests that run at the same time (each holds an OpenGL context)."""
 

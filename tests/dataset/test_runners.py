@@ -10,17 +10,19 @@ def test_ray_tasks_make_the_same_bytes_as_the_serial_run(tiny_dataset, program_f
     assert tree_hashes(out) == tree_hashes(tiny_dataset)
 
 
-def test_longest_episodes_are_submitted_first():
-    from homesim.dataset.runners import longest_last
+def test_episodes_go_in_order_then_the_last_ones_longest_first():
+    from homesim.dataset.runners import submission_stack
     from homesim.dataset.spec import EpisodeSpec
 
     def spec(index: int, steps: int) -> EpisodeSpec:
         program = "Title\nDescription\n\n" + "\n".join(["[Walk] <sofa> (1)"] * steps)
         return EpisodeSpec(index, f"p{index}", program, "scene1", "male1", 0, 0, 0, 0, 1.0)
 
-    order = longest_last([spec(0, 2), spec(1, 5), spec(2, 1), spec(3, 5)])
-    taken = [order.pop().index for _ in range(4)]
-    assert taken == [1, 3, 0, 2]
+    specs = [spec(0, 1), spec(1, 2), spec(2, 5), spec(3, 1), spec(4, 5)]
+    stack = submission_stack(specs, tail=3)
+    assert [stack.pop().index for _ in range(5)] == [0, 1, 2, 4, 3]
+    stack = submission_stack(specs, tail=10)
+    assert [stack.pop().index for _ in range(5)] == [2, 4, 1, 0, 3]
 
 
 def test_cpu_tasks_rasterize_in_their_own_thread():

@@ -216,3 +216,35 @@ def test_fridge_door_swings_with_the_hand_on_its_handle(animated):
     angles = [tl.qpos[f][hinge] for f in range(opening.start, opening.peak + 1)]
     assert angles[0] == 0.0 and abs(angles[-1] - scene.hinge_open[23]) < 1e-9
     assert len({round(a, 3) for a in angles}) > 5  # it swings over several frames
+
+
+def _wrist_in_body(scene, q, side):
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = q
+    mujoco.mj_kinematics(scene.model, d)
+    root = scene.model.body("agent").id
+    rot = d.xmat[root].reshape(3, 3)
+    return rot.T @ (d.site(f"j:{side}_wrist").xpos - d.xpos[root])
+
+
+def test_palm_grasp_brings_the_wrist_to_the_object_and_the_arm_never_snaps(animated):
+    """The palm lies on the cup (the wrist joint within 2 cm of its box when it is taken)
+    and the arm moves smoothly from the reach to carrying it and on to the put."""
+    from homesim.render.interact import box_gap
+    from homesim.render.layout import Box
+
+    g, scene, tl = animated
+    (grab,) = tl.attaches
+    d = mujoco.MjData(scene.model)
+    d.qpos[:] = tl.qpos[grab.frame]
+    mujoco.mj_kinematics(scene.model, d)
+    cup = Box(tl.mocap[grab.frame][scene.mocap[21]], to_mujoco(g.node(21)).half)
+    assert box_gap(cup, d.site("j:r_wrist").xpos) <= 0.02
+    assert box_gap(cup, d.site("r_palm").xpos) <= 0.01
+    start, end = tl.step_frames[1][0], tl.step_frames[6][1]
+    wrist = [_wrist_in_body(scene, tl.qpos[f], "r") for f in range(start, end + 1)]
+    moves = np.linalg.norm(np.diff(wrist, axis=0), axis=1)
+    # a snap is one frame's move far above both neighbours' (carrying used to snap in:
+    # 0.38 m in one frame between still ones)
+    spikes = moves[1:-1] - np.maximum(moves[:-2], moves[2:])
+    assert spikes.max() < 0.06, spikes.max()

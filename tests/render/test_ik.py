@@ -20,3 +20,23 @@ def test_reaches_a_point_in_front_and_reports_what_it_cannot(box_home):
     assert reached.x == pose.x and reached.yaw == pose.yaw  # only the arm and spine move
     _, far = ik.reach(pose, "l", np.array([3.0, 0.0, 1.0]))
     assert far > 1.5
+
+
+def test_grasp_puts_the_palm_on_the_point_facing_the_object(box_home):
+    from homesim.render.ik import Grasp
+
+    shape = AGENTS["female1"]
+    ik = ArmIK(build_scene(box_home, shape, max_size=(32, 24)))
+    pose = standing(shape, (0.0, 0.0), 0.0)
+    grasp = Grasp(np.array([0.42, -0.25, 0.95]), np.array([0.0, 1.0, 0.0]),
+                  np.array([1.0, 0.0, 0.0]))
+    reached, err = ik.grasp(pose, "r", grasp)
+    assert err < 0.01
+    np.testing.assert_allclose(ik.site(reached, "r_palm"), grasp.point, atol=0.01)
+    _, rot = ik.hand_frame(reached, "r")
+    assert rot[:, 1] @ grasp.palm > 0.95  # the right palm (+y of the hand) faces +y
+    assert -rot[:, 2] @ grasp.fingers > 0.9  # fingers forward
+    wrist = ik.site(reached, "j:r_wrist")
+    assert abs(wrist[1] - grasp.point[1]) < 0.025  # the wrist lies by the face, not behind
+    assert any(abs(reached.joints.get(f"r_wrist_{j}", 0.0)) > 0.05
+               for j in ("twist", "flex", "dev"))

@@ -87,3 +87,22 @@ def test_agent_walks_to_grounding_spots_in_generated_homes(seed, text):
     for i in walks:
         end = timeline.qpos[timeline.step_frames[i][1]][:2]
         assert np.hypot(*(end - np.array(spots[i]))) < 0.05, (i, end, spots[i])
+
+
+
+def test_a_floor_too_wide_to_grid_is_refused_before_allocation():
+    from homesim.errors import LimitError
+    from homesim.world.graph import EnvironmentGraph
+    from tests.render.conftest import _box, box_home_dict
+
+    data = box_home_dict()  # and a second room 9 km away along both axes
+    data["nodes"] += [
+        {"id": 90, "class_name": "bedroom", "category": "Rooms",
+         "bounding_box": _box((9000, 1.25, 9000), (4.1, 2.5, 4.1))},
+        {"id": 91, "class_name": "floor", "category": "Floors",
+         "bounding_box": _box((9000, 0, 9000), (4, 0, 4))}]
+    data["edges"].append({"from_id": 91, "to_id": 90, "relation_type": "INSIDE"})
+    layout = build_layout(EnvironmentGraph.from_dict(data, source="huge home"))
+    with pytest.raises(LimitError, match="MAX_WALK_CELLS") as err:
+        build_grid(layout)
+    assert err.value.limit == "MAX_WALK_CELLS"

@@ -4,7 +4,7 @@ An episode is one WebDataset sample: members ``KEY.json`` (spec, program, steps,
 cameras), ``KEY.mp4`` (RGB, H.264), ``KEY.NNNNNN.<map>.png`` per frame (depth, class,
 instance, flow; `homesim.dataset.encode`) and ``KEY.<array>.npy`` per-frame arrays (pose,
 cameras, step of each frame). The frames stream from the recorder straight into the tar:
-memory holds one frame, never the episode.
+memory holds one frame and the compressed video, never the episode's images.
 """
 
 from __future__ import annotations
@@ -25,20 +25,14 @@ from homesim.dataset import encode
 from homesim.dataset.randomize import Move, Start, move_character, move_objects
 from homesim.dataset.spec import FORMAT, DatasetConfig, EpisodeSpec
 from homesim.dataset.tarfiles import MemberHash, add_member, open_writer
+from homesim.dataset.video import H264Writer
 from homesim.errors import HomesimError
-from homesim.files import atomic_write, temp_dir
+from homesim.files import atomic_write
 from homesim.ground.kbtypes import default_kb
 from homesim.ground.pipeline import Run, run_program
 from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
-
-VIDEO_CRF = 18
-"""x264 constant rate factor of the RGB video (lower is better; 18 is near-transparent)."""
-VIDEO_OPTIONS = ["-preset", "veryfast", "-crf", str(VIDEO_CRF), "-threads", "1",
-                 "-fflags", "+bitexact", "-flags:v", "+bitexact"]
-"""One encoder thread and bit-exact muxing: the same frames give the same bytes on any
-machine with the same ffmpeg (x264's output depends on its thread count)."""
 
 ARRAYS = ("camera", "intrinsics", "world_to_cam", "joints3d", "joints2d", "joints_visible",
           "cut", "step")
@@ -113,8 +107,8 @@ def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> 
     `Outcome` with its reason, never an exception (Ctrl-C and kills still stop it)."""
     t0 = time.perf_counter()
     try:
-        with atomic_write(path, "wb") as f, temp_dir(path.parent, "video") as tmp:
-            outcome = write_episode(spec, config, f, tmp)
+        with atomic_write(path, "wb") as f:
+            outcome = write_episode(spec, config, f)
     except EpisodeFailed as e:
         outcome = Outcome(spec.key, spec.index, False, e.stage, _one_line(e.reason))
     except HomesimError as e:
@@ -131,9 +125,8 @@ def _one_line(text: str) -> str:
     return " ".join(text.split())[:500]
 
 
-def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any, tmp: Path) -> Outcome:
-    """Ground, animate and record the episode into a tar stream; `tmp` holds the video
-    while it is encoded."""
+def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any) -> Outcome:
+    """Ground, animate and record the episode into a tar stream."""
     from homesim.render.api import _check_length, _check_size, prepare
     from homesim.render.recorder import record
     from homesim.render.renderer import Renderer
@@ -147,7 +140,7 @@ def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any, tmp: P
         fps=config.fps, seed=spec.render_seed, bindings=None, agent=spec.agent,
         standing=grounding.standing, speed=spec.speed)
     _check_length(len(timeline), config.width, config.height)
-    writer = _EpisodeWriter(spec, config, fileobj, tmp)
+    writer = _EpisodeWriter(spec, config, fileobj)
     writer.start(_meta(spec, config, home, scene, timeline, agent), scene)
     with Renderer(scene, config.width, config.height) as renderer:
         for truth in record(scene, timeline, renderer):
@@ -158,14 +151,13 @@ def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any, tmp: P
 class _EpisodeWriter:
     """Streams an episode's members into a tar (see the module docstring)."""
 
-    def __init__(self, spec: EpisodeSpec, config: DatasetConfig, fileobj: Any, tmp: Path):
+    def __init__(self, spec: EpisodeSpec, config: DatasetConfig, fileobj: Any):
         self.spec, self.config = spec, config
         self.tar: tarfile.TarFile = open_writer(fileobj)
         self.hash = MemberHash()
         self.sizes: dict[str, int] = {}
         self.arrays: dict[str, list[Any]] = {k: [] for k in ARRAYS if k != "step"}
-        self.video_path = tmp / "rgb.mp4"
-        self.video: Any = None
+        self.video: H264Writer | None = None
         self.instance_index: dict[int, int] = {}
 
     def put(self, suffix: str, data: bytes, modality: str) -> None:
@@ -178,17 +170,11 @@ class _EpisodeWriter:
         self.instance_index = {item["node_id"]: item["index"] for item in meta["instances"]}
         self.put("json", json.dumps(meta, indent=1, sort_keys=True).encode(), "json")
         if "rgb" in self.config.modalities:
-            import imageio_ffmpeg
-
-            self.video = imageio_ffmpeg.write_frames(
-                str(self.video_path), (self.config.width, self.config.height),
-                fps=self.config.fps, codec="libx264", pix_fmt_out="yuv420p", quality=None,
-                macro_block_size=1, ffmpeg_log_level="error", output_params=VIDEO_OPTIONS)
-            self.video.send(None)
+            self.video = H264Writer(self.config.width, self.config.height, self.config.fps)
 
     def add(self, truth: Any, total: int) -> None:
         if self.video is not None:
-            self.video.send(np.ascontiguousarray(truth.rgb))
+            self.video.add(truth.rgb)
         for name in self.arrays:
             self.arrays[name].append(getattr(truth, name))
         if truth.index % self.config.gt_stride:
@@ -208,8 +194,7 @@ class _EpisodeWriter:
 
     def finish(self, step_frames: list[tuple[int, int]]) -> Outcome:
         if self.video is not None:
-            self.video.close()
-            self.put("mp4", self.video_path.read_bytes(), "rgb")
+            self.put("mp4", self.video.close(), "rgb")
         total = len(self.arrays["camera"])
         for name, values in self.arrays.items():
             self.put(f"{name}.npy", _npy(np.asarray(values, _DTYPES[name])), "pose")

@@ -19,14 +19,13 @@ from __future__ import annotations
 
 import io
 import json
-import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from homesim.dataset import encode
+from homesim.dataset import encode, video
 from homesim.dataset.episode import ARRAYS
 from homesim.dataset.layout import Layout
 from homesim.dataset.verify import iter_episodes
@@ -37,18 +36,11 @@ MAPS = ("depth", "class", "instance", "flow")
 
 def iter_video(data: bytes, width: int, height: int) -> Iterator[np.ndarray]:
     """The (H, W, 3) uint8 frames of an H.264 mp4 given as bytes, one at a time."""
-    import imageio_ffmpeg
-
-    with tempfile.NamedTemporaryFile(suffix=".mp4") as f:
-        f.write(data)
-        f.flush()
-        reader = imageio_ffmpeg.read_frames(f.name, pix_fmt="rgb24")
-        try:
-            next(reader)  # the header
-            for b in reader:
-                yield np.frombuffer(b, np.uint8).reshape(height, width, 3)
-        finally:
-            reader.close()
+    for frame in video.iter_video(data):
+        if frame.shape[:2] != (height, width):
+            raise DataError(f"video frames are {frame.shape[1]}x{frame.shape[0]}, the "
+                            f"episode says {width}x{height}")
+        yield frame
 
 
 def decode_video(data: bytes, width: int, height: int) -> np.ndarray:

@@ -21,6 +21,8 @@ TASK_GPU = 0.25
 """GPU share per task where the cluster has GPUs (four renderers share one GPU with EGL)."""
 OBJECT_STORE_BYTES = 256 * 1024**2
 """Object store of a local Ray (its default takes 30% of the memory)."""
+TAIL_PER_SLOT = 4
+"""The last ``TAIL_PER_SLOT x slots`` episodes of a run are submitted longest first."""
 MAX_CALLS = 16
 """A Ray worker process is replaced after this many episodes: whatever a renderer leaks
 (GL contexts, caches) is given back."""
@@ -62,7 +64,7 @@ def ray_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
             num_cpus=1, num_gpus=TASK_GPU if gpus > 0 else 0, memory=TASK_MEMORY,
             max_retries=1, runtime_env={"env_vars": task_environment(gpus > 0)})
         slots = max(1, int(ray.cluster_resources().get("CPU", 1))) * 2
-        todo = longest_last(specs)
+        todo = submission_stack(specs, tail=TAIL_PER_SLOT * slots)
         pending: list = []
         while todo or pending:
             while todo and len(pending) < slots:
@@ -81,11 +83,14 @@ def task_environment(gpu: bool) -> dict[str, str]:
     return {"MUJOCO_GL": "egl"} if gpu else {"MUJOCO_GL": "osmesa", "LP_NUM_THREADS": "0"}
 
 
-def longest_last(specs: Sequence[EpisodeSpec]) -> list[EpisodeSpec]:
-    """The episodes in submission order from the end (``pop()`` takes the longest first):
-    long episodes start early so no worker is left with one at the end (LPT scheduling;
-    an episode's length is about its number of steps). Ties keep index order."""
-    return sorted(specs, key=lambda s: (program_steps(s.program), -s.index))
+def submission_stack(specs: Sequence[EpisodeSpec], tail: int) -> list[EpisodeSpec]:
+    """The episodes in submission order from the end (``pop()`` takes the next): in index
+    order, so shards complete one after another, except the last `tail`, which go longest
+    first so that no worker is left alone with a long one at the end (LPT scheduling; an
+    episode's length is about its number of steps; ties keep index order)."""
+    head, last = list(specs[:max(len(specs) - tail, 0)]), specs[max(len(specs) - tail, 0):]
+    ending = sorted(last, key=lambda s: (-program_steps(s.program), s.index))
+    return (head + ending)[::-1]
 
 
 def program_steps(text: str) -> int:

@@ -136,8 +136,17 @@ BODY_HINGES: tuple[str, ...] = (
     "l_sh_pitch", "l_sh_roll", "l_sh_yaw", "l_elbow",
     "r_sh_pitch", "r_sh_roll", "r_sh_yaw", "r_elbow",
     "l_hip_pitch", "l_hip_roll", "l_knee", "r_hip_pitch", "r_hip_roll", "r_knee",
+    "l_wrist_twist", "l_wrist_flex", "l_wrist_dev", "r_wrist_twist", "r_wrist_flex",
+    "r_wrist_dev",
 )
 """The hinges a pose sets by name (`Pose.joints`), radians."""
+
+WRIST_RANGE: dict[str, tuple[float, float]] = {
+    "wrist_twist": (-1.2, 1.2), "wrist_flex": (-0.9, 1.0), "wrist_dev": (-0.5, 0.5),
+}
+"""Wrist hinge ranges (radians): twist about the forearm (the forearm is round, so a twist
+there looks like the forearm's own), flexion toward the palm, deviation in the palm's
+plane."""
 
 FINGER_CLOSED: dict[str, tuple[float, float]] = {
     "fingers": (0.25, 1.45), "fingertips": (0.30, 1.35), "thumb": (0.20, 0.95),
@@ -372,9 +381,16 @@ def _arm_radius(s: AgentShape) -> float:
     return (0.046 if s.sex == "male" else 0.041) * s.scale * s.build ** 0.5
 
 
+PALM_HEEL = 0.025
+"""Metres (for a 1.75 m person) from the wrist to the palm's contact point (``{side}_palm``),
+on the palm's surface near its heel: a palm grasp puts this point against the object."""
+
+
 def _hand(side: str, s: AgentShape) -> str:
-    """Palm, a finger block in two segments and a thumb; the hand site sits inside
-    the closed fist."""
+    """The hand's body at the wrist: three wrist hinges (twist, flexion toward the palm,
+    deviation in the palm's plane), a palm, a finger block in two segments and a thumb.
+    Sites: ``{side}_hand`` inside the closed fist (held objects ride in its frame) and
+    ``{side}_palm`` on the palm's surface near its heel (where a grasp touches)."""
     k, fa = s.scale, s.forearm
     inward = -1.0 if side == "l" else 1.0  # toward the body: the palm side
     axis = "-1 0 0" if side == "l" else "1 0 0"
@@ -386,17 +402,24 @@ def _hand(side: str, s: AgentShape) -> str:
     thumb = _geom(f"{side}_thumb", "capsule", (0.011 * k,), skin,
                   fromto=(0.0, 0.0, 0.0, 0.010 * k, 0.0, -0.050 * k))
     lo, hi = 0.0, 1.7
+    flex, dev = WRIST_RANGE["wrist_flex"], WRIST_RANGE["wrist_dev"]
+    twist = WRIST_RANGE["wrist_twist"]
     return (
-        _geom(f"{side}_hand", "ellipsoid", (0.044 * k, 0.019 * k, 0.050 * k), skin,
-              pos=(0.0, 0.0, -fa - 0.045 * k))
-        + _site(f"{side}_hand", (0.0, inward * 0.030 * k, -fa - 0.085 * k))
-        + f'<body name="a:{side}_fingers" pos="0 0 {-fa - 0.088 * k:.4f}">'
+        f'<body name="a:{side}_hand" pos="0 0 {-fa:.4f}">'
+        + _hinge(f"{side}_wrist_twist", "0 0 1", *twist)
+        + _hinge(f"{side}_wrist_flex", axis, *flex)
+        + _hinge(f"{side}_wrist_dev", "0 1 0", *dev)
+        + _geom(f"{side}_hand", "ellipsoid", (0.044 * k, 0.019 * k, 0.050 * k), skin,
+                pos=(0.0, 0.0, -0.045 * k))
+        + _site(f"{side}_hand", (0.0, inward * 0.030 * k, -0.085 * k))
+        + _site(f"{side}_palm", (0.0, inward * 0.0175 * k, -PALM_HEEL * k))
+        + f'<body name="a:{side}_fingers" pos="0 0 {-0.088 * k:.4f}">'
         + _hinge(f"{side}_fingers", axis, lo, hi) + fingers
         + f'<body name="a:{side}_fingertips" pos="0 0 {-0.045 * k:.4f}">'
         + _hinge(f"{side}_fingertips", axis, lo, hi) + tips + "</body></body>"
         + f'<body name="a:{side}_thumb" pos="{0.034 * k:.4f} {inward * 0.010 * k:.4f} '
-        f'{-fa - 0.030 * k:.4f}">'
-        + _hinge(f"{side}_thumb", axis, lo, hi) + thumb + "</body>")
+        f'{-0.030 * k:.4f}">'
+        + _hinge(f"{side}_thumb", axis, lo, hi) + thumb + "</body></body>")
 
 
 def _arm(side: str, s: AgentShape) -> str:

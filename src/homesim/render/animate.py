@@ -23,8 +23,16 @@ from homesim.errors import ExecutionError
 from homesim.program.actions import ACTIONS
 from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
-from homesim.render.ik import ArmIK
-from homesim.render.interact import TOUCH, ReachPlanner, box_gap, surface_point
+from homesim.render.ik import ArmIK, Grasp
+from homesim.render.interact import (
+    TOUCH,
+    GraspOf,
+    ReachPlanner,
+    box_gap,
+    hand_room_clear,
+    palm_grasps,
+    surface_point,
+)
 from homesim.render.layout import SEAT_HEIGHT, Box, room_of_point
 from homesim.render.navigation import build_grid, plan_path
 from homesim.render.poses import (
@@ -180,6 +188,38 @@ class Animator:
             grip = self.props.grip.get(side, np.zeros(3))
             self.props.move(n, self.data.site_xpos[site] + rot @ grip)
 
+    def _carried(self, pose: Pose, side: str) -> Pose:
+        """`pose` as `emit` draws it when the `side` arm is not reaching: carrying what
+        that hand holds (standing or sitting upright)."""
+        if side in self.props.held and pose.tilt == 0.0:
+            return carrying(pose, side)
+        return pose
+
+    def ray_test(self, skip: tuple[int, ...] = ()) -> Callable[[np.ndarray, np.ndarray,
+                                                                  float], bool]:
+        """A test of whether a ray (start, unit direction, length) through the scene as it
+        is now meets nothing but the agent and the nodes `skip`."""
+        m, d = self.scene.model, self.data
+        d.qpos[:] = self.qpos
+        if m.nmocap:
+            d.mocap_pos[:] = self.props.mocap
+        mujoco.mj_kinematics(m, d)
+        ignore = {self.scene.character_id, *skip}
+        geom = np.zeros(1, np.int32)
+
+        def clear(start: np.ndarray, direction: np.ndarray, length: float) -> bool:
+            travelled = 0.0
+            while travelled < length:
+                hit = mujoco.mj_ray(m, d, start + travelled * direction, direction, None,
+                                    1, -1, geom)
+                if hit < 0 or travelled + hit >= length:
+                    return True
+                if int(self.scene.geom_node[geom[0]]) not in ignore:
+                    return False
+                travelled += hit + 1e-4
+            return True
+        return clear
+
     def hold(self, seconds: float, pose: Pose | None = None) -> None:
         for _ in range(max(1, round(seconds * self.fps))):
             self.emit(pose or self.pose)
@@ -249,8 +289,8 @@ class Animator:
     def reach(self, side: str, point: np.ndarray, seconds: float = 0.6,
               at_peak=None, during=None, back: bool = True, step: bool = True,
               nodes: tuple[int, ...] = (), hold: float = 0.15,
-              grip: np.ndarray | None = None, seed: Mapping[str, float] | None = None
-              ) -> Reached:
+              grip: np.ndarray | None = None, seed: Mapping[str, float] | None = None,
+              grasp_of: GraspOf | None = None) -> Reached:
         """Reach `point` with a hand, call `at_peak()`, hold `hold` seconds and come back.
 
         Standing, the agent first steps toward the point until the hand can touch it
@@ -258,17 +298,25 @@ class Animator:
         and moves the arm only).
         `nodes`: the objects acted on, recorded as an `Interaction` of the step. `grip`:
         bring the point held at this offset from the hand (a held object's centre) to
-        `point` rather than the hand. `seed`: joint angles the arm's IK starts from."""
+        `point` rather than the hand. `seed`: joint angles the arm's IK starts from.
+        `grasp_of`: take hold with the palm as it says (`palm_grasp`), the wrist turning."""
         if self.posture == "stand" and step:
-            plan = self.planner.plan(self.pose.xy, side, point, grip)
+            plan = self.planner.plan(self.pose.xy, side, point, grip, grasp_of)
             self.step_to(plan.pose.xy, point)
             reached = plan.pose
         else:
             if self.posture == "stand":
                 self.turn_to(point)
-            reached, _ = self.ik.reach(self.pose.with_joints(**(seed or {})), side, point,
-                                       grip, lean=step)
+            seeded = self.pose.with_joints(**(seed or {}))
+            if grasp_of is not None:
+                tries = [self.ik.grasp(seeded, side, g, lean=step)
+                         for g in grasp_of(self.pose.xy)]
+                reached = next((p for p, gap in tries if gap <= TOUCH),
+                               min(tries, key=lambda t: t[1])[0])
+            else:
+                reached, _ = self.ik.reach(seeded, side, point, grip, lean=step)
         rest = self.pose
+        self.pose = self._carried(rest, side)  # the arm starts where it was drawn
         self.reaching = frozenset({side})
         start = len(self.timeline)
         self.move_to(reached, seconds, during)
@@ -276,8 +324,9 @@ class Animator:
         if at_peak is not None:
             at_peak()
         self.hold(hold, reached)
-        if back:
-            self.move_to(rest, seconds * 0.8)
+        if back:  # to where the arm is drawn once the reach is over (carrying or not)
+            self.move_to(self._carried(rest, side), seconds * 0.8)
+            self.pose = rest
             self.reaching = frozenset()
         if nodes:
             self.note_interaction(nodes, side, start, peak)
@@ -604,16 +653,23 @@ def _grab(anim: Animator, ch: Changes) -> bool:
 
     def attach() -> None:
         hand, rot = anim.ik.hand_frame(anim.pose, side)
-        gap = box_gap(box, hand)
+        palm = anim.ik.site(anim.pose, f"{side}_palm")
+        gap = box_gap(box, palm)
         center = box.center
-        if gap > TOUCH:  # out of the arm's reach after all: it comes to the hand
-            center = box.center + hand - np.clip(hand, box.lo, box.hi)
+        if gap > TOUCH:  # out of the arm's reach after all: it comes to the palm
+            center = box.center + palm - np.clip(palm, box.lo, box.hi)
             props.move(obj, center)
         props.held[side] = obj
         props.grip[side] = rot.T @ (center - hand)
         anim.timeline.attaches.append(Attach(len(anim.timeline) - 1, obj, side, gap))
-    anim.reach(side, surface_point(box, anim.shoulder(side)), 0.6, at_peak=attach,
-               nodes=(obj,))
+
+    clear = anim.ray_test(skip=(obj,))
+
+    def grasp_of(xy: np.ndarray) -> list[Grasp]:
+        grasps = palm_grasps(box, side, xy)  # where the hand has room first
+        return sorted(grasps, key=lambda g: not hand_room_clear(g, clear))
+    anim.reach(side, grasp_of(anim.pose.xy)[0].point, 0.6, at_peak=attach, nodes=(obj,),
+               grasp_of=grasp_of)
     return True
 
 

@@ -3,12 +3,16 @@
 It moves the shoulder (3 hinges), the elbow and the spine (pitch and yaw) so that the hand
 site reaches a world point, using MuJoCo's site Jacobian on a scratch `MjData`. For low
 points the whole body can crouch first (`crouched`: hips and knees bent, pelvis lowered).
+A grasp (`Grasp`) also turns the hand: the wrist's three hinges join in, and the palm's
+contact site is brought to the point with the palm facing a given direction and the
+fingers pointing along another (rotation rows of the Jacobian, weighted below the
+position's).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -21,6 +25,25 @@ DAMPING = 0.05
 ITERATIONS = 80
 TOLERANCE = 0.004
 """Metres: the solver stops once the hand is this close to its target."""
+ORIENT_WEIGHT = (0.25, 0.12)
+"""Weights (metres per radian) of the palm's facing and the fingers' direction against the
+position error in a grasp."""
+ORIENT_TOLERANCE = 0.1
+"""Radians: a grasp's orientation is good enough below this (position first)."""
+
+
+@dataclass(frozen=True)
+class Grasp:
+    """How a hand takes an object: the palm's contact site (``{side}_palm``) at `point`,
+    the palm facing `palm` and the fingers pointing along `fingers` (world unit vectors)."""
+
+    point: np.ndarray
+    palm: np.ndarray
+    fingers: np.ndarray
+
+
+def wrist_joints(side: str) -> tuple[str, ...]:
+    return (f"{side}_wrist_twist", f"{side}_wrist_flex", f"{side}_wrist_dev")
 
 
 def arm_joints(side: str, lean: bool = True) -> tuple[str, ...]:
@@ -79,26 +102,45 @@ class ArmIK:
 
         `grip`: reach with the point held at this offset in the hand's body frame (a held
         object's centre) instead of the hand itself. `lean`: the spine may bend too."""
-        names = arm_joints(side, lean)
+        return self._solve(pose, side, np.asarray(target, float), grip, lean, None)
+
+    def grasp(self, pose: Pose, side: str, grasp: Grasp,
+              lean: bool = True) -> tuple[Pose, float]:
+        """The pose with the `side` hand taking hold as `grasp` says (the wrist turns the
+        palm); and the distance left between the palm's contact site and its point."""
+        return self._solve(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
+
+    def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
+               lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
+        names = arm_joints(side, lean) + (wrist_joints(side) if grasp else ())
         q = {n: pose.joints.get(n, 0.0) for n in names}
-        site = self.scene.hand_sites[side]
+        site = (self.scene.palm_sites if grasp else self.scene.hand_sites)[side]
         body = int(self.model.site_bodyid[site])
         offset = np.zeros(3) if grip is None else np.asarray(grip, float)
+        jacr = np.zeros((3, self.model.nv))
         err = np.inf
-        for _ in range(ITERATIONS):
-            cur = pose.with_joints(**q)
-            write_qpos(self.data.qpos, cur, self.scene.joint_qpos)
+        for _ in range(ITERATIONS * (2 if grasp else 1)):
+            write_qpos(self.data.qpos, pose.with_joints(**q), self.scene.joint_qpos)
             mujoco.mj_kinematics(self.model, self.data)
             mujoco.mj_comPos(self.model, self.data)
-            point = self.data.site_xpos[site] + self.data.xmat[body].reshape(3, 3) @ offset
+            rot = self.data.xmat[body].reshape(3, 3)
+            point = self.data.site_xpos[site] + rot @ offset
             e = target - point
             err = float(np.linalg.norm(e))
-            if err < TOLERANCE:
+            mujoco.mj_jac(self.model, self.data, self._jacp, jacr, point, body)
+            cols = [self._dof[n] for n in names]
+            jac = self._jacp[:, cols]
+            if grasp is not None:
+                turns = _turns(rot, side, grasp)
+                if err < TOLERANCE and max(np.linalg.norm(t) for t in turns) < ORIENT_TOLERANCE:
+                    break
+                e = np.concatenate([e] + [w * t for w, t in zip(ORIENT_WEIGHT, turns,
+                                                                  strict=True)])
+                jac = np.vstack([jac] + [w * jacr[:, cols] for w in ORIENT_WEIGHT])
+            elif err < TOLERANCE:
                 break
-            mujoco.mj_jac(self.model, self.data, self._jacp, None, point, body)
-            jac = self._jacp[:, [self._dof[n] for n in names]]
             # dq = J^T (J J^T + damping^2 I)^-1 e
-            dq = jac.T @ np.linalg.solve(jac @ jac.T + DAMPING**2 * np.eye(3), e)
+            dq = jac.T @ np.linalg.solve(jac @ jac.T + DAMPING**2 * np.eye(len(e)), e)
             for n, d in zip(names, dq, strict=True):
                 lo, hi = self._range[n]
                 q[n] = float(np.clip(q[n] + np.clip(d, -0.3, 0.3), lo, hi))
@@ -109,3 +151,11 @@ class ArmIK:
         itself without one)."""
         hand, rot = self.hand_frame(pose, side)
         return hand if grip is None else hand + rot @ grip
+
+
+def _turns(rot: np.ndarray, side: str, grasp: Grasp) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation vectors (axis times sine of the angle) taking the palm's normal onto
+    `grasp.palm` and the fingers' direction onto `grasp.fingers`."""
+    palm = rot[:, 1] * (-1.0 if side == "l" else 1.0)  # the palm faces the body: +-y
+    fingers = -rot[:, 2]
+    return np.cross(palm, grasp.palm), np.cross(fingers, grasp.fingers)

@@ -11,12 +11,13 @@ far ones.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from homesim.render.agent import AgentShape
-from homesim.render.ik import ArmIK, crouched
+from homesim.render.ik import ArmIK, Grasp, crouched
 from homesim.render.layout import Box, Layout
 from homesim.render.poses import Pose, standing
 
@@ -35,6 +36,24 @@ AROUND = (0.35, 0.5, 0.65)
 way straight to it is blocked."""
 MAX_AROUND = 24
 """At most this many of those are tried (nearest to the agent first)."""
+PALM_IN = 0.045
+"""Metres: a grasp's contact point lies this far past the object's near edge (at most
+half way across), so the palm covers the face back to the wrist."""
+PALM_HALF_WIDTH = 0.04
+"""Metres: a grasp's contact point stays this far above the object's bottom, so the
+palm's edge does not sink into what it stands on."""
+
+FLAT = 0.035
+"""Metres: objects at most this tall (a plate, a book lying, a remote) are taken from above
+first, the palm on their top; taller ones by the side first."""
+KNEE = 0.45
+"""Metres: objects whose top is lower than this (on the floor) are also taken from above
+first."""
+HAND_ROOM = 0.05
+"""Metres the palm and the closing fingers need out of the face they take."""
+
+GraspOf = Callable[[np.ndarray], list[Grasp]]
+"""Ways a hand may take an object, best first, for the agent standing at a floor point."""
 
 
 def box_gap(box: Box, point: np.ndarray) -> float:
@@ -54,6 +73,60 @@ def surface_point(box: Box, toward: np.ndarray, inset: float = 0.004) -> np.ndar
         return box.center.copy()
     inner = np.minimum(box.half, inset)
     return np.clip(p - inset * d / n, box.lo + inner, box.hi - inner)
+
+
+def palm_grasps(box: Box, side: str, from_xy: np.ndarray,
+                inset: float = 0.004) -> list[Grasp]:
+    """Palm grasps of a box by the agent standing at `from_xy`, best first: by the side
+    face on the hand's side (the right face for the right hand) and from above (the palm
+    on the top); flat (`FLAT`) and low (`KNEE`) objects from above first. The heel of the
+    palm lies just past the face's near edge (`PALM_IN`), so the palm covers the face back
+    to the wrist, and the fingers point on, away from the agent, to wrap round the far
+    side. Contact points are `inset` metres inside their face."""
+    u = box.center[:2] - np.asarray(from_xy, float)[:2]
+    n = float(np.hypot(*u))
+    u = u / n if n > 1e-9 else np.array([1.0, 0.0])
+    both = [_side_grasp(box, side, u, inset), _top_grasp(box, u, inset)]
+    return both[::-1] if 2.0 * box.half[2] <= FLAT or box.hi[2] <= KNEE else both
+
+
+def _side_grasp(box: Box, side: str, u: np.ndarray, inset: float) -> Grasp:
+    """The palm flat on the box's side face on the hand's side, at the box's middle
+    height (at least `PALM_HALF_WIDTH` above its bottom)."""
+    outward = np.array([u[1], -u[0]]) if side == "r" else np.array([-u[1], u[0]])
+    across = 0 if abs(outward[0]) >= abs(outward[1]) else 1
+    along = 1 - across
+    sign = 1.0 if outward[across] >= 0.0 else -1.0
+    ahead = 1.0 if u[along] >= 0.0 else -1.0
+    c, h = box.center, box.half
+    point = c.copy()
+    point[across] = c[across] + sign * (h[across] - min(inset, h[across]))
+    point[along] = c[along] - ahead * h[along] + ahead * min(h[along], PALM_IN)
+    point[2] = min(max(c[2], box.lo[2] + PALM_HALF_WIDTH), box.hi[2] - min(inset, h[2]))
+    palm, fingers = np.zeros(3), np.zeros(3)
+    palm[across] = -sign
+    fingers[along] = ahead
+    return Grasp(point, palm, fingers)
+
+
+def hand_room_clear(grasp: Grasp, clear_ray) -> bool:
+    """Whether the hand fits where `grasp` puts it: rays out of the taken face (from the
+    heel, the contact point and the fingers' end) meet nothing within `HAND_ROOM`.
+    `clear_ray(start, direction, length)` answers for one ray."""
+    out = -grasp.palm
+    return all(clear_ray(grasp.point + along * grasp.fingers + 0.006 * out, out, HAND_ROOM)
+               for along in (-0.03, 0.0, 0.06))
+
+
+def _top_grasp(box: Box, u: np.ndarray, inset: float) -> Grasp:
+    """The palm down on a flat box's top, `PALM_IN` past its near edge along the
+    horizontal direction `u` (unit) from the agent, the fingers pointing along `u`."""
+    c, h = box.center, box.half
+    reach = float(abs(u[0]) * h[0] + abs(u[1]) * h[1])  # the near edge along u
+    xy = c[:2] - u * reach + u * min(reach, PALM_IN)
+    xy = np.clip(xy, box.lo[:2], box.hi[:2])
+    point = np.r_[xy, box.hi[2] - min(inset, h[2])]
+    return Grasp(point, np.array([0.0, 0.0, -1.0]), np.r_[u, 0.0])
 
 
 @dataclass(frozen=True)
@@ -80,16 +153,37 @@ class ReachPlanner:
         return self.walk.walkable(*self.walk.index(float(xy[0]), float(xy[1])))
 
     def reach_from(self, xy: np.ndarray, side: str, point: np.ndarray,
-                   grip: np.ndarray | None = None) -> ReachPlan:
+                   grip: np.ndarray | None = None, grasp_of: GraspOf | None = None
+                   ) -> ReachPlan:
         """The best reach of `point` standing at `xy`, facing it (crouching if low);
-        `grip`: with the point held at this offset from the hand (see `ArmIK.reach`)."""
+        `grip`: with the point held at this offset from the hand (see `ArmIK.reach`);
+        `grasp_of`: taking hold of an object instead, the first of its grasps from `xy`
+        that the hand can make (else the one it comes closest to)."""
+        if grasp_of is None:
+            return self._reach_from(xy, side, point, grip, None)
+        best: ReachPlan | None = None
+        for grasp in grasp_of(xy):
+            plan = self._reach_from(xy, side, grasp.point, None, grasp)
+            if best is None or plan.gap < best.gap - 1e-3:
+                best = plan
+            if plan.gap <= TOUCH:
+                break
+        assert best is not None
+        return best
+
+    def _reach_from(self, xy: np.ndarray, side: str, point: np.ndarray,
+                    grip: np.ndarray | None, grasp: Grasp | None) -> ReachPlan:
         d = point[:2] - xy
         yaw = math.atan2(d[1], d[0]) if np.hypot(*d) > 1e-6 else 0.0
         base = standing(self.shape, xy, yaw)
         best: ReachPlan | None = None
         for drop in CROUCH if point[2] < LOW else CROUCH[:1]:
-            reached, _ = self.ik.reach(crouched(base, self.shape, drop), side, point, grip)
-            gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
+            low = crouched(base, self.shape, drop)
+            if grasp is not None:
+                reached, gap = self.ik.grasp(low, side, grasp)
+            else:
+                reached, _ = self.ik.reach(low, side, point, grip)
+                gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
             if best is None or gap < best.gap - 1e-4:
                 best = ReachPlan(reached, gap)
             if gap <= TOUCH:
@@ -98,7 +192,7 @@ class ReachPlanner:
         return best
 
     def plan(self, start_xy: np.ndarray, side: str, point: np.ndarray,
-             grip: np.ndarray | None = None) -> ReachPlan:
+             grip: np.ndarray | None = None, grasp_of: GraspOf | None = None) -> ReachPlan:
         """Where to stand to reach `point`: the first point on the way from `start_xy`
         toward it (every `STEP` metres, while the body fits) from which the hand touches
         it without bowing more than `COMFORT_LEAN` (else the first from which it touches
@@ -107,14 +201,14 @@ class ReachPlanner:
         d = point[:2] - start_xy
         dist = float(np.hypot(*d))
         tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
-        best = self.reach_from(start_xy, side, point, grip)
+        best = self.reach_from(start_xy, side, point, grip, grasp_of)
         touching = best if best.gap <= TOUCH else None
         for xy in tries:
             if touching is not None and _lean(touching) <= COMFORT_LEAN:
                 return touching
             if not self.fits(xy):
                 break
-            plan = self.reach_from(xy, side, point, grip)
+            plan = self.reach_from(xy, side, point, grip, grasp_of)
             if plan.gap <= TOUCH and (touching is None or _lean(plan) < _lean(touching)):
                 touching = plan
             if plan.gap < best.gap - 1e-3:
@@ -122,7 +216,7 @@ class ReachPlanner:
         if touching is not None:
             return touching
         for xy in self.around(start_xy, point)[:MAX_AROUND]:
-            plan = self.reach_from(xy, side, point, grip)
+            plan = self.reach_from(xy, side, point, grip, grasp_of)
             if plan.gap < best.gap - 1e-3:
                 best = plan
             if plan.gap <= TOUCH:

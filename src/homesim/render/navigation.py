@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homesim.errors import ExecutionError
+from homesim.errors import ExecutionError, LimitError
+from homesim.limits import MAX_WALK_CELLS
 from homesim.render.layout import Box, Layout
 from homesim.world.floor import CELL
 
@@ -68,10 +69,19 @@ def build_grid(layout: Layout) -> Grid:
     walk = layout.walk
     if walk is None:
         raise ExecutionError("the home has no floor to walk on (no rooms with boxes)")
+    check_walk_cells(walk.shape, walk.cell)
     free = np.zeros(walk.shape, bool)
     for j, a, b, _ in walk.main_runs():
         free[a:b + 1, j] = True
     return Grid(np.array(walk.origin, float), free)
+
+
+def check_walk_cells(shape: tuple[int, int], cell: float) -> None:
+    """Refuse a walk grid over `MAX_WALK_CELLS` cells (before it is allocated)."""
+    if shape[0] * shape[1] > MAX_WALK_CELLS:
+        raise LimitError(f"the home's floor spans {shape[0] * cell:.0f} m x {shape[1] * cell:.0f} "
+                         f"m: {shape[0] * shape[1]} walk cells, more than the renderer plans "
+                         f"on (MAX_WALK_CELLS = {MAX_WALK_CELLS})", "MAX_WALK_CELLS")
 
 
 _STEPS = [(1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),

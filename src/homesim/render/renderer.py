@@ -103,21 +103,32 @@ class Renderer:
         mujoco.mj_kinematics(m, data)
         mujoco.mj_camlight(m, data)  # camera poses
         groups = {-1: m.geom_group.copy()}
+        for cam in range(m.ncam):
+            groups[cam] = self._cull(data, cam, groups[-1])
+        return groups
+
+    def _cull(self, data: mujoco.MjData, cam: int, own: np.ndarray) -> np.ndarray:
+        """Camera `cam`'s geom groups (posed as in `data`): static geoms whose bounding
+        sphere lies outside its view moved to `HIDDEN_GROUP`."""
+        m = self.scene.model
         static = m.geom_bodyid == 0
         centers, radii = data.geom_xpos, m.geom_rbound
-        tan_y = np.tan(np.radians(np.array([c.fovy for c in self.scene.cameras])) / 2)
-        for cam in range(m.ncam):
-            axes = data.cam_xmat[cam].reshape(3, 3)  # columns: right, up, backward
-            rel = (centers - data.cam_xpos[cam]) @ axes
-            depth = -rel[:, 2]
-            ty = tan_y[cam] if cam < len(tan_y) else 1.0
-            tx = ty * self.width / self.height
-            # Distance of each bounding sphere's centre outside the four side planes.
-            out_x = (np.abs(rel[:, 0]) - tx * depth) / np.sqrt(1 + tx * tx)
-            out_y = (np.abs(rel[:, 1]) - ty * depth) / np.sqrt(1 + ty * ty)
-            hidden = static & ((out_x > radii) | (out_y > radii) | (depth < -radii))
-            groups[cam] = np.where(hidden, HIDDEN_GROUP, groups[-1]).astype(np.int32)
-        return groups
+        axes = data.cam_xmat[cam].reshape(3, 3)  # columns: right, up, backward
+        rel = (centers - data.cam_xpos[cam]) @ axes
+        depth = -rel[:, 2]
+        ty = float(np.tan(np.radians(m.cam_fovy[cam]) / 2))
+        tx = ty * self.width / self.height
+        # Distance of each bounding sphere's centre outside the four side planes.
+        out_x = (np.abs(rel[:, 0]) - tx * depth) / np.sqrt(1 + tx * tx)
+        out_y = (np.abs(rel[:, 1]) - ty * depth) / np.sqrt(1 + ty * ty)
+        hidden = static & ((out_x > radii) | (out_y > radii) | (depth < -radii))
+        return np.where(hidden, HIDDEN_GROUP, own).astype(np.int32)
+
+    def camera_moved(self, data: mujoco.MjData, camera_id: int) -> None:
+        """A camera was moved, turned or zoomed (`data` posed with `mj_camlight` after):
+        cull for where it is now (else geoms it now sees could stay hidden)."""
+        self._groups[camera_id] = self._cull(data, camera_id, self._groups[-1])
+        self._luts.pop(camera_id, None)
 
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
               rect: mujoco.MjrRect | None = None) -> None:

@@ -112,6 +112,7 @@ class SceneModel:
     joint_qpos: dict[str, int] = field(default_factory=dict)  # agent hinge -> qpos address
     joint_sites: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
     hand_sites: dict[str, int] = field(default_factory=dict)  # "l"/"r" -> site id
+    palm_sites: dict[str, int] = field(default_factory=dict)  # "l"/"r" -> palm contact site
 
     @property
     def instances(self) -> dict[int, str]:
@@ -249,4 +250,5 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
     scene.joint_qpos = {h: int(model.jnt_qposadr[model.joint(f"a:{h}").id]) for h in HINGES}
     scene.joint_sites = np.array([model.site(f"j:{j}").id for j in JOINTS], int)
     scene.hand_sites = {s: model.site(f"{s}_hand").id for s in ("l", "r")}
+    scene.palm_sites = {s: model.site(f"{s}_palm").id for s in ("l", "r")}
     return scene

@@ -113,6 +113,7 @@ class _SpareCamera:
         mujoco.mju_mat2Quat(quat, mat.reshape(-1))
         m.cam_pos[0], m.cam_quat[0], m.cam_fovy[0] = spec.pos, quat, spec.fovy
         mujoco.mj_camlight(m, data)
+        renderer.camera_moved(data, 0)  # cull for the candidate, not for camera 0
         ids, _ = renderer.ids_depth(data, 0)
         nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
         share = float(np.count_nonzero(nodes == it.nodes[0])) / ids.size

@@ -1,0 +1,57 @@
+import numpy as np
+import pytest
+
+from homesim.render.interact import (
+    FLAT,
+    HAND_ROOM,
+    box_gap,
+    hand_room_clear,
+    palm_grasps,
+)
+from homesim.render.layout import Box
+
+pytestmark = pytest.mark.render
+
+
+def test_box_gap_is_zero_inside_and_euclidean_outside():
+    box = Box(np.zeros(3), np.array([0.1, 0.2, 0.3]))
+    assert box_gap(box, np.array([0.05, -0.1, 0.2])) == 0.0
+    assert box_gap(box, np.array([0.4, 0.6, 0.0])) == pytest.approx(0.5)
+
+
+def test_a_tall_object_is_taken_by_the_face_on_the_hand_side():
+    cup = Box(np.array([1.0, 0.0, 0.85]), np.array([0.04, 0.04, 0.05]))
+    agent = np.array([0.5, 0.0])  # facing +x: the right is -y
+    side, top = palm_grasps(cup, "r", agent)
+    np.testing.assert_allclose(side.palm, [0.0, 1.0, 0.0])  # palm on the -y face, facing +y
+    np.testing.assert_allclose(side.fingers, [1.0, 0.0, 0.0])  # fingers away from the agent
+    assert side.point[1] == pytest.approx(-0.036)  # 4 mm inside the face
+    assert cup.lo[0] < side.point[0] <= cup.center[0]  # the heel near the near edge
+    left = palm_grasps(cup, "l", agent)[0]
+    np.testing.assert_allclose(left.palm, [0.0, -1.0, 0.0])
+    np.testing.assert_allclose(top.palm, [0.0, 0.0, -1.0])
+    assert top.point[2] == pytest.approx(cup.hi[2] - 0.004)
+
+
+def test_flat_and_floor_objects_are_taken_from_above_first():
+    agent = np.array([0.0, 0.0])
+    plate = Box(np.array([0.0, 0.6, 0.8]), np.array([0.12, 0.12, FLAT / 2]))
+    box_on_floor = Box(np.array([0.0, 0.6, 0.1]), np.array([0.1, 0.1, 0.1]))
+    for box in (plate, box_on_floor):
+        first = palm_grasps(box, "r", agent)[0]
+        np.testing.assert_allclose(first.palm, [0.0, 0.0, -1.0])
+        np.testing.assert_allclose(first.fingers, [0.0, 1.0, 0.0], atol=1e-9)
+
+
+def test_hand_room_asks_rays_out_of_the_taken_face():
+    cup = Box(np.array([1.0, 0.0, 0.85]), np.array([0.04, 0.04, 0.05]))
+    side = palm_grasps(cup, "r", np.array([0.5, 0.0]))[0]
+    rays = []
+
+    def wall_at_minus_y(start, direction, length):
+        rays.append((start, direction, length))
+        return start[1] + direction[1] * length > -0.06  # a wall at y = -0.06
+
+    assert not hand_room_clear(side, wall_at_minus_y)
+    assert all(np.allclose(d, [0.0, -1.0, 0.0]) and n == HAND_ROOM for _, d, n in rays)
+    assert hand_room_clear(side, lambda *_: True)
