@@ -1,11 +1,10 @@
 """Episodes of an activity data set (`homesim dataset generate`) held small for learning.
 
 Each episode keeps, at the clip models' `VideoFormat` (`homesim.learn.videocache`: frame
-rate and size, cached per shard), its RGB frames and per frame the share of pixels of every
-object class (the *oracle perception* input: the ground-truth class segmentation instead of
-RGB), with the step each frame shows. 2-second clips are
-cut from it, labelled with the step they mostly show; the whole episode is a
-video -> program example.
+rate and size, cached per episode), its RGB frames and per frame the share of pixels of
+every object class (the *oracle perception* input: the ground-truth class segmentation
+instead of RGB), with the step each frame shows. 2-second clips are cut from it, labelled
+with the step they mostly show; the whole episode is a video -> program example.
 """
 
 from __future__ import annotations
