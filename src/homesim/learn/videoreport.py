@@ -85,7 +85,7 @@ def _times(train: dict) -> str:
     per_seed = list(train["train_seconds"].values())
     names = per_seed[0].keys() if per_seed else []
     each = ", ".join(f"{k} {sum(s[k] for s in per_seed) / len(per_seed):.0f} s" for k in names)
-    return (f"reading the data {train['load_seconds']:.0f} s; per seed {each}; all seeds "
+    return (f"reading the data {train['load_seconds']:.0f} s; per seed (mean) {each}; all seeds "
             f"and reading {train['total_seconds']:.0f} s")
 
 
