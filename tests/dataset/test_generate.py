@@ -78,7 +78,7 @@ def test_killed_and_restarted_gives_the_same_bytes(tiny_dataset, program_file, t
             "--shard-size", "2", "--workers", "0"]
     proc = start_cli(args)
     # Kill it once the first episode is staged (the second is being rendered).
-    wait_for(lambda: (out / "staging" / "ep-000000.json").exists(), proc)
+    wait_for(lambda: (out / "staging" / "ep-000000.json").exists(), proc, timeout=180.0)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     assert not (out / "episodes.parquet").exists()
