@@ -61,3 +61,12 @@ def real_data():
             pytest.fail(message)
         pytest.skip(message)
     return dataset_dir()
+
+
+@pytest.fixture(autouse=True)
+def _no_leftover_cli_children():
+    """After each test, kill any `homesim` child process it left running."""
+    yield
+    from tests.cli.subprocess_cli import kill_leftover_children
+
+    kill_leftover_children()

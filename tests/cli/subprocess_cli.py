@@ -12,6 +12,7 @@ from pathlib import Path
 import homesim
 
 SRC = str(Path(homesim.__file__).resolve().parents[1])
+_CHILDREN: list[subprocess.Popen] = []
 
 
 def start_cli(args: list[str], env: dict[str, str] | None = None,
@@ -21,8 +22,20 @@ def start_cli(args: list[str], env: dict[str, str] | None = None,
     full_env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [SRC, *filter(None, [os.environ.get("PYTHONPATH")])]), **(env or {})}
     code = f"{prelude}\nimport sys\nfrom homesim.cli.main import main\nsys.exit(main({args!r}))"
-    return subprocess.Popen([sys.executable, "-c", code], env=full_env,
+    proc = subprocess.Popen([sys.executable, "-c", code], env=full_env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    _CHILDREN.append(proc)
+    return proc
+
+
+def kill_leftover_children() -> None:
+    """Kill the children `start_cli` started that still run (a test that failed before
+    stopping its child must not leave it working on in the background)."""
+    while _CHILDREN:
+        proc = _CHILDREN.pop()
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
 
 
 def wait_for(condition: Callable[[], bool], proc: subprocess.Popen,

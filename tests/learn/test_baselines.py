@@ -58,3 +58,16 @@ def _with_activity_copies():
     from homesim.learn.data import synthetic_examples
 
     return synthetic_examples(30, seed=5)
+
+
+def test_oracle_retrieval_returns_the_closest_training_program(tiny_splits):
+    from homesim.learn.baselines import oracle_retrieval
+    from homesim.program.metrics import lcs_steps
+
+    train, test = tiny_splits.train, tiny_splits.test
+    preds = oracle_retrieval(train, test)
+    for p, e in zip(preds, test, strict=True):
+        best = max(lcs_steps(t.program, e.program) for t in train)
+        assert lcs_steps(p, e.program) == best
+    assert [p.steps for p in oracle_retrieval(train, train[:3])] == [
+        e.program.steps for e in train[:3]]

@@ -91,7 +91,7 @@ def test_reduced_shards_are_cached(tiny_video, tmp_path):
 
     fmt = VideoFormat(16, 12, 4)
     first, index = load_episodes(tiny_video, fmt, tmp_path)
-    assert len(list(tmp_path.glob("*-16x12@4-v*.npz"))) == 1
+    assert len(list(tmp_path.glob("16x12@4/*.npz"))) == 4  # one per episode
     again, _ = load_episodes(tiny_video, fmt, tmp_path)
     assert [e.key for e in again] == [e.key for e in first]
     assert all(np.array_equal(a.frames, b.frames) and np.array_equal(a.classes, b.classes)
@@ -173,3 +173,23 @@ def test_class_weights_balance_classes():
 
     w = class_weights(torch.tensor([0, 0, 0, 1]), 3)
     assert w[0] * 3 == pytest.approx(w[1] * 1) and w[2] == 0
+
+
+def test_staged_episodes_of_a_running_generation_are_cached(tiny_video, tmp_path):
+    import json
+    import shutil
+
+    from homesim.learn.videocache import VideoFormat, cache_file, warm_staged
+
+    shard = json.loads((tiny_video / "shards" / "shard-000000.json").read_text())
+    row = shard["rows"][0]
+    running = tmp_path / "running"
+    (running / "staging").mkdir(parents=True)
+    shutil.copy(tiny_video / "shards" / "shard-000000.tar", running / "staging" / "ep-000000.tar")
+    (running / "staging" / "ep-000000.json").write_text(json.dumps(row))
+    (running / "staging" / "ep-000009.json").write_text(json.dumps({**row, "key": "ep-000009",
+                                                                    "sha256": "gone"}))
+    fmt, cache = VideoFormat(16, 12, 4), tmp_path / "cache"
+    assert warm_staged(running, fmt, cache) >= 1
+    assert cache_file(cache, row["sha256"], fmt).is_file()
+    assert not cache_file(cache, "gone", fmt).exists()  # its tar was not there: skipped

@@ -106,8 +106,12 @@ Job = tuple[str, Callable[[], list[Program]]]
 """A table row: its name and how to make its predictions on the test split."""
 
 
+ORACLE_ROW = "Oracle retrieval (reads the truth)"
+
+
 def baseline_jobs(splits: Splits, seed: int) -> list[Job]:
-    """Rows that learn nothing, the ground truth and the empty program first."""
+    """Rows that learn nothing, the ground truth and the empty program first, the oracle
+    retrieval (the ceiling of returning a training program) last."""
     train, test = splits.train, splits.test
     return [
         ("Ground truth", lambda: [e.program for e in test]),
@@ -117,12 +121,22 @@ def baseline_jobs(splits: Splits, seed: int) -> list[Job]:
         ("Title-medoid", lambda: baselines.title_medoid(train, test)),
         ("NN (title)", lambda: baselines.nn_title(train, test)),
         ("NN (description)", lambda: baselines.nn_description(train, test)),
+        (ORACLE_ROW, lambda: baselines.oracle_retrieval(train, test)),
     ]
 
 
-def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
-    """Rows that learn: seq2seq (greedy, constrained), retrieve-and-edit, consensus."""
+HOLDOUT = {"stratified": "program", "leave-activities-out": "activity"}
+"""Split -> what the reranker's training queries may not see of the rest of training
+(`rerank.HOLDOUTS`), so that they are built the way the split builds its test set."""
+RERANK_ROW = "Reranker (retrieve, substitute, rerank)"
+
+
+def model_jobs(splits: Splits, seed: int, t2p: Text2Prog,
+               split_name: str = "stratified") -> list[Job]:
+    """Rows that learn: seq2seq (greedy, constrained), retrieve-and-edit, consensus, and
+    the learned reranker."""
     from homesim.learn.consensus import Consensus
+    from homesim.learn.rerank import Reranker
     from homesim.learn.retrieve import RetrieveEdit
 
     test = splits.test
@@ -139,6 +153,8 @@ def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
         ("Retrieve-and-edit", lambda: retrieval().predict(test)),
         ("Consensus (MLE + retrieval)",
          lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)),
+        (RERANK_ROW, lambda: Reranker.fit(splits.train, splits.dev,
+                                          HOLDOUT[split_name]).predict(test)),
     ]
 
 
@@ -205,7 +221,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     t2p = mle_model(spec, splits, folder, device, report) if with_model else None
     jobs = baseline_jobs(splits, spec.seed)
     if t2p is not None:
-        jobs += model_jobs(splits, spec.seed, t2p)
+        jobs += model_jobs(splits, spec.seed, t2p, spec.split)
     if spec.dataset == "synthetic":
         jobs.append(rule_job(splits))
     unseen = StepVocab.build(e.program for e in splits.train).unseen_share(

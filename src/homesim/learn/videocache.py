@@ -8,16 +8,18 @@ at `VideoFormat.fps` (the nearest source frame of each tick; never more than the
 has), RGB is area-scaled to the format's size by ffmpeg while decoding, and each kept
 frame's ground-truth class map becomes the share of pixels of each of the episode's
 classes (the oracle-perception input, counted on the full map: exact, no map is kept).
-The result is written to ``<cache>/<shard sha256>-<format>.npz`` and read from there the
-next time (a shard is identified by its checksum, so a cache file never goes stale); a
-few MB per shard.
+The result is written to ``<cache>/<format>/<episode checksum>.npz`` and read from there
+the next time (an episode is identified by its member checksum, so a cache file never goes
+stale, and the episodes of a generation still running can be cached from its staging
+folder: `warm_staged`); ~3 MB an episode at 64x48.
 """
 
 from __future__ import annotations
 
 import json
+import logging
 import tempfile
-from collections.abc import Iterator
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -72,6 +74,7 @@ def small_video(data: bytes, fmt: VideoFormat) -> np.ndarray:
     ffmpeg (area filter) while decoding: ~25x fewer bytes through the pipe at 320x240."""
     import imageio_ffmpeg
 
+    logging.getLogger("imageio_ffmpeg").setLevel(logging.ERROR)  # "size differs": we ask it to
     with tempfile.NamedTemporaryFile(suffix=".mp4") as f:
         f.write(data)
         f.flush()
@@ -124,35 +127,79 @@ def reduce_episode(ep: EncodedEpisode, fmt: VideoFormat) -> dict[str, Any]:
                      "steps": [s["step"] for s in meta["steps"]]}}
 
 
-def _write(path: Path, episodes: list[dict[str, Any]]) -> None:
-    arrays: dict[str, np.ndarray] = {
-        "meta": np.array(json.dumps([e["meta"] for e in episodes]))}
-    for i, e in enumerate(episodes):
-        for name in ("frames", "shares", "step"):
-            arrays[f"{i}.{name}"] = e[name]
+def _write(path: Path, episode: dict[str, Any]) -> None:
+    arrays = {"meta": np.array(json.dumps(episode["meta"])),
+              **{name: episode[name] for name in ("frames", "shares", "step")}}
     path.parent.mkdir(parents=True, exist_ok=True)
     with atomic_write(path, "wb") as f:
-        np.savez(f, **arrays)  # type: ignore[arg-type]  # numpy types allow_pickle here
+        np.savez(f, **arrays)
 
 
-def _read(path: Path) -> list[dict[str, Any]]:
+def _read(path: Path) -> dict[str, Any]:
     with np.load(path, allow_pickle=False) as data:
-        metas = json.loads(str(data["meta"]))
-        return [{"meta": m, **{name: data[f"{i}.{name}"]
-                               for name in ("frames", "shares", "step")}}
-                for i, m in enumerate(metas)]
+        return {"meta": json.loads(str(data["meta"])),
+                **{name: data[name] for name in ("frames", "shares", "step")}}
 
 
-def shard_episodes(shard: Path, sha256: str, fmt: VideoFormat, cache: Path | None
-                   ) -> Iterator[dict[str, Any]]:
-    """The reduced episodes of one shard (from the cache when there, else made and cached
-    when `cache` is given)."""
-    path = cache / f"{sha256}-{fmt.tag}-v{CACHE_VERSION}.npz" if cache else None
-    if path is not None and path.is_file():
-        yield from _read(path)
+def cache_file(cache: Path, sha256: str, fmt: VideoFormat) -> Path:
+    """Where an episode (by its member checksum, `MemberHash`) is kept at `fmt`."""
+    return cache / fmt.tag / f"{sha256}-v{CACHE_VERSION}.npz"
+
+
+def episode_rows(rows: list[dict[str, Any]]) -> dict[str, str]:
+    """Key -> member checksum of the episodes made (failed ones have no frames)."""
+    return {r["key"]: r["sha256"] for r in rows if r["status"] == "ok"}
+
+
+def shard_episodes(shard: Path, rows: dict[str, str], fmt: VideoFormat, cache: Path | None
+                   ) -> list[dict[str, Any]]:
+    """The reduced episodes of one shard, in order: from the cache when there, else made
+    (and cached when `cache` is given). `rows` as `episode_rows` gives them."""
+    paths = {k: cache_file(cache, sha, fmt) for k, sha in rows.items()} if cache else {}
+    if paths and all(p.is_file() for p in paths.values()):
+        return [_read(paths[k]) for k in rows]
+    made = []
+    for key, members in iter_episodes(shard):
+        path = paths.get(key)
+        if path is not None and path.is_file():
+            made.append(_read(path))
+            continue
+        made.append(reduce_episode(EncodedEpisode(key, members), fmt))
+        if path is not None:
+            _write(path, made[-1])
+    return made
+
+
+def _cache_one(job: tuple[Path, dict[str, str], VideoFormat, Path]) -> None:
+    shard_episodes(*job)
+
+
+def fill_cache(shards: list[tuple[Path, dict[str, str]]], fmt: VideoFormat, cache: Path,
+               workers: int) -> None:
+    """Reduce the shards with episodes not yet in `cache`, `workers` processes at once."""
+    todo = [(shard, rows, fmt, cache) for shard, rows in shards
+            if not all(cache_file(cache, sha, fmt).is_file() for sha in rows.values())]
+    if workers <= 1 or len(todo) <= 1:
+        for job in todo:
+            _cache_one(job)
         return
-    made = [reduce_episode(EncodedEpisode(key, members), fmt)
-            for key, members in iter_episodes(shard)]
-    if path is not None:
-        _write(path, made)
-    yield from made
+    with ProcessPoolExecutor(min(workers, len(todo))) as pool:
+        list(pool.map(_cache_one, todo))
+
+
+def warm_staged(folder: Path, fmt: VideoFormat, cache: Path) -> int:
+    """Cache the episodes a generation still running has made but not yet put in a shard
+    (its staging folder), so that reading the finished set later is quick; returns how
+    many were reduced. An episode moved into a shard meanwhile is skipped."""
+    done = 0
+    for row_path in sorted((folder / "staging").glob("ep-*.json")):
+        try:
+            row = json.loads(row_path.read_text(encoding="utf-8"))
+            path = cache_file(cache, row["sha256"], fmt) if row["status"] == "ok" else None
+            if path is None or path.is_file():
+                continue
+            done += len(shard_episodes(row_path.with_suffix(".tar"),
+                                       {row["key"]: row["sha256"]}, fmt, cache))
+        except (OSError, ValueError, HomesimError):
+            continue  # moved into its shard, or still being written
+    return done

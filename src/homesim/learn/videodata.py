@@ -1,11 +1,10 @@
 """Episodes of an activity data set (`homesim dataset generate`) held small for learning.
 
 Each episode keeps, at the clip models' `VideoFormat` (`homesim.learn.videocache`: frame
-rate and size, cached per shard), its RGB frames and per frame the share of pixels of every
-object class (the *oracle perception* input: the ground-truth class segmentation instead of
-RGB), with the step each frame shows. 2-second clips are
-cut from it, labelled with the step they mostly show; the whole episode is a
-video -> program example.
+rate and size, cached per episode), its RGB frames and per frame the share of pixels of
+every object class (the *oracle perception* input: the ground-truth class segmentation
+instead of RGB), with the step each frame shows. 2-second clips are cut from it, labelled
+with the step they mostly show; the whole episode is a video -> program example.
 """
 
 from __future__ import annotations
@@ -20,7 +19,7 @@ import numpy as np
 from homesim.dataset.layout import Layout
 from homesim.errors import HomesimError
 from homesim.learn.data import Example
-from homesim.learn.videocache import VideoFormat, shard_episodes
+from homesim.learn.videocache import VideoFormat, episode_rows, fill_cache, shard_episodes
 from homesim.program.parse import parse_program
 
 CLIP_SECONDS = 2.0
@@ -76,27 +75,33 @@ def _global_shares(shares: np.ndarray, names: list[str], index: dict[str, int]
     return shares @ columns
 
 
-def _folder_episodes(folder: Path, fmt: VideoFormat, cache: Path | None) -> list[dict]:
+def _folder_episodes(folder: Path, fmt: VideoFormat, cache: Path | None, workers: int
+                     ) -> list[dict]:
     """The reduced episodes of a data set folder's finished shards (a run still going
     gives the shards written so far)."""
     if not (folder / "dataset.json").is_file():
         raise HomesimError(f"{folder}: not a data set folder (run 'homesim dataset generate')")
     layout = Layout(folder)
-    out = [e for s in layout.finished_shards()
-           for e in shard_episodes(layout.shards / s["name"], s["sha256"], fmt, cache)]
+    shards = [(layout.shards / s["name"], episode_rows(s["rows"]))
+              for s in layout.finished_shards()]
+    if cache is not None:
+        fill_cache(shards, fmt, cache, workers)
+    out = [e for shard, rows in shards for e in shard_episodes(shard, rows, fmt, cache)]
     if not out:
         raise HomesimError(f"{folder}: no finished shards (run 'homesim dataset generate')")
     return out
 
 
 def load_episodes(source: Path | str, fmt: VideoFormat | None = None,
-                  cache: Path | None = None) -> tuple[list[Episode], dict[str, int]]:
+                  cache: Path | None = None, workers: int = 1
+                  ) -> tuple[list[Episode], dict[str, int]]:
     """Every episode of a data set folder, or of several separated by commas (keys become
-    ``<folder name>/<key>``), at `fmt` (`videocache`; reduced shards are kept in `cache`).
-    Needs the rgb and class modalities."""
+    ``<folder name>/<key>``), at `fmt` (`videocache`; reduced shards are kept in `cache`,
+    made by `workers` processes). Needs the rgb and class modalities."""
     fmt = fmt or VideoFormat()
     folders = [Path(p) for p in str(source).split(",")]
-    raw = [(folder, r) for folder in folders for r in _folder_episodes(folder, fmt, cache)]
+    raw = [(folder, r) for folder in folders
+           for r in _folder_episodes(folder, fmt, cache, workers)]
     index = class_index([n for _, r in raw for n in r["meta"]["classes"]])
     episodes = []
     for folder, r in raw:

@@ -50,8 +50,10 @@ class VideoRunConfig:
     data: str
     seeds: list[int] = field(default_factory=lambda: [0])
     frame_size: str = "64x48"
-    fps: int = 8
+    fps: int = 4
     cache: str | None = str(DEFAULT_CACHE)
+    workers: int = 2
+    """Processes reducing shards not yet cached."""
     frame_epochs: int = 8
     clip_epochs: int = 30
     mle_epochs: int = 60
@@ -80,7 +82,8 @@ def clip_path(folder: Path, kind: str, inp: str) -> Path:
 def read_data(config: VideoRunConfig) -> tuple[dict[str, list[Episode]], dict[str, int]]:
     """The episodes of each split part, and the class columns."""
     episodes, classes = load_episodes(config.data, config.format,
-                                      Path(config.cache) if config.cache else None)
+                                      Path(config.cache) if config.cache else None,
+                                      config.workers)
     return video_split(episodes), classes
 
 

@@ -1,0 +1,310 @@
+"""Learned reranker: retrieve training programs, substitute the objects the text names, rerank.
+
+For a description x:
+
+1. **Weights.** Every training example j gets w_j = softmax_j(sim(x, j) / tau), sim the
+   mean of the MiniLM cosines of the descriptions and of the titles, at each tau of `TAUS`.
+2. **Candidates.** The `TOP_K` training programs of highest expected steps LCS under each
+   weighting (minimum Bayes risk: tau -> 0 is nearest-neighbour retrieval, uniform weights
+   within an activity the title-medoid), the 3 most similar ones, and their *substitutions*:
+   an object class the text does not name (`lexicon.ObjectLexicon`) replaced by one it
+   names and the program lacks, where every step using it allows the new class (the
+   action catalog's property needs, rooms only for rooms); singly and greedily all at once.
+3. **Score.** A linear function of features of (x, candidate) (`FEATURES`): the expected
+   LCS under each tau against the `NEAR` nearest neighbours, the share of named classes the
+   candidate uses and of its classes that are named, how often its unnamed classes are left
+   implicit in training, whether the mention order agrees, its length against the
+   neighbours' and the text's, its source's similarity, whether it was edited.
+4. **Choice.** The best-scoring candidate that executes in the example's home
+   (`execution.executable`, checked best-first; the best one if none does).
+
+The weights are fitted by ridge regression of the candidates' steps LCS to the truth,
+centred within each description (only the order within a description matters), on
+training descriptions each queried against the rest of the training set with what the split
+hides removed: for the stratified split the training programs equal to its own, for
+leave-activities-out every program of its activity. The ridge penalty is chosen on the dev
+split. Everything is deterministic.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from homesim.learn.data import Example
+from homesim.learn.lexicon import ObjectLexicon, actions, classes, words
+from homesim.program.metrics import normalized_lcs, step_tokens
+from homesim.program.model import Program
+
+TAUS = (0.02, 0.05, 0.1, 0.3)
+TOP_K = 8
+NEAR = 25
+MAX_SUBSTITUTIONS = 5
+LAMBDAS = (0.1, 1.0, 10.0, 100.0)
+"""The dev grid for the ridge penalty."""
+HOLDOUTS = ("program", "activity")
+"""What a training query may not see of the rest of training: programs equal to its own
+(stratified split) or its whole activity (leave-activities-out)."""
+CHECK_EXECUTABLE = 10
+"""Candidates checked for executability, best first, before giving up."""
+FEATURES = (*(f"expected LCS, tau {t}" for t in TAUS), "named classes used",
+            "classes named", "classes unexplained", "edited", "log length ratio",
+            "abs log length ratio", "source similarity", "source description cosine",
+            "source title cosine", "steps with named objects", "named classes missing",
+            "log implicit rate", "mention order", "classes", "log length x log words",
+            "named actions used", "actions named", "source words cosine")
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A candidate program, the training example it came from, and whether it was edited."""
+
+    program: Program
+    tokens: tuple
+    source: int
+    edited: bool
+
+
+@dataclass
+class Bank:
+    """The training side: step tokens, their pairwise LCS, sentence vectors, lexicon."""
+
+    train: list[Example]
+    lexicon: ObjectLexicon = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.tokens = [tuple(step_tokens(e.program)) for e in self.train]
+        n = len(self.train)
+        self.lcs = np.eye(n)
+        for i in range(n):
+            for j in range(i + 1, n):
+                self.lcs[i, j] = self.lcs[j, i] = normalized_lcs(self.tokens[i], self.tokens[j])
+        self.desc, self.title = _vectors(self.train)
+        self.lengths = np.array([len(t) for t in self.tokens], dtype=float)
+        self.lexicon = ObjectLexicon.fit(self.train)
+        self.idf, self.bags = _bags([e.text for e in self.train])
+
+    def hidden(self, example: Example, holdout: str) -> np.ndarray:
+        """(train,) True where a training query `example` may not see the example."""
+        if holdout == "activity":
+            return np.array([e.activity == example.activity for e in self.train])
+        own = tuple(step_tokens(example.program))
+        return np.array([t == own for t in self.tokens])
+
+
+@dataclass
+class Query:
+    """One description against the bank: similarities, weights, named classes, candidates."""
+
+    bank: Bank
+    example: Example
+    allowed: np.ndarray
+
+    def __post_init__(self) -> None:
+        desc, title = _vectors([self.example])
+        self.desc, self.title = desc[0], title[0]
+        self.sims = 0.5 * (self.bank.desc @ self.desc) + 0.5 * (self.bank.title @ self.title)
+        sims = np.where(self.allowed, self.sims, -np.inf)
+        top = sims.max()
+        self.weights = {}
+        for tau in TAUS:
+            w = np.where(self.allowed, np.exp((sims - top) / tau), 0.0)
+            self.weights[tau] = w / w.sum()
+        self.named = self.bank.lexicon.mentions(self.example.text)
+        self.verbs = self.bank.lexicon.actions(self.example.text)
+        self.overlap = self.bank.bags @ _bag(self.example.text, self.bank.idf)
+        self.near = np.argsort(-self.weights[TAUS[1]], kind="stable")[:NEAR]
+        self.candidates = self._candidates(sims)
+
+    def _candidates(self, sims: np.ndarray) -> list[Candidate]:
+        sources: list[int] = []
+        for tau in TAUS:
+            expected = np.where(self.allowed, self.weights[tau] @ self.bank.lcs, -1.0)
+            sources += [int(j) for j in np.argsort(-expected, kind="stable")[:TOP_K]]
+        sources += [int(j) for j in np.argsort(-sims, kind="stable")[:3]]
+        out: list[Candidate] = []
+        seen: set[tuple] = set()
+        for j in sources:
+            program = self.bank.train[j].program
+            for edited, p in [(False, program), *((True, q) for q in substitutions(
+                    program, self.named))]:
+                tokens = tuple(step_tokens(p))
+                if tokens not in seen:
+                    seen.add(tokens)
+                    out.append(Candidate(Program(p.steps), tokens, j, edited))
+        return out
+
+    def features(self) -> np.ndarray:
+        """(candidates, len(FEATURES)) feature rows."""
+        return np.array([self._row(c) for c in self.candidates])
+
+    def _row(self, c: Candidate) -> list[float]:
+        bank, near = self.bank, self.near
+        lcs = (np.array([normalized_lcs(c.tokens, bank.tokens[k]) for k in near]) if c.edited
+               else bank.lcs[c.source][near])
+        expected = [float(self.weights[t][near] @ lcs / max(self.weights[t][near].sum(), 1e-12))
+                    for t in TAUS]
+        used, named = classes(c.program), self.named
+        from homesim.ground.prepare import ROOM_NAMES
+
+        size = max(len(used), 1)
+        ratio = np.log(len(c.tokens) / (self.weights[TAUS[2]] @ bank.lengths)) if c.tokens else -3.0
+        steps_with = [ref.name for s in c.program.steps for ref in s.args]
+        named_steps = [all(r.name in named or r.name in ROOM_NAMES for r in s.args)
+                       for s in c.program.steps if s.args]
+        unnamed = used - named
+        acts = actions(c.program)
+        n_words = len(words(self.example.text)) + 1
+        return [*expected, len(used & named) / max(len(named), 1), len(used & named) / size,
+                len(unnamed - ROOM_NAMES) / size, float(c.edited), ratio, abs(ratio),
+                float(self.sims[c.source]), float(bank.desc[c.source] @ self.desc),
+                float(bank.title[c.source] @ self.title),
+                float(np.mean(named_steps)) if named_steps else 0.0, len(named - used),
+                float(np.mean([np.log(bank.lexicon.implicit_rate(o)) for o in sorted(unnamed)]))
+                if unnamed else 0.0,
+                mention_order(steps_with, named, self.example.text), len(used),
+                np.log(max(len(c.tokens), 1)) * np.log(n_words),
+                len(acts & self.verbs) / max(len(self.verbs), 1),
+                len(acts & self.verbs) / max(len(acts), 1), float(self.overlap[c.source])]
+
+
+def substitutions(program: Program, named: frozenset[str]) -> list[Program]:
+    """`program` with one unnamed class replaced by a named one it lacks (every such swap the
+    actions allow), then with the first allowed swap repeated up to `MAX_SUBSTITUTIONS` times."""
+    singles = _swaps(program, named)
+    chain, current = [], program
+    for _ in range(MAX_SUBSTITUTIONS):
+        swaps = _swaps(current, named)
+        if not swaps:
+            break
+        current = swaps[0]
+        chain.append(current)
+    return singles + chain[1:]
+
+
+def _swaps(program: Program, named: frozenset[str]) -> list[Program]:
+    used = classes(program)
+    return [rename(program, old, new) for old in sorted(used - named)
+            for new in sorted(named - used) if allows(program, old, new)]
+
+
+def allows(program: Program, old: str, new: str) -> bool:
+    """Whether every step of `program` using class `old` accepts class `new` there (the
+    action catalog's property needs; a room only for a room)."""
+    from homesim.ground.prepare import ROOM_NAMES
+    from homesim.knowledge.objects import load_kb
+
+    if (old in ROOM_NAMES) != (new in ROOM_NAMES):
+        return False
+    props = load_kb().properties(new)
+    for step in program.steps:
+        for position, ref in enumerate(step.args):
+            if ref.name == old and not all(props & need
+                                           for need in step.action.needs_of(position)):
+                return False
+    return True
+
+
+def rename(program: Program, old: str, new: str) -> Program:
+    """`program` with every object of class `old` called `new` (instances kept)."""
+    from dataclasses import replace
+
+    return program.with_steps([replace(s, args=tuple(
+        replace(r, name=new) if r.name == old else r for r in s.args)) for s in program.steps])
+
+
+def mention_order(objects: list[str], named: frozenset[str], text: str) -> float:
+    """Share of pairs of named classes that the program first uses in the order the text
+    first says them (the last word of the class name); 0.5 when fewer than two."""
+    lower = text.lower()
+    where = {c: lower.find(c.split("_")[-1]) for c in named}
+    order = list(dict.fromkeys(o for o in objects if where.get(o, -1) >= 0))
+    pairs = [where[a] < where[b] for i, a in enumerate(order) for b in order[i + 1:]]
+    return float(np.mean(pairs)) if pairs else 0.5
+
+
+def fit_ridge(groups: list[tuple[np.ndarray, np.ndarray]], penalty: float) -> np.ndarray:
+    """Linear weights regressing targets on features, both centred within each group
+    (features standardised for the penalty)."""
+    x = np.vstack([f - f.mean(0) for f, _ in groups])
+    y = np.concatenate([t - t.mean() for _, t in groups])
+    scale = x.std(0) + 1e-9
+    a = x / scale
+    return np.linalg.solve(a.T @ a + penalty * np.eye(a.shape[1]), a.T @ y) / scale
+
+
+@dataclass
+class Reranker:
+    """A fitted reranker (module docstring)."""
+
+    bank: Bank
+    coef: np.ndarray
+    penalty: float = 1.0
+
+    @classmethod
+    def fit(cls, train: list[Example], dev: list[Example], holdout: str) -> Reranker:
+        """Weights fitted on `train` queried against itself (hiding `holdout`: one of
+        `HOLDOUTS`), the ridge penalty of `LAMBDAS` best on `dev`."""
+        bank = Bank(train)
+        groups = [_labelled(q) for q in (
+            Query(bank, e, ~bank.hidden(e, holdout)) for e in train) if q.candidates]
+        dev_queries = [Query(bank, e, np.ones(len(train), bool)) for e in dev]
+        dev_groups = [_labelled(q) for q in dev_queries]
+        best: tuple[float, float, np.ndarray] | None = None
+        for penalty in LAMBDAS:
+            coef = fit_ridge(groups, penalty)
+            value = float(np.mean([t[int(np.argmax(f @ coef))] for f, t in dev_groups]))
+            if best is None or value > best[0]:
+                best = (value, penalty, coef)
+        assert best is not None
+        return cls(bank, best[2], best[1])
+
+    def predict(self, examples: list[Example]) -> list[Program]:
+        """One program per example: the best-scoring candidate that executes in its home."""
+        from homesim.learn.execution import executable
+
+        out = []
+        everything = np.ones(len(self.bank.train), bool)
+        for e in examples:
+            query = Query(self.bank, e, everything)
+            order = np.argsort(-(query.features() @ self.coef), kind="stable")
+            programs = [query.candidates[int(i)].program for i in order]
+            chosen = next((p for p in programs[:CHECK_EXECUTABLE] if executable(p, e)),
+                          programs[0])
+            out.append(chosen)
+        return out
+
+
+def _labelled(query: Query) -> tuple[np.ndarray, np.ndarray]:
+    truth = tuple(step_tokens(query.example.program))
+    return query.features(), np.array([normalized_lcs(c.tokens, truth)
+                                       for c in query.candidates])
+
+
+def _bags(texts: list[str]) -> tuple[dict[str, tuple[int, float]], np.ndarray]:
+    """Word -> (column, idf) over `texts`, and their unit tf-idf rows."""
+    df: dict[str, int] = {}
+    for t in texts:
+        for w in set(words(t)):
+            df[w] = df.get(w, 0) + 1
+    idf = {w: (i, float(np.log((1 + len(texts)) / (1 + n)) + 1))
+           for i, (w, n) in enumerate(sorted(df.items()))}
+    return idf, np.array([_bag(t, idf) for t in texts]).reshape(len(texts), len(idf))
+
+
+def _bag(text: str, idf: dict[str, tuple[int, float]]) -> np.ndarray:
+    """The unit tf-idf vector of `text` over the words of `idf` (others ignored)."""
+    out = np.zeros(len(idf))
+    for w in words(text):
+        if w in idf:
+            out[idf[w][0]] += idf[w][1]
+    norm = np.linalg.norm(out)
+    return out / norm if norm else out
+
+
+def _vectors(examples: list[Example]) -> tuple[np.ndarray, np.ndarray]:
+    from homesim.learn.embeddings import cached_sentence_vectors
+
+    return (cached_sentence_vectors([e.description for e in examples]),
+            cached_sentence_vectors([e.title for e in examples]))
