@@ -38,6 +38,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from _timing import best_of
 from homesim.errors import GraphError, HomesimError
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.homes import load_builtin
@@ -160,20 +161,6 @@ def _ref_edge(raw: Any, nodes: Mapping[int, Node], where: str) -> tuple[int, str
         if value not in nodes:
             raise GraphError(f"{where} ({a} {r} {b}): {end} {value} is not a node of the graph")
     return (a, r.upper(), b)
-
-
-# ------------------------------------------------------------------------ timing
-def best_of(fn: Callable[[], Any], repeat: int,
-            clock: Callable[[], float] = time.perf_counter) -> float:
-    """Best time of `repeat` calls by `clock`, in seconds. With `time.process_time`, time
-    spent waiting for a core on a busy machine does not count, so it is close to a quiet
-    machine's wall time for single-threaded work like loading."""
-    best = math.inf
-    for _ in range(repeat):
-        t0 = clock()
-        fn()
-        best = min(best, clock() - t0)
-    return best
 
 
 def dataset_graphs() -> list[dict[str, Any]]:

@@ -18,26 +18,17 @@ Without --checkpoint a small model is trained first (8 epochs on 420 synthetic e
 from __future__ import annotations
 
 import argparse
-import time
 from pathlib import Path
 
 import torch
 
+from _timing import best_of
 from homesim.learn.data import split, synthetic_examples
 from homesim.learn.text2prog import Text2Prog
 from homesim.learn.train import TrainConfig, train_mle
 from homesim.sim import execute
 from homesim.synth import generate
 from homesim.synth.grammar import _home
-
-
-def best_of(repeat: int, fn) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def main() -> None:
@@ -49,9 +40,9 @@ def main() -> None:
     torch.set_num_threads(1)
 
     programs = list(generate(args.n, seed=0))  # warm the home cache
-    t_synth = best_of(args.repeat, lambda: list(generate(args.n, seed=0)))
-    t_exec = best_of(args.repeat, lambda: [execute(p.program, _home(p.home),
-                                                   bindings=p.bindings) for p in programs])
+    t_synth = best_of(lambda: list(generate(args.n, seed=0)), args.repeat)
+    t_exec = best_of(lambda: [execute(p.program, _home(p.home), bindings=p.bindings)
+                              for p in programs], args.repeat)
     print(f"synthesis: {args.n / t_synth:,.0f} programs/s; re-executing them: "
           f"{args.n / t_exec:,.0f} programs/s; ratio {t_synth / t_exec:.1f}x")
 
@@ -63,8 +54,8 @@ def main() -> None:
         t2p = Text2Prog.create(splits.train, seed=0, embeddings="none")
         train_mle(t2p, splits.train, TrainConfig(epochs=8, batch_size=32))
         test = splits.test
-    t_greedy = best_of(args.repeat, lambda: t2p.predict(test))
-    t_constr = best_of(args.repeat, lambda: t2p.predict(test, constrained=True))
+    t_greedy = best_of(lambda: t2p.predict(test), args.repeat)
+    t_constr = best_of(lambda: t2p.predict(test, constrained=True), args.repeat)
     n_greedy = sum(len(p) for p in t2p.predict(test)) / len(test)
     n_constr = sum(len(p) for p in t2p.predict(test, constrained=True)) / len(test)
     ratio = t_constr / t_greedy

@@ -19,26 +19,17 @@ from __future__ import annotations
 
 import argparse
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 import torch
 import torch.nn.functional as F
 
+from _timing import best_of
 from homesim.dataset.layout import Layout
 from homesim.dataset.read import EncodedEpisode, decode_video
 from homesim.dataset.verify import iter_episodes
 from homesim.learn.videocache import VideoFormat, episode_rows, shard_episodes, small_video
-
-
-def best_of(repeat: int, fn) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def torch_pooled(ep: EncodedEpisode, fmt: VideoFormat) -> np.ndarray:
@@ -61,15 +52,15 @@ def main() -> None:
     key, members = next(iter_episodes(shard))
     ep = EncodedEpisode(key, members)
 
-    t_torch = best_of(args.repeat, lambda: torch_pooled(ep, fmt))
-    t_ffmpeg = best_of(args.repeat, lambda: small_video(ep.video or b"", fmt))
+    t_torch = best_of(lambda: torch_pooled(ep, fmt), args.repeat)
+    t_ffmpeg = best_of(lambda: small_video(ep.video or b"", fmt), args.repeat)
     print(f"scaling {ep.num_frames} frames of {ep.meta['width']}x{ep.meta['height']} to "
           f"{fmt.width}x{fmt.height}: decode + torch pool {t_torch:.2f} s, ffmpeg area filter "
           f"{t_ffmpeg:.2f} s; ratio {t_torch / t_ffmpeg:.1f}x")
 
     with tempfile.TemporaryDirectory() as cache:
-        t_reduce = best_of(1, lambda: shard_episodes(shard, rows, fmt, Path(cache)))
-        t_read = best_of(args.repeat, lambda: shard_episodes(shard, rows, fmt, Path(cache)))
+        t_reduce = best_of(lambda: shard_episodes(shard, rows, fmt, Path(cache)), 1)
+        t_read = best_of(lambda: shard_episodes(shard, rows, fmt, Path(cache)), args.repeat)
     print(f"shard of {len(rows)} episodes: reducing {t_reduce:.1f} s, reading the cache "
           f"{t_read:.2f} s; ratio {t_reduce / t_read:.0f}x (goal >= 20x)")
 
