@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -23,9 +24,17 @@ def start_cli(args: list[str], env: dict[str, str] | None = None,
         [SRC, *filter(None, [os.environ.get("PYTHONPATH")])]), **(env or {})}
     code = f"{prelude}\nimport sys\nfrom homesim.cli.main import main\nsys.exit(main({args!r}))"
     proc = subprocess.Popen([sys.executable, "-c", code], env=full_env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=_interruptible)
     _CHILDREN.append(proc)
     return proc
+
+
+def _interruptible() -> None:
+    """In the child before exec: SIGINT back to its default, as in a terminal. A test run
+    started in the background (``cmd &`` without job control) inherits SIGINT ignored,
+    and Python then never turns Ctrl-C into KeyboardInterrupt."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def kill_leftover_children() -> None:
