@@ -20,8 +20,10 @@ from __future__ import annotations
 import copy
 import random
 from collections import Counter, defaultdict
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from itertools import combinations
+from typing import Protocol
 
 import numpy as np
 import torch
@@ -191,17 +193,42 @@ class ClipTraining:
 
 def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels, val: ClipSet | None = None,
                      device: str = "cpu") -> ClipTraining:
-    """Class-weighted cross-entropy on both heads (`class_weights`); with `val`, the weights
+    """Class-weighted cross-entropy on both heads (`fit_two_heads`); with `val`, the weights
     of the epoch scoring best on it (`clip_score`) are kept. Same seed, same weights."""
     torch.manual_seed(cfg.seed)
     model = ClipModel(cfg).to(device)
+    score = (lambda: clip_score(model, val, labels)) if val is not None and val.steps else None
+    best_epoch, scores = fit_two_heads(
+        model, model, data.inputs, labels.ids(data.actions, labels.actions),
+        labels.ids(data.steps, labels.steps), cfg, score, device)
+    return ClipTraining(model.eval(), best_epoch, scores)
+
+
+class TrainingConfig(Protocol):
+    """What `fit_two_heads` reads of a model's config (`ClipConfig`, `FrameCNNConfig`)."""
+
+    n_actions: int
+    n_steps: int
+    epochs: int
+    batch_size: int
+    lr: float
+    seed: int
+
+
+def fit_two_heads(model: nn.Module, heads: Callable[[torch.Tensor], tuple[torch.Tensor, ...]],
+                  inputs: torch.Tensor, y_a: torch.Tensor, y_s: torch.Tensor, cfg: TrainingConfig,
+                  score: Callable[[], float] | None, device: str, min_batch: int = 1
+                  ) -> tuple[int | None, list[float]]:
+    """Train `model` (already seeded and on `device`) with Adam on the action and step
+    heads' class-weighted cross-entropy (`class_weights`; label -100 is ignored), in
+    shuffled batches of ``cfg.batch_size`` (smaller than `min_batch` skipped) for
+    ``cfg.epochs`` epochs. With `score`, the weights of the best-scoring epoch are loaded
+    back. Returns that epoch (None without `score`) and each epoch's score."""
     opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
-    y_a = labels.ids(data.actions, labels.actions)
-    y_s = labels.ids(data.steps, labels.steps)
     w_a = class_weights(y_a, cfg.n_actions).to(device)
     w_s = class_weights(y_s, cfg.n_steps).to(device)
     rng = random.Random(cfg.seed)
-    order = list(range(len(data.steps)))
+    order = list(range(len(y_s)))
     scores: list[float] = []
     best: tuple[float, int, dict] | None = None
     for epoch in range(cfg.epochs):
@@ -209,19 +236,21 @@ def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels, val: ClipSe
         rng.shuffle(order)
         for i in range(0, len(order), cfg.batch_size):
             batch = torch.tensor(order[i:i + cfg.batch_size])
-            logit_a, logit_s = model(data.inputs[batch].to(device))
+            if len(batch) < min_batch:
+                continue
+            logit_a, logit_s = heads(inputs[batch].to(device))
             loss = (F.cross_entropy(logit_a, y_a[batch].to(device), w_a, ignore_index=-100)
                     + F.cross_entropy(logit_s, y_s[batch].to(device), w_s, ignore_index=-100))
             opt.zero_grad()
             loss.backward()
             opt.step()
-        if val is not None and val.steps:
-            scores.append(clip_score(model, val, labels))
+        if score is not None:
+            scores.append(score())
             if best is None or scores[-1] > best[0]:
                 best = (scores[-1], epoch, copy.deepcopy(model.state_dict()))
     if best is not None:
         model.load_state_dict(best[2])
-    return ClipTraining(model.eval(), best[1] if best else None, scores)
+    return (best[1] if best else None), scores
 
 
 @torch.no_grad()

@@ -11,8 +11,6 @@ as the oracle-perception models read the class pixel shares (`homesim.learn.clip
 
 from __future__ import annotations
 
-import copy
-import random
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -20,7 +18,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.clips import Descriptors, class_weights, mean_class_accuracy
+from homesim.learn.clips import Descriptors, fit_two_heads, mean_class_accuracy
 from homesim.learn.videodata import Episode, step_class
 
 
@@ -108,38 +106,16 @@ def _frame_score(model: FrameCNN, data: FrameSet, device: str) -> float:
 
 def train_frame_cnn(cfg: FrameCNNConfig, train: FrameSet, val: FrameSet | None,
                     device: str = "cpu") -> tuple[FrameCNN, int | None, list[float]]:
-    """Class-weighted cross-entropy on both heads; with `val`, the best epoch's weights.
-    Returns the model, the epoch kept and each epoch's validation score."""
+    """Class-weighted cross-entropy on both heads (`fit_two_heads`; batch norm needs
+    batches of two); with `val`, the best epoch's weights. Returns the model, the epoch
+    kept and each epoch's validation score."""
     torch.manual_seed(cfg.seed)
     model = FrameCNN(cfg).to(device)
-    opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
-    w_a = class_weights(train.actions, cfg.n_actions).to(device)
-    w_s = class_weights(train.steps, cfg.n_steps).to(device)
-    rng = random.Random(cfg.seed)
-    order = list(range(len(train.frames)))
-    scores: list[float] = []
-    best: tuple[float, int, dict] | None = None
-    for epoch in range(cfg.epochs):
-        model.train()
-        rng.shuffle(order)
-        for i in range(0, len(order), cfg.batch_size):
-            batch = torch.tensor(order[i:i + cfg.batch_size])
-            if len(batch) < 2:
-                continue  # batch norm needs two
-            la, ls = model.heads(train.frames[batch].to(device))
-            loss = (F.cross_entropy(la, train.actions[batch].to(device), w_a, ignore_index=-100)
-                    + F.cross_entropy(ls, train.steps[batch].to(device), w_s,
-                                      ignore_index=-100))
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-        if val is not None and len(val.frames):
-            scores.append(_frame_score(model, val, device))
-            if best is None or scores[-1] > best[0]:
-                best = (scores[-1], epoch, copy.deepcopy(model.state_dict()))
-    if best is not None:
-        model.load_state_dict(best[2])
-    return model.eval(), best[1] if best else None, scores
+    score = (lambda: _frame_score(model, val, device)) if val is not None and len(val.frames) \
+        else None
+    best_epoch, scores = fit_two_heads(model, model.heads, train.frames, train.actions,
+                                       train.steps, cfg, score, device, min_batch=2)
+    return model.eval(), best_epoch, scores
 
 
 @torch.no_grad()
