@@ -57,6 +57,15 @@ def grab_programs(count: int, seed: int):
     return out
 
 
+def attach_box(graph, scene, tl, attach) -> Box:
+    """The grabbed object's box at the frame it is taken (a movable object where it is
+    then)."""
+    box = to_mujoco(graph.node(attach.node))
+    if attach.node in scene.mocap:
+        box = Box(tl.mocap[attach.frame][scene.mocap[attach.node]], box.half)
+    return box
+
+
 def mouth_gap(scene, d, obj: int, half: np.ndarray, height: float) -> float:
     """Distance from the mouth (front of the head, a little below its centre) to the box
     of a held object."""
@@ -79,10 +88,7 @@ def measure(ran, home: str, seed: int, width: int, height: int) -> dict:
     state = SceneState(scene, tl)
     for a in tl.attaches:  # the wrist joint (the hand's grip point lies beyond it)
         d = state.apply(a.frame)
-        box = to_mujoco(g.node(a.node))
-        if a.node in scene.mocap:  # a movable object: where it is now
-            box = Box(tl.mocap[a.frame][scene.mocap[a.node]], box.half)
-        out["wrist"].append(box_gap(box, d.site(f"j:{a.side}_wrist").xpos))
+        out["wrist"].append(box_gap(attach_box(g, scene, tl, a), d.site(f"j:{a.side}_wrist").xpos))
     steps = ran.grounding.program.steps
     with Renderer(scene, width, height) as r:
         for it in tl.interactions:

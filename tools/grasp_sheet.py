@@ -20,34 +20,17 @@ from pathlib import Path
 
 import numpy as np
 
-import homesim
-from homesim.ground import unground
-from homesim.knowledge import real_programs
 from homesim.render import contact_sheet
 from homesim.render.api import prepare
 from homesim.render.gl import mujoco
 from homesim.render.interact import box_gap
-from homesim.render.layout import Box, to_mujoco
+from homesim.render.layout import Box
 from homesim.render.recorder import SceneState
 
-HOMES = ("scene1", "scene2", "scene3", "scene4", "scene5")
-OUT = Path(__file__).resolve().parents[1] / "docs" / "render" / "grasps.png"
-
-
-def grab_runs(count: int, seed: int):
-    """(index, home, Run) of the first `count` real programs with a Grab that run."""
-    out = []
-    for k, rp in enumerate(real_programs()):
-        text = str(unground(rp.program))
-        if "[Grab]" not in text:
-            continue
-        home = HOMES[len(out) % len(HOMES)]
-        ran = homesim.run_program(text, home, seed=seed)
-        if ran.executable and ran.grounding is not None:
-            out.append((k, home, ran))
-        if len(out) == count:
-            break
-    return out
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "docs" / "render" / "grasps.png"
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from interactions import attach_box, grab_programs  # noqa: E402  (the benchmark's own choice)
 
 
 def views(scene, data, box: Box, wrist: np.ndarray, size: int) -> list[np.ndarray]:
@@ -80,7 +63,7 @@ def main() -> int:
     ap.add_argument("--only", type=int, nargs="*", help="real program indices to draw")
     args = ap.parse_args()
     frames = []
-    for k, home, ran in grab_runs(args.programs, args.seed):
+    for k, _, home, ran in grab_programs(args.programs, args.seed):
         if args.only and k not in args.only:
             continue
         g = ran.graph
@@ -90,9 +73,7 @@ def main() -> int:
         state = SceneState(scene, tl)
         for a in tl.attaches:
             d = state.apply(a.frame)
-            box = to_mujoco(g.node(a.node))
-            if a.node in scene.mocap:
-                box = Box(tl.mocap[a.frame][scene.mocap[a.node]], box.half)
+            box = attach_box(g, scene, tl, a)
             wrist = d.site(f"j:{a.side}_wrist").xpos.copy()
             gap = box_gap(box, wrist)
             cls = g.node(a.node).class_name
