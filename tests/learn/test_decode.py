@@ -31,10 +31,11 @@ def test_penalty_discourages_reuse_and_forbids_long_runs():
     from homesim.learn.decode import MAX_RUN, REPEAT_PENALTY, penalized
 
     log_probs = torch.log_softmax(torch.tensor([0.0, 3.0, 1.0, 0.5]), 0)
-    p = penalized(log_probs, [1, 2, 1])
+    p = penalized(log_probs, [1, 2, 1, 2])
     assert p[1] == log_probs[1] - 2 * REPEAT_PENALTY and p[3] == log_probs[3]
     assert p[END] == log_probs[END]  # ending is never penalised
     assert penalized(log_probs, [1] * MAX_RUN)[1] == float("-inf")
+    assert penalized(log_probs, [2])[2] == float("-inf")  # no step directly repeats
 
 
 def test_constrained_decoding_does_not_loop(tiny_splits):

@@ -10,7 +10,8 @@ from homesim.learn.rerank import (
     Query,
     Reranker,
     allows,
-    fit_ridge,
+    drops,
+    fit_trees,
     mention_order,
     rename,
     substitutions,
@@ -58,25 +59,39 @@ def test_mention_order_compares_with_the_text():
     assert mention_order(["cup"], named, "the cup") == 0.5
 
 
-def test_ridge_learns_which_feature_ranks():
+def test_trees_learn_which_feature_ranks_within_a_group():
     rng = np.random.default_rng(0)
     groups = []
-    for _ in range(30):
+    for _ in range(60):
         x = rng.normal(size=(6, 3))
         groups.append((x, 2 * x[:, 1] + rng.normal(scale=0.01, size=6) + rng.normal()))
-    coef = fit_ridge(groups, 0.1)
-    assert np.argmax(np.abs(coef)) == 1 and coef[1] > 1.5
+    trees = fit_trees(groups)
+    from homesim.learn.rerank import design
+
+    hits = [int(np.argmax(trees.predict(design(x)))) == int(np.argmax(x[:, 1]))
+            for x in (rng.normal(size=(6, 3)) for _ in range(40))]
+    assert np.mean(hits) > 0.8
+
+
+def test_drops_leave_out_unnamed_objects_but_never_rooms_or_everything():
+    program = Program.parse(TV + "\n[Walk] <couch> (1)\n[Sit] <couch> (1)")
+    rate = {"couch": 0.1, "television": 0.2}.get
+    out = {str(p) for p in drops(program, frozenset(), lambda c: rate(c, 0.9))}
+    assert str(Program.parse(TV)) in out  # couch left out
+    assert str(Program.parse("[Walk] <home_office> (1)")) in out  # both rarely implicit
+    assert all("home_office" in p for p in out)
+    assert drops(Program.parse("[Walk] <couch> (1)"), frozenset(), lambda c: 0.1) == []
 
 
 def test_reranker_prefers_the_program_whose_objects_the_text_names(tiny_splits):
-    train, dev, test = tiny_splits.train, tiny_splits.dev, tiny_splits.test
-    model = Reranker.fit(train, dev, "program")
-    assert model.coef.shape == (len(FEATURES),)
+    train, test = tiny_splits.train, tiny_splits.test
+    model = Reranker.fit(train, "program")
     query = Query(model.bank, test[0], np.ones(len(train), bool))
     assert query.features().shape == (len(query.candidates), len(FEATURES))
+    assert model.scores(query).shape == (len(query.candidates),)
     preds = model.predict(test[:4])
     assert [str(p) for p in preds] == [str(p) for p in Reranker.fit(
-        train, dev, "program").predict(test[:4])]
+        train, "program").predict(test[:4])]
     pool = {e.program.steps for e in train}
     assert all(p.steps in pool or len(p) for p in preds)
 

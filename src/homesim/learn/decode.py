@@ -54,13 +54,14 @@ def _rollout(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, max_steps:
 
 REPEAT_PENALTY = 1.0
 """Log-probability taken off a step for each time the program already has it (coverage)."""
-MAX_RUN = 2
-"""A step may follow itself at most this many times in a row."""
+MAX_RUN = 1
+"""The longest run of one step: 1, a step never directly follows itself (people's programs
+repeat the step before in 0.3-1.5 % of steps, unconstrained decoding in 2-8 %)."""
 
 
 def penalized(log_probs: torch.Tensor, emitted: list[int]) -> torch.Tensor:
     """(steps,) log-probabilities less `REPEAT_PENALTY` per earlier use of each step, and
-    minus infinity for a step that would repeat itself more than `MAX_RUN` times in a row."""
+    minus infinity for a step that would make a run longer than `MAX_RUN`."""
     out = log_probs.clone()
     if emitted:
         used = torch.bincount(torch.tensor(emitted, device=out.device),

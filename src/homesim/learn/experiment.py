@@ -153,8 +153,7 @@ def model_jobs(splits: Splits, seed: int, t2p: Text2Prog,
         ("Retrieve-and-edit", lambda: retrieval().predict(test)),
         ("Consensus (MLE + retrieval)",
          lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)),
-        (RERANK_ROW, lambda: Reranker.fit(splits.train, splits.dev,
-                                          HOLDOUT[split_name]).predict(test)),
+        (RERANK_ROW, lambda: Reranker.fit(splits.train, HOLDOUT[split_name]).predict(test)),
     ]
 
 

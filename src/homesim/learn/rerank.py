@@ -10,25 +10,32 @@ For a description x:
    an object class the text does not name (`lexicon.ObjectLexicon`) replaced by one it
    names and the program lacks, where every step using it allows the new class (the
    action catalog's property needs, rooms only for rooms); singly and greedily all at once.
-3. **Score.** A linear function of features of (x, candidate) (`FEATURES`): the expected
-   LCS under each tau against the `NEAR` nearest neighbours, the share of named classes the
-   candidate uses and of its classes that are named, how often its unnamed classes are left
-   implicit in training, whether the mention order agrees, its length against the
-   neighbours' and the text's, its source's similarity, whether it was edited.
+   Then the *drops* of the first `DROP_FROM` candidates: the steps using one class the text
+   does not name (nor a room) left out, singly, and all such classes that training usually
+   names (implicit rate below `CHAIN_IMPLICIT`) left out at once.
+3. **Score.** Gradient-boosted regression trees over features of (x, candidate)
+   (`FEATURES`): the expected LCS under each tau against the `NEAR` nearest neighbours,
+   the share of named classes the candidate uses and of its classes that are named, how
+   often its unnamed classes are left implicit in training, whether the mention order
+   agrees, its length against the neighbours' and the text's, its source's similarity,
+   whether it was edited.
 4. **Choice.** The best-scoring candidate that executes in the example's home
    (`execution.executable`, checked best-first; the best one if none does).
 
-The weights are fitted by ridge regression of the candidates' steps LCS to the truth,
-centred within each description (only the order within a description matters), on
-training descriptions each queried against the rest of the training set with what the split
-hides removed: for the stratified split the training programs equal to its own, for
-leave-activities-out every program of its activity. The ridge penalty is chosen on the dev
-split. Everything is deterministic.
+The trees regress the candidates' steps LCS to the truth, centred within each description
+(only the order within a description matters), on each feature and on its deviation from
+the description's mean; they are fitted on training descriptions each queried against the
+rest of the training set with what the split hides removed: for the stratified split the
+training programs equal to its own, for leave-activities-out every program of its
+activity. Their settings (`TREES`) were chosen by 5-fold cross-validation over those
+training queries and on the dev split, never on test. Everything is deterministic.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -37,12 +44,21 @@ from homesim.learn.lexicon import ObjectLexicon, actions, classes, words
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 
+if TYPE_CHECKING:
+    from sklearn.ensemble import HistGradientBoostingRegressor
+
 TAUS = (0.02, 0.05, 0.1, 0.3)
 TOP_K = 8
 NEAR = 25
 MAX_SUBSTITUTIONS = 5
-LAMBDAS = (0.1, 1.0, 10.0, 100.0)
-"""The dev grid for the ridge penalty."""
+DROP_FROM = 40
+"""Candidates (retrieved and substituted, in order) whose drops are added."""
+CHAIN_IMPLICIT = 0.7
+"""Unnamed classes left implicit in fewer than this share of training programs are dropped
+together in one more candidate."""
+TREES = {"max_iter": 200, "learning_rate": 0.05, "max_leaf_nodes": 15, "min_samples_leaf": 40,
+         "random_state": 0}
+"""`sklearn.ensemble.HistGradientBoostingRegressor` settings (module docstring)."""
 HOLDOUTS = ("program", "activity")
 """What a training query may not see of the rest of training: programs equal to its own
 (stratified split) or its whole activity (leave-activities-out)."""
@@ -133,6 +149,12 @@ class Query:
                 if tokens not in seen:
                     seen.add(tokens)
                     out.append(Candidate(Program(p.steps), tokens, j, edited))
+        for c in out[:DROP_FROM]:
+            for p in drops(c.program, self.named, self.bank.lexicon.implicit_rate):
+                tokens = tuple(step_tokens(p))
+                if tokens not in seen:
+                    seen.add(tokens)
+                    out.append(Candidate(Program(p.steps), tokens, c.source, True))
         return out
 
     def features(self) -> np.ndarray:
@@ -183,6 +205,26 @@ def substitutions(program: Program, named: frozenset[str]) -> list[Program]:
     return singles + chain[1:]
 
 
+def drops(program: Program, named: frozenset[str],
+          implicit_rate: Callable[[str], float]) -> list[Program]:
+    """`program` without the steps that use one class the text does not name (rooms kept),
+    for each such class, then without all of those whose `implicit_rate` is below
+    `CHAIN_IMPLICIT` at once; never an empty program."""
+    from homesim.ground.prepare import ROOM_NAMES
+
+    unnamed = sorted(classes(program) - named - ROOM_NAMES)
+    rare = frozenset(c for c in unnamed if implicit_rate(c) < CHAIN_IMPLICIT)
+    out = [_without(program, frozenset({c})) for c in unnamed]
+    if len(rare) > 1:
+        out.append(_without(program, rare))
+    return [p for p in out if p.steps]
+
+
+def _without(program: Program, gone: frozenset[str]) -> Program:
+    return program.with_steps([s for s in program.steps
+                               if not any(r.name in gone for r in s.args)])
+
+
 def _swaps(program: Program, named: frozenset[str]) -> list[Program]:
     used = classes(program)
     return [rename(program, old, new) for old in sorted(used - named)
@@ -224,14 +266,19 @@ def mention_order(objects: list[str], named: frozenset[str], text: str) -> float
     return float(np.mean(pairs)) if pairs else 0.5
 
 
-def fit_ridge(groups: list[tuple[np.ndarray, np.ndarray]], penalty: float) -> np.ndarray:
-    """Linear weights regressing targets on features, both centred within each group
-    (features standardised for the penalty)."""
-    x = np.vstack([f - f.mean(0) for f, _ in groups])
+def design(features: np.ndarray) -> np.ndarray:
+    """The trees' input for one description's candidates: each feature's deviation from the
+    candidates' mean, then the feature itself."""
+    return np.hstack([features - features.mean(0), features])
+
+
+def fit_trees(groups: list[tuple[np.ndarray, np.ndarray]]) -> HistGradientBoostingRegressor:
+    """Trees regressing targets centred within each group on `design` (`TREES` settings)."""
+    from sklearn.ensemble import HistGradientBoostingRegressor
+
+    x = np.vstack([design(f) for f, _ in groups])
     y = np.concatenate([t - t.mean() for _, t in groups])
-    scale = x.std(0) + 1e-9
-    a = x / scale
-    return np.linalg.solve(a.T @ a + penalty * np.eye(a.shape[1]), a.T @ y) / scale
+    return HistGradientBoostingRegressor(**TREES).fit(x, y)
 
 
 @dataclass
@@ -239,26 +286,20 @@ class Reranker:
     """A fitted reranker (module docstring)."""
 
     bank: Bank
-    coef: np.ndarray
-    penalty: float = 1.0
+    trees: HistGradientBoostingRegressor
 
     @classmethod
-    def fit(cls, train: list[Example], dev: list[Example], holdout: str) -> Reranker:
-        """Weights fitted on `train` queried against itself (hiding `holdout`: one of
-        `HOLDOUTS`), the ridge penalty of `LAMBDAS` best on `dev`."""
+    def fit(cls, train: list[Example], holdout: str) -> Reranker:
+        """Trees fitted on `train` queried against itself, hiding `holdout` (one of
+        `HOLDOUTS`)."""
         bank = Bank(train)
         groups = [_labelled(q) for q in (
             Query(bank, e, ~bank.hidden(e, holdout)) for e in train) if q.candidates]
-        dev_queries = [Query(bank, e, np.ones(len(train), bool)) for e in dev]
-        dev_groups = [_labelled(q) for q in dev_queries]
-        best: tuple[float, float, np.ndarray] | None = None
-        for penalty in LAMBDAS:
-            coef = fit_ridge(groups, penalty)
-            value = float(np.mean([t[int(np.argmax(f @ coef))] for f, t in dev_groups]))
-            if best is None or value > best[0]:
-                best = (value, penalty, coef)
-        assert best is not None
-        return cls(bank, best[2], best[1])
+        return cls(bank, fit_trees(groups))
+
+    def scores(self, query: Query) -> np.ndarray:
+        """(candidates,) the trees' score of each of the query's candidates."""
+        return np.asarray(self.trees.predict(design(query.features())))
 
     def predict(self, examples: list[Example]) -> list[Program]:
         """One program per example: the best-scoring candidate that executes in its home."""
@@ -268,7 +309,7 @@ class Reranker:
         everything = np.ones(len(self.bank.train), bool)
         for e in examples:
             query = Query(self.bank, e, everything)
-            order = np.argsort(-(query.features() @ self.coef), kind="stable")
+            order = np.argsort(-self.scores(query), kind="stable")
             programs = [query.candidates[int(i)].program for i in order]
             chosen = next((p for p in programs[:CHECK_EXECUTABLE] if executable(p, e)),
                           programs[0])
