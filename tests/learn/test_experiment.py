@@ -9,7 +9,11 @@ def _examples(result: dict) -> dict:
     return {row: r["examples"] for row, r in result["rows"].items()}
 
 
-def test_same_seed_same_scores_and_the_cache_is_reused(tmp_path):
+def test_same_seed_same_scores_and_the_cache_is_reused(tmp_path, monkeypatch):
+    from homesim.learn import experiment
+
+    monkeypatch.setattr(experiment, "MLE_DATASETS", ("synthetic",))  # every row, tiny data
+    monkeypatch.setattr(experiment, "RERANK_DATASETS", ("synthetic",))
     spec = RunSpec("synthetic", "stratified", 3, synth_n=40, mle_epochs=1, embeddings="none")
     a = run(spec, tmp_path / "a")
     b = run(spec, tmp_path / "b")
@@ -20,9 +24,22 @@ def test_same_seed_same_scores_and_the_cache_is_reused(tmp_path):
     assert all(e["solved"] == 0.0 for e in a["rows"]["Empty program"]["examples"])
     assert _examples(cached_run(spec, tmp_path / "a")) == _examples(a)
     summary = block([a], MODEL_ROW, ("Title-medoid",))
-    text = evaluation_markdown({"synthetic": {"stratified": summary}}, "box", "v")
+    text = evaluation_markdown({"real": {"stratified": summary}}, "box", "v")
     assert "| Empty program | 1 | 0.000 ± 0.000 |" in text
     assert "Goal (steps LCS at least 0.05 above Title-medoid):" in text
+    text = evaluation_markdown({"synthetic": {"stratified": summary}}, "box", "v")
+    assert "### Synthetic data, template text, stratified split" in text
+    assert "Goal" not in text  # the goal is set on real data only
+
+
+def test_paraphrased_text_gets_the_reranker_and_the_rule_parser_not_the_seq2seq(tmp_path):
+    spec = RunSpec("synthetic-people", "stratified", 0, synth_n=40, embeddings="none")
+    rows = run(spec, tmp_path)["rows"]
+    assert {MODEL_ROW, "Rule parser (upper bound)", "Title-medoid"} <= set(rows)
+    assert not any(name.startswith("MLE") for name in rows)
+    assert not (tmp_path / "synthetic-people" / "stratified" / "seed0" / "mle.pt").exists()
+    parsed = [e["steps"] for e in rows["Rule parser (upper bound)"]["examples"]]
+    assert sum(parsed) / len(parsed) < 0.9  # paraphrases are not the parser's templates
 
 
 def test_table_command_summarises_cached_runs(tmp_path, capsys):
@@ -33,7 +50,7 @@ def test_table_command_summarises_cached_runs(tmp_path, capsys):
             "--synth-n", "30", "--only-cached", "--markdown", str(md)]
     assert main(args) == 0
     text = md.read_text()
-    assert "### Synthetic data, stratified split" in text and "Seeds 0;" in text
+    assert "### Synthetic data, template text, stratified split" in text and "Seeds 0;" in text
     assert "| Rule parser (upper bound) | 1 | 1.000 ± 0.000 |" in text
     assert main(["learn", "rules", "--synth-n", "30"]) == 0
     assert "rule parser: steps LCS 1.000 on 30 programs" in capsys.readouterr().out

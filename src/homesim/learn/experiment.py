@@ -25,7 +25,13 @@ from homesim.learn.train import BestOnDev, TrainConfig, train_mle
 from homesim.learn.vocab import StepVocab
 from homesim.program.model import Program
 
-DATASETS = ("real", "synthetic")
+DATASETS = ("real", "synthetic", "synthetic-people")
+"""The real programs; the synthetic ones with template text; the same synthetic programs
+described by the paraphrase grammar (`homesim.synth.describe`)."""
+MLE_DATASETS = ("real",)
+"""Data sets the seq2seq rows are trained on (CPU budget: docs/learn.md)."""
+RERANK_DATASETS = ("real", "synthetic-people")
+"""Data sets the reranker row is scored on (on template text the rule parser is exact)."""
 Report = Callable[[str, int, int, float], None]
 """Progress callback: (stage, done, total, running loss or score)."""
 
@@ -70,6 +76,8 @@ def load_examples(dataset: str, synth_n: int = 5000) -> list[Example]:
         return real_examples()
     if dataset == "synthetic":
         return synthetic_examples(synth_n, SYNTH_SEED)
+    if dataset == "synthetic-people":
+        return synthetic_examples(synth_n, SYNTH_SEED, style="people")
     raise HomesimError(f"unknown data set {dataset!r}: choose from {', '.join(DATASETS)}")
 
 
@@ -131,12 +139,10 @@ HOLDOUT = {"stratified": "program", "leave-activities-out": "activity"}
 RERANK_ROW = "Reranker (retrieve, substitute, rerank)"
 
 
-def model_jobs(splits: Splits, seed: int, t2p: Text2Prog,
-               split_name: str = "stratified") -> list[Job]:
-    """Rows that learn: seq2seq (greedy, constrained), retrieve-and-edit, consensus, and
-    the learned reranker."""
+def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
+    """Rows that learn with the seq2seq model or beside it: greedy and constrained decoding,
+    retrieve-and-edit, consensus."""
     from homesim.learn.consensus import Consensus
-    from homesim.learn.rerank import Reranker
     from homesim.learn.retrieve import RetrieveEdit
 
     test = splits.test
@@ -153,8 +159,15 @@ def model_jobs(splits: Splits, seed: int, t2p: Text2Prog,
         ("Retrieve-and-edit", lambda: retrieval().predict(test)),
         ("Consensus (MLE + retrieval)",
          lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)),
-        (RERANK_ROW, lambda: Reranker.fit(splits.train, HOLDOUT[split_name]).predict(test)),
     ]
+
+
+def rerank_job(splits: Splits, split_name: str) -> Job:
+    """The learned reranker (`rerank`), fitted the way `split_name` hides test from train."""
+    from homesim.learn.rerank import Reranker
+
+    return (RERANK_ROW,
+            lambda: Reranker.fit(splits.train, HOLDOUT[split_name]).predict(splits.test))
 
 
 def rule_job(splits: Splits) -> Job:
@@ -205,7 +218,8 @@ def cached_run(spec: RunSpec, out: Path) -> dict | None:
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         report: Report | None = None) -> dict:
-    """Score every row of one run; rows already in ``scores.json`` for the same spec are
+    """Score every row of one run (`with_model`: also the learned rows this data set gets,
+    `MLE_DATASETS` and `RERANK_DATASETS`); rows already in ``scores.json`` for the same spec are
     kept (so baselines scored without the model are reused, and an interrupted run resumes).
     """
     folder = spec.folder(out)
@@ -217,11 +231,14 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
             rows = old["rows"]
     splits = load_run_splits(spec)
     preload_vectors(splits, out / spec.dataset / "vectors.npz")
-    t2p = mle_model(spec, splits, folder, device, report) if with_model else None
+    t2p = (mle_model(spec, splits, folder, device, report)
+           if with_model and spec.dataset in MLE_DATASETS else None)
     jobs = baseline_jobs(splits, spec.seed)
     if t2p is not None:
-        jobs += model_jobs(splits, spec.seed, t2p, spec.split)
-    if spec.dataset == "synthetic":
+        jobs += model_jobs(splits, spec.seed, t2p)
+    if with_model and spec.dataset in RERANK_DATASETS:
+        jobs.append(rerank_job(splits, spec.split))
+    if spec.dataset != "real":
         jobs.append(rule_job(splits))
     unseen = StepVocab.build(e.program for e in splits.train).unseen_share(
         e.program for e in splits.test)

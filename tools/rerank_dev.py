@@ -1,0 +1,73 @@
+"""The reranker measured without test: 5-fold cross-validation over its training queries and
+the dev split, for every real-data run (docs/learn.md, "How it was chosen").
+
+    python tools/rerank_dev.py [--seeds 5] [--vectors out/learn/real/vectors.npz]
+
+Prints, per split and seed, the mean steps LCS of the top-scoring candidate (no
+executability check) in cross-validation (folds by program for the stratified split, by
+activity for leave-activities-out, as the split hides them) and on dev, then the means.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+
+from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits, preload_vectors
+from homesim.learn.rerank import Bank, Query, _labelled, design, fit_trees
+from homesim.learn.splits import SPLITS
+
+FOLDS = 5
+
+Group = tuple[np.ndarray, np.ndarray]
+
+
+def top_lcs(trees, groups: list[Group]) -> list[float]:
+    """The truth's steps LCS of each group's best-scoring candidate."""
+    return [float(t[int(np.argmax(trees.predict(design(f))))]) for f, t in groups]
+
+
+def cross_validated(groups: list[Group], folds: list[int]) -> float:
+    """Mean top-candidate LCS with each fold scored by trees fitted on the others."""
+    out: list[float] = []
+    for k in range(FOLDS):
+        trees = fit_trees([g for g, f in zip(groups, folds, strict=True) if f != k])
+        out += top_lcs(trees, [g for g, f in zip(groups, folds, strict=True) if f == k])
+    return float(np.mean(out))
+
+
+def measure(split: str, seed: int, vectors: Path) -> tuple[float, float]:
+    """(cross-validated, dev) mean top-candidate steps LCS of one run."""
+    splits = load_run_splits(RunSpec("real", split, seed))
+    preload_vectors(splits, vectors)
+    bank = Bank(splits.train)
+    groups, folds = [], []
+    activities = sorted({e.activity for e in splits.train})
+    for i, e in enumerate(splits.train):
+        query = Query(bank, e, ~bank.hidden(e, HOLDOUT[split]))
+        if query.candidates:
+            groups.append(_labelled(query))
+            folds.append(i % FOLDS if split == "stratified"
+                         else activities.index(e.activity) % FOLDS)
+    everything = np.ones(len(splits.train), bool)
+    dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
+    return cross_validated(groups, folds), float(np.mean(top_lcs(fit_trees(groups), dev)))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seeds", type=int, default=5)
+    parser.add_argument("--vectors", type=Path, default=Path("out/learn/real/vectors.npz"))
+    args = parser.parse_args()
+    for split in SPLITS:
+        rows = [measure(split, seed, args.vectors) for seed in range(args.seeds)]
+        for seed, (cv, dev) in enumerate(rows):
+            print(f"{split} seed {seed}: cross-validated {cv:.4f}, dev {dev:.4f}")
+        cv, dev = np.mean(rows, axis=0)
+        print(f"{split} mean: cross-validated {cv:.4f}, dev {dev:.4f}")
+
+
+if __name__ == "__main__":
+    main()
