@@ -22,3 +22,22 @@ def test_word2vec_is_seeded():
     a = word2vec_vectors(["<pad>", "go", "fridge"], texts, seed=1, dim=16)
     b = word2vec_vectors(["<pad>", "go", "fridge"], texts, seed=1, dim=16)
     assert torch.equal(a, b) and a.shape == (3, 16) and a[0].abs().sum() == 0
+
+
+def test_preload_reuses_a_cache_only_for_the_same_set_of_texts(tmp_path, monkeypatch):
+    from homesim.learn import embeddings
+
+    batches: list[list[str]] = []
+
+    def fake(texts: list[str], batch_size: int = 64) -> np.ndarray:
+        batches.append(list(texts))
+        return np.full((len(texts), 384), float(len(texts)), np.float32)
+
+    monkeypatch.setattr(embeddings, "sentence_vectors", fake)
+    monkeypatch.setattr(embeddings, "_VECTORS", {})
+    cache = tmp_path / "vectors.npz"
+    embeddings.preload_sentence_vectors(["b", "a", "c"], cache)
+    embeddings.preload_sentence_vectors(["c", "a", "b", "a"], cache)  # read back from disk
+    embeddings.preload_sentence_vectors(["a", "b"], cache)  # other batches: embedded afresh
+    assert batches == [["a", "b", "c"], ["a", "b"]]
+    assert embeddings.cached_sentence_vectors(["a"])[0, 0] == 2.0

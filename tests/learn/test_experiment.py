@@ -42,6 +42,27 @@ def test_paraphrased_text_gets_the_reranker_and_the_rule_parser_not_the_seq2seq(
     assert sum(parsed) / len(parsed) < 0.9  # paraphrases are not the parser's templates
 
 
+def test_every_seed_embeds_the_whole_data_set(tmp_path, monkeypatch):
+    """The sentence vectors (floats depend on the batch) are the same whatever the seed's
+    split keeps and whatever ran before."""
+    from homesim.learn import experiment
+
+    embedded: list[list[str]] = []
+    monkeypatch.setattr(experiment, "preload_vectors",
+                        lambda examples, cache: embedded.append(sorted(e.id for e in examples)))
+    split = experiment.make_split
+
+    def dropping_one(*args: object) -> experiment.Splits:  # as deduplication does
+        splits = split(*args)  # type: ignore[arg-type]
+        return experiment.Splits(splits.name, splits.train, splits.dev, splits.test[1:])
+
+    monkeypatch.setattr(experiment, "make_split", dropping_one)
+    for seed in (0, 1):
+        run(RunSpec("synthetic", "stratified", seed, synth_n=30), tmp_path, with_model=False)
+    everything = sorted(e.id for e in experiment.load_examples("synthetic", 30))
+    assert embedded == [everything, everything]
+
+
 def test_table_command_summarises_cached_runs(tmp_path, capsys):
     spec = RunSpec("synthetic", "stratified", 0, synth_n=30)
     run(spec, tmp_path, with_model=False)

@@ -105,7 +105,7 @@ def preload_sentence_vectors(texts: list[str], cache: Path | None = None) -> Non
     if cache is not None and cache.is_file():
         with np.load(cache, allow_pickle=False) as data:
             stored = dict(zip(data["texts"].tolist(), data["vectors"], strict=True))
-        if set(wanted) <= set(stored):
+        if set(wanted) == set(stored):  # a superset was embedded in other batches
             _VECTORS.update(stored)
             return
     vectors = sentence_vectors(wanted)

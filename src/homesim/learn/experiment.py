@@ -81,12 +81,6 @@ def load_examples(dataset: str, synth_n: int = 5000) -> list[Example]:
     raise HomesimError(f"unknown data set {dataset!r}: choose from {', '.join(DATASETS)}")
 
 
-def load_run_splits(spec: RunSpec) -> Splits:
-    """The train/dev/test examples of a run."""
-    examples = load_examples(spec.dataset, spec.synth_n)
-    return make_split(spec.split, examples, spec.seed, spec.dataset)
-
-
 def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
               report: Report | None = None) -> Text2Prog:
     """The run's MLE model: loaded from ``mle.pt`` when trained with this spec, else trained
@@ -197,12 +191,12 @@ def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
             report(splits.name, done + 1, len(jobs), 0.0)
 
 
-def preload_vectors(splits: Splits, cache: Path) -> None:
-    """Embed every title, description and activity of the data set in one go (cached on
-    disk), so that the vectors do not depend on what was embedded before."""
+def preload_vectors(examples: list[Example], cache: Path) -> None:
+    """Embed every title, description and activity of the whole data set (`examples`, not
+    one run's splits: those differ between seeds) in one go, cached on disk, so that the
+    vectors depend neither on the seed nor on which runs came before."""
     from homesim.learn.embeddings import preload_sentence_vectors
 
-    examples = [*splits.train, *splits.dev, *splits.test]
     preload_sentence_vectors([t for e in examples for t in (e.title, e.description, e.activity)],
                              cache)
 
@@ -229,8 +223,9 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         old = json.loads(cache.read_text())
         if spec.matches(old.get("spec")):
             rows = old["rows"]
-    splits = load_run_splits(spec)
-    preload_vectors(splits, out / spec.dataset / "vectors.npz")
+    examples = load_examples(spec.dataset, spec.synth_n)
+    splits = make_split(spec.split, examples, spec.seed, spec.dataset)
+    preload_vectors(examples, out / spec.dataset / "vectors.npz")
     t2p = (mle_model(spec, splits, folder, device, report)
            if with_model and spec.dataset in MLE_DATASETS else None)
     jobs = baseline_jobs(splits, spec.seed)
