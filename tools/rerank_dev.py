@@ -15,9 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.learn.experiment import HOLDOUT, load_examples, preload_vectors
+from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.rerank import Bank, Query, _labelled, design, fit_trees
-from homesim.learn.splits import SPLITS, make_split
+from homesim.learn.splits import SPLITS
 
 FOLDS = 5
 
@@ -40,9 +40,7 @@ def cross_validated(groups: list[Group], folds: list[int]) -> float:
 
 def measure(split: str, seed: int, vectors: Path) -> tuple[float, float]:
     """(cross-validated, dev) mean top-candidate steps LCS of one run."""
-    examples = load_examples("real")
-    splits = make_split(split, examples, seed, "real")
-    preload_vectors(examples, vectors)
+    splits = load_run_splits(RunSpec("real", split, seed), vectors)
     bank = Bank(splits.train)
     groups, folds = [], []
     activities = sorted({e.activity for e in splits.train})

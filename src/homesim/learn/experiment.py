@@ -81,6 +81,14 @@ def load_examples(dataset: str, synth_n: int = 5000) -> list[Example]:
     raise HomesimError(f"unknown data set {dataset!r}: choose from {', '.join(DATASETS)}")
 
 
+def load_run_splits(spec: RunSpec, vectors: Path) -> Splits:
+    """The train/dev/test examples of a run, after `preload_vectors` of its whole data set
+    (cached in `vectors`)."""
+    examples = load_examples(spec.dataset, spec.synth_n)
+    preload_vectors(examples, vectors)
+    return make_split(spec.split, examples, spec.seed, spec.dataset)
+
+
 def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
               report: Report | None = None) -> Text2Prog:
     """The run's MLE model: loaded from ``mle.pt`` when trained with this spec, else trained
@@ -223,9 +231,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         old = json.loads(cache.read_text())
         if spec.matches(old.get("spec")):
             rows = old["rows"]
-    examples = load_examples(spec.dataset, spec.synth_n)
-    splits = make_split(spec.split, examples, spec.seed, spec.dataset)
-    preload_vectors(examples, out / spec.dataset / "vectors.npz")
+    splits = load_run_splits(spec, out / spec.dataset / "vectors.npz")
     t2p = (mle_model(spec, splits, folder, device, report)
            if with_model and spec.dataset in MLE_DATASETS else None)
     jobs = baseline_jobs(splits, spec.seed)
