@@ -83,3 +83,18 @@ def test_real_runs_do_not_depend_on_the_synthetic_size():
     assert not RunSpec("real", "stratified", 1, synth_n=5000).matches(stored)
     synthetic = RunSpec("synthetic", "stratified", 0, synth_n=5000).to_dict()
     assert not RunSpec("synthetic", "stratified", 0, synth_n=2000).matches(synthetic)
+
+
+def test_a_run_cached_with_an_older_split_definition_is_not_reused(tmp_path):
+    import json
+
+    from homesim.learn.splits import SPLIT_VERSIONS
+
+    for split in SPLIT_VERSIONS:
+        spec = RunSpec("synthetic", split, 0, synth_n=40, embeddings="none")
+        old = {k: v for k, v in spec.to_dict().items() if k != "split_version"}  # saved before
+        folder = spec.folder(tmp_path)
+        folder.mkdir(parents=True)
+        (folder / "scores.json").write_text(json.dumps({"spec": old, "rows": {"Row": {}}}))
+        assert (cached_run(spec, tmp_path) is None) == (SPLIT_VERSIONS[split] > 1)
+        assert not spec.matches({**spec.to_dict(), "split_version": SPLIT_VERSIONS[split] + 1})

@@ -1,6 +1,6 @@
 from dataclasses import replace
 
-from homesim.learn.data import synthetic_examples
+from homesim.learn.data import split, synthetic_examples
 from homesim.learn.splits import SPLITS, leave_activities_out, make_split, steps_of, stratified
 
 
@@ -10,12 +10,16 @@ def _examples():
     return ex + [replace(e, id=f"{e.id}-copy") for e in ex[:30]]
 
 
-def test_stratified_test_has_no_copy_of_a_training_program():
+def test_stratified_dev_and_test_have_no_copy_of_a_training_program():
     ex = _examples()
     s = stratified(ex, seed=1)
     seen = {steps_of(e) for e in s.train}
-    assert s.test and not any(steps_of(e) in seen for e in s.test)
-    assert len(s.train) + len(s.dev) + len(s.test) < len(ex)  # some were removed
+    for part in (s.dev, s.test):
+        assert part and not any(steps_of(e) in seen for e in part)
+    plain = split("", ex, seed=1)
+    assert [e.id for e in s.train] == [e.id for e in plain.train]
+    for kept, whole in ((s.dev, plain.dev), (s.test, plain.test)):
+        assert len(kept) < len(whole)  # some copies were removed from each
 
 
 def test_leave_activities_out_keeps_test_activities_out_of_training():

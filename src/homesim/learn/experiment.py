@@ -19,7 +19,7 @@ from homesim.learn import baselines
 from homesim.learn.data import Example, Splits, real_examples, synthetic_examples
 from homesim.learn.execution import cross_home_rate, executable
 from homesim.learn.metrics import example_scores
-from homesim.learn.splits import make_split
+from homesim.learn.splits import SPLIT_VERSIONS, make_split
 from homesim.learn.text2prog import Text2Prog
 from homesim.learn.train import BestOnDev, TrainConfig, train_mle
 from homesim.learn.vocab import StepVocab
@@ -53,14 +53,14 @@ class RunSpec:
         return out / self.dataset / self.split / f"seed{self.seed}"
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        return {**asdict(self), "split_version": SPLIT_VERSIONS.get(self.split, 1)}
 
     def matches(self, stored: dict | None) -> bool:
-        """Whether `stored` (a saved `to_dict`) describes this run; the synthetic-set size
-        does not matter for real data."""
+        """Whether `stored` (a saved `to_dict`) describes this run, split definition included
+        (saved before versions were: 1); the synthetic-set size does not matter for real data."""
         if not isinstance(stored, dict):
             return False
-        mine = self.to_dict()
+        stored, mine = {"split_version": 1, **stored}, self.to_dict()
         if self.dataset == "real":
             stored, mine = {**stored, "synth_n": None}, {**mine, "synth_n": None}
         return stored == mine

@@ -1,8 +1,9 @@
 """The evaluation splits, declared in one place.
 
     stratified: 70/10/20 train/dev/test by program, stratified by activity
-        (`ActivityDataset.split`), then every test program whose steps equal a training
-        program's is removed from the test split (a copy would be scored as a retrieval).
+        (`ActivityDataset.split`), then every dev and test program whose steps equal a
+        training program's is removed (a copy would be scored as a retrieval; dev keeps
+        none either, so that what is chosen on dev is chosen for programs like test's).
     leave-activities-out: whole activities go to train, dev or test (shuffled by seed, each
         activity to the split furthest below its share of programs), so no test activity
         is seen in training; the title no longer names a known activity.
@@ -21,6 +22,9 @@ from homesim.learn.data import SPLIT_FRACTIONS, Example, Splits, split
 from homesim.program.metrics import step_tokens
 
 SPLITS = ("stratified", "leave-activities-out")
+SPLIT_VERSIONS = {"stratified": 2, "leave-activities-out": 1}
+"""Raised when a split's definition changes, so that no run cached with the old one is reused
+(`experiment.RunSpec`). Stratified 2: dev drops copies of training programs too."""
 
 
 def steps_of(example: Example) -> tuple:
@@ -29,11 +33,11 @@ def steps_of(example: Example) -> tuple:
 
 
 def stratified(examples: list[Example], seed: int, name: str = "") -> Splits:
-    """Stratified split with train-duplicate test programs removed."""
+    """Stratified split with the dev and test programs that copy a training program removed."""
     parts = split(name, examples, seed)
     seen = {steps_of(e) for e in parts.train}
-    test = [e for e in parts.test if steps_of(e) not in seen]
-    return Splits(parts.name, parts.train, parts.dev, test)
+    dev, test = ([e for e in part if steps_of(e) not in seen] for part in (parts.dev, parts.test))
+    return Splits(parts.name, parts.train, dev, test)
 
 
 def leave_activities_out(examples: list[Example], seed: int, name: str = "") -> Splits:
