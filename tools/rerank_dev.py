@@ -5,7 +5,8 @@ the dev split, for every real-data run (docs/learn.md, "How it was chosen").
 
 Prints, per split and seed, the mean steps LCS of the top-scoring candidate (no
 executability check) in cross-validation (folds by program for the stratified split, by
-activity for leave-activities-out, as the split hides them) and on dev, then the means.
+activity for leave-activities-out, as the split hides them) and on dev, with the dev score
+of the baseline the goal is set against on that split, then the means.
 """
 
 from __future__ import annotations
@@ -15,9 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
+from homesim.learn import baselines
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.rerank import Bank, Query, _labelled, design, fit_trees
 from homesim.learn.splits import SPLITS
+from homesim.program.metrics import normalized_lcs, step_tokens
 
 FOLDS = 5
 
@@ -38,8 +41,13 @@ def cross_validated(groups: list[Group], folds: list[int]) -> float:
     return float(np.mean(out))
 
 
-def measure(split: str, seed: int, vectors: Path) -> tuple[float, float]:
-    """(cross-validated, dev) mean top-candidate steps LCS of one run."""
+BASELINE = {"stratified": ("title-medoid", baselines.title_medoid),
+            "leave-activities-out": ("NN (description)", baselines.nn_description)}
+"""The baseline each split's goal is set against (`report.GOALS`)."""
+
+
+def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float]:
+    """(cross-validated, dev, the baseline's dev) mean steps LCS of one run."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
     bank = Bank(splits.train)
     groups, folds = [], []
@@ -52,20 +60,28 @@ def measure(split: str, seed: int, vectors: Path) -> tuple[float, float]:
                          else activities.index(e.activity) % FOLDS)
     everything = np.ones(len(splits.train), bool)
     dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
-    return cross_validated(groups, folds), float(np.mean(top_lcs(fit_trees(groups), dev)))
+    baseline = BASELINE[split][1](splits.train, splits.dev)
+    baseline_dev = np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
+                            for p, e in zip(baseline, splits.dev, strict=True)])
+    return (cross_validated(groups, folds), float(np.mean(top_lcs(fit_trees(groups), dev))),
+            float(baseline_dev))
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=5)
     parser.add_argument("--vectors", type=Path, default=Path("out/learn/real/vectors.npz"))
+    parser.add_argument("--split", choices=SPLITS, action="append",
+                        help="Only this split (repeatable; default: both).")
     args = parser.parse_args()
-    for split in SPLITS:
+    for split in args.split or SPLITS:
         rows = [measure(split, seed, args.vectors) for seed in range(args.seeds)]
-        for seed, (cv, dev) in enumerate(rows):
-            print(f"{split} seed {seed}: cross-validated {cv:.4f}, dev {dev:.4f}")
-        cv, dev = np.mean(rows, axis=0)
-        print(f"{split} mean: cross-validated {cv:.4f}, dev {dev:.4f}")
+        for seed, (cv, dev, base) in enumerate(rows):
+            print(f"{split} seed {seed}: cross-validated {cv:.4f}, dev {dev:.4f} "
+                  f"({BASELINE[split][0]} {base:.4f})", flush=True)
+        cv, dev, base = np.mean(rows, axis=0)
+        print(f"{split} mean: cross-validated {cv:.4f}, dev {dev:.4f} "
+              f"({BASELINE[split][0]} {base:.4f})")
 
 
 if __name__ == "__main__":

@@ -80,7 +80,14 @@ def test_killed_and_restarted_gives_the_same_bytes(tiny_dataset, program_file, t
     # Kill it once the first episode is staged (the second is being rendered).
     wait_for(lambda: (out / "staging" / "ep-000000.json").exists(), proc, timeout=180.0)
     proc.send_signal(signal.SIGKILL)
-    proc.wait()
+    _, err = proc.communicate()
     assert not (out / "episodes.parquet").exists()
     generate_dataset(config, out, workers=0)
+    # Rows first: a failure's stage and reason, or which episode's bytes differ, show here.
+    assert _rows(out) == _rows(tiny_dataset), f"the killed run's stderr ended: {err[-2000:]}"
     assert tree_hashes(out) == tree_hashes(tiny_dataset)
+
+
+def _rows(root):
+    return [{k: r[k] for k in ("key", "status", "stage", "reason", "sha256")}
+            for r in read_manifest(root / "episodes.parquet")]
