@@ -33,3 +33,22 @@ def test_frames_round_trip_nearly_unchanged():
 def test_the_same_frames_give_the_same_bytes():
     assert encode(frames()) == encode(frames())
     assert encode(frames()) != encode(frames()[::-1])
+
+
+def test_rgb_to_yuv420p_matches_bt601_limited_range_and_any_memory_layout():
+    import numpy as np
+
+    from homesim.dataset.video import rgb_to_yuv420p
+
+    flat = np.zeros((4, 6, 3), np.uint8)
+    flat[:] = (255, 255, 255)
+    planes = rgb_to_yuv420p(flat).ravel()
+    assert planes[:24].tolist() == [235] * 24 and planes[24:].tolist() == [128] * 12
+    black = rgb_to_yuv420p(np.zeros((4, 6, 3), np.uint8)).ravel()
+    assert black[:24].tolist() == [16] * 24
+    # The same frame at another address and alignment gives the same planes.
+    frame = np.random.default_rng(1).integers(0, 256, (24, 32, 3), dtype=np.uint8)
+    buffer = np.empty(frame.size + 7, np.uint8)
+    shifted = buffer[3:3 + frame.size].reshape(frame.shape)
+    shifted[:] = frame
+    assert np.array_equal(rgb_to_yuv420p(shifted), rgb_to_yuv420p(frame))
