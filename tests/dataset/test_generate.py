@@ -41,6 +41,40 @@ def test_other_options_in_the_same_folder_are_refused(tiny_dataset, program_file
         generate_dataset(tiny_config(program_file, n=4), tiny_dataset, workers=0)
 
 
+def _with_format(tiny_dataset, tmp_path, made_in: str):
+    import json
+
+    copy = tmp_path / "copy"
+    shutil.copytree(tiny_dataset, copy)
+    info = json.loads((copy / "dataset.json").read_text())
+    (copy / "dataset.json").write_text(json.dumps({**info, "format": made_in}))
+    return copy
+
+
+def test_a_data_set_of_another_format_is_not_resumed(tiny_dataset, program_file, tmp_path):
+    copy = _with_format(tiny_dataset, tmp_path, "homesim-activity/1")
+    with pytest.raises(HomesimError, match=r"in format homesim-activity/1, not "):
+        generate_dataset(tiny_config(program_file), copy, workers=0)
+
+
+def test_a_replay_that_differs_names_the_data_sets_older_format(tiny_dataset, tmp_path,
+                                                                capsys):
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from homesim.cli.main import main
+
+    copy = _with_format(tiny_dataset, tmp_path, "homesim-activity/1")
+    table = pq.read_table(copy / "episodes.parquet")
+    checksums = ["0" * 64] * table.num_rows  # as if encoded differently
+    table = table.set_column(table.schema.get_field_index("sha256"), "sha256",
+                             pa.array(checksums, table.schema.field("sha256").type))
+    pq.write_table(table, copy / "episodes.parquet")
+    assert main(["dataset", "replay", str(copy), "1", "--out", str(tmp_path / "e.tar")]) == 1
+    out = capsys.readouterr().out
+    assert "DIFFERENT" in out and "format homesim-activity/1; this homesim writes" in out
+
+
 def test_verify_finds_a_changed_shard(tiny_dataset, tmp_path):
     copy = tmp_path / "copy"
     shutil.copytree(tiny_dataset, copy)

@@ -41,6 +41,12 @@ def find_spec(root: str | Path, key: str) -> tuple[EpisodeSpec, DatasetConfig, s
     return plan_episodes(config, programs)[index], config, row["sha256"]
 
 
+def recorded_format(root: str | Path) -> str | None:
+    """The format the data set at `root` was written in (None where it records none)."""
+    info = read_json(Layout(root).config_path)
+    return info.get("format") if isinstance(info, dict) else None
+
+
 def replay_from_dataset(root: str | Path, key: str, out: str | Path
                         ) -> tuple[Outcome, str | None]:
     """Render episode `key` of the data set at `root` into `out`; returns its outcome and

@@ -33,7 +33,9 @@ SPEED_RANGE = (0.8, 1.25)
 MAX_MOVES = 6
 """At most this many objects are moved to other allowed places per episode."""
 
-FORMAT = "homesim-activity/1"
+FORMAT = "homesim-activity/2"
+"""Data set format; /2: the mp4 encoded as `video.H264Writer` does since x264 was pinned
+to SSE2 (other bytes than /1 for the same frames)."""
 
 
 @dataclass(frozen=True)

@@ -1,10 +1,13 @@
 """RGB video of an episode: H.264 written and read in this process with PyAV.
 
 Encoding runs in the calling thread (one x264 thread, no helper process), so an episode
-task uses the one CPU it declares; bit-exact flags make the same frames give the same
-bytes on any machine with the same PyAV build. RGB becomes YUV 4:2:0 here, in integer
-arithmetic, not in FFmpeg's scaler: its SIMD conversion gave other bytes for the same frames
-about once in 300-500 episodes (in one process, frames checked equal).
+task uses the one CPU it declares. The same frames give the same bytes on any x86-64
+machine with the same PyAV build: bit-exact flags; RGB becomes YUV 4:2:0 here, in integer
+arithmetic, not in FFmpeg's scaler (whose SIMD code depends on the processor); and x264 may
+use instructions up to SSE2 only (`X264_ASM`), whose output equals its plain C code's.
+With its AVX-512 code, on a processor that has it, x264 gave other bytes for the same
+input now and then (at 32x32, 16 to 66 of 2000 encodings in one process), and its AVX2
+code gives other bytes than its SSE2 and C code.
 """
 
 from __future__ import annotations
@@ -18,7 +21,10 @@ import numpy as np
 
 VIDEO_CRF = 18
 """x264 constant rate factor of the RGB video (lower is better; 18 is near-transparent)."""
-X264_OPTIONS = {"preset": "veryfast", "crf": str(VIDEO_CRF), "flags": "+bitexact"}
+X264_ASM = "SSE2"
+"""The processor features x264 may use (module docstring)."""
+X264_OPTIONS = {"preset": "veryfast", "crf": str(VIDEO_CRF), "flags": "+bitexact",
+                "x264-params": f"asm={X264_ASM}"}
 
 
 class H264Writer:
