@@ -14,11 +14,20 @@ def frames(n: int = 6) -> list[np.ndarray]:
                      axis=-1).astype(np.uint8) for t in range(n)]
 
 
-def encode(images: list[np.ndarray]) -> bytes:
-    writer = H264Writer(64, 48, 15)
-    for image in images:
-        writer.add(image)
-    return writer.close()
+def encode(images: list[np.ndarray], **x264: str) -> bytes:
+    """The mp4 of `images`, with `x264` options added to the writer's for this call."""
+    from homesim.dataset import video
+
+    saved = dict(video.X264_OPTIONS)
+    video.X264_OPTIONS.update(x264)
+    try:
+        writer = H264Writer(images[0].shape[1], images[0].shape[0], 15)
+        for image in images:
+            writer.add(image)
+        return writer.close()
+    finally:
+        video.X264_OPTIONS.clear()
+        video.X264_OPTIONS.update(saved)
 
 
 def test_frames_round_trip_nearly_unchanged():
@@ -36,8 +45,6 @@ def test_the_same_frames_give_the_same_bytes():
 
 
 def test_rgb_to_yuv420p_matches_bt601_limited_range_and_any_memory_layout():
-    import numpy as np
-
     from homesim.dataset.video import rgb_to_yuv420p
 
     flat = np.zeros((4, 6, 3), np.uint8)
@@ -60,24 +67,9 @@ def noise_frames(n: int = 12, size: tuple[int, int] = (32, 32)) -> list[np.ndarr
     return [np.roll(base, 2 * t, axis=1) for t in range(n)]
 
 
-def encode_with(images: list[np.ndarray], **x264) -> bytes:
-    from homesim.dataset import video
-
-    saved = dict(video.X264_OPTIONS)
-    video.X264_OPTIONS.update(x264)
-    try:
-        writer = H264Writer(images[0].shape[1], images[0].shape[0], 2)
-        for image in images:
-            writer.add(image)
-        return writer.close()
-    finally:
-        video.X264_OPTIONS.clear()
-        video.X264_OPTIONS.update(saved)
-
-
 def test_x264_gives_the_bytes_of_its_plain_c_code():
     """Machine-independent bytes: x264's SIMD code as pinned equals its C code (AVX2 and
     AVX-512 code give other bytes for these frames)."""
     for images in (noise_frames(), noise_frames(8, (48, 64)), frames()):
-        assert encode_with(images) == encode_with(images, **{"x264-params": "asm=0"})
+        assert encode(images) == encode(images, **{"x264-params": "asm=0"})
 

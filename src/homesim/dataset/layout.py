@@ -60,11 +60,12 @@ class Layout:
         if self.root.exists() and not self.root.is_dir():
             raise HomesimError(f"{self.root}: not a folder")
         if self.config_path.exists():
-            made_in = read_json(self.config_path).get("format")
-            if made_in != FORMAT:
-                raise HomesimError(f"{self.root}: holds a data set in format {made_in}, not "
-                                   f"{FORMAT}; use another --out folder")
-            old = read_json(self.config_path).get("config")
+            stored = read_json(self.config_path)
+            if stored.get("format") != FORMAT:
+                raise HomesimError(f"{self.root}: holds a data set in format "
+                                   f"{stored.get('format')}, not {FORMAT}; use another --out "
+                                   "folder")
+            old = stored.get("config")
             if old != config.to_dict():
                 diff = sorted(k for k in config.to_dict() if (old or {}).get(k) !=
                               config.to_dict()[k])

@@ -6,7 +6,7 @@ machine with the same PyAV build: bit-exact flags; RGB becomes YUV 4:2:0 here, i
 arithmetic, not in FFmpeg's scaler (whose SIMD code depends on the processor); and x264 may
 use instructions up to SSE2 only (`X264_ASM`), whose output equals its plain C code's.
 With its AVX-512 code, on a processor that has it, x264 gave other bytes for the same
-input now and then (at 32x32, 16 to 66 of 2000 encodings in one process), and its AVX2
+input now and then (at 32x32, 16 to 170 of 2000 encodings in one process), and its AVX2
 code gives other bytes than its SSE2 and C code.
 """
 
