@@ -27,9 +27,10 @@ import torch.nn.functional as F
 
 from _timing import best_of
 from homesim.dataset.layout import Layout
-from homesim.dataset.read import EncodedEpisode, decode_video
+from homesim.dataset.read import EncodedEpisode
 from homesim.dataset.verify import iter_episodes
 from homesim.learn.videocache import VideoFormat, episode_rows, shard_episodes, small_video
+from homesim.render.video import decode_video
 
 
 def torch_pooled(ep: EncodedEpisode, fmt: VideoFormat) -> np.ndarray:

@@ -42,5 +42,10 @@ def test_bad_options_are_refused():
         DatasetConfig(modalities=("rgb", "normals"))
     with pytest.raises(HomesimError, match="at least 1"):
         DatasetConfig(n=0)
+    # Before any episode is planned, not as one failed episode after another.
+    with pytest.raises(HomesimError, match="image size 33x24: width and height must be even"):
+        DatasetConfig(width=33, height=24)
+    with pytest.raises(HomesimError, match="fps 0 out of range"):
+        DatasetConfig(fps=0)
     with pytest.raises(HomesimError, match="no programs"):
         plan_episodes(DatasetConfig(n=1), [])

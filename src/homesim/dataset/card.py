@@ -13,12 +13,13 @@ from typing import Any
 import numpy as np
 
 from homesim.dataset.layout import Layout, dumps, read_json
-from homesim.dataset.read import decode_video, shard_paths
+from homesim.dataset.read import shard_paths
 from homesim.dataset.verify import iter_episodes
 from homesim.files import write_text
 from homesim.knowledge.datasets import ActivityDataset, ActivityProgram
 from homesim.knowledge.stats import action_counts, object_counts, summarize
 from homesim.program.parse import parse_program
+from homesim.render.video import decode_video
 
 SHEET_EPISODES = 12
 

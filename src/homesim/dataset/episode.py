@@ -25,12 +25,12 @@ from homesim.dataset import encode
 from homesim.dataset.randomize import Move, Start, move_character, move_objects
 from homesim.dataset.spec import FORMAT, DatasetConfig, EpisodeSpec
 from homesim.dataset.tarfiles import MemberHash, add_member, open_writer
-from homesim.dataset.video import H264Writer
 from homesim.errors import HomesimError
 from homesim.files import atomic_write
 from homesim.ground.kbtypes import default_kb
 from homesim.ground.pipeline import Run, run_program
 from homesim.program.parse import parse_program
+from homesim.render.video import H264Writer
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 
@@ -127,14 +127,13 @@ def _one_line(text: str) -> str:
 
 def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any) -> Outcome:
     """Ground, animate and record the episode into a tar stream."""
-    from homesim.render.api import _check_length, _check_size, prepare
+    from homesim.render.api import _check_length, prepare
     from homesim.render.recorder import record
     from homesim.render.renderer import Renderer
 
     home = ground_episode(spec)
     run, grounding = home.run, home.run.grounding
     assert grounding is not None  # ground_episode checked
-    _check_size(config.width, config.height, config.fps)
     scene, timeline, agent = prepare(
         grounding.program, run.graph, width=config.width, height=config.height,
         fps=config.fps, seed=spec.render_seed, bindings=None, agent=spec.agent,

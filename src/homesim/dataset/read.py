@@ -25,28 +25,14 @@ from typing import Any
 
 import numpy as np
 
-from homesim.dataset import encode, video
+from homesim.dataset import encode
 from homesim.dataset.episode import ARRAYS
 from homesim.dataset.layout import Layout
 from homesim.dataset.verify import iter_episodes
 from homesim.errors import DataError
+from homesim.render.video import decode_video, iter_video
 
 MAPS = ("depth", "class", "instance", "flow")
-
-
-def iter_video(data: bytes, width: int, height: int) -> Iterator[np.ndarray]:
-    """The (H, W, 3) uint8 frames of an H.264 mp4 given as bytes, one at a time."""
-    for frame in video.iter_video(data):
-        if frame.shape[:2] != (height, width):
-            raise DataError(f"video frames are {frame.shape[1]}x{frame.shape[0]}, the "
-                            f"episode says {width}x{height}")
-        yield frame
-
-
-def decode_video(data: bytes, width: int, height: int) -> np.ndarray:
-    """(T, H, W, 3) uint8: every frame of an H.264 mp4 given as bytes."""
-    frames = list(iter_video(data, width, height))
-    return np.stack(frames) if frames else np.zeros((0, height, width, 3), np.uint8)
 
 
 def _decode_map(kind: str, data: bytes) -> tuple[np.ndarray, ...]:
@@ -81,7 +67,7 @@ class EncodedEpisode:
     def iter_rgb(self) -> Iterator[np.ndarray]:
         if self.video is None:
             raise DataError(f"{self.key}: the data set has no rgb video")
-        return iter_video(self.video, self.meta["width"], self.meta["height"])
+        return iter_video(self.video, (self.meta["width"], self.meta["height"]))
 
     def gt_frames(self, a: int, b: int) -> list[int]:
         """Frames in [a, b) that have dense maps (all of them unless --gt-stride)."""

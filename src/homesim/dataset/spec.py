@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
 from homesim.errors import HomesimError
+from homesim.render.video import check_size
 
 AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
 """The four agents of `homesim.render.agent.AGENTS` (a test keeps the two equal)."""
@@ -64,6 +65,7 @@ class DatasetConfig:
             raise HomesimError("--n, --gt-stride and --shard-size must be at least 1")
         if not self.homes:
             raise HomesimError("no homes to choose from")
+        check_size(self.width, self.height, self.fps)
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)

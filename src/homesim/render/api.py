@@ -10,16 +10,17 @@ from pathlib import Path
 import numpy as np
 
 from homesim.errors import HomesimError, LimitError
-from homesim.limits import MAX_VIDEO_FPS, MAX_VIDEO_PIXEL_FRAMES, MAX_VIDEO_SIDE, MIN_VIDEO_SIDE
+from homesim.limits import MAX_VIDEO_PIXEL_FRAMES
 from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.render.agent import AGENTS, agent_shape
 from homesim.render.animate import Animator, Timeline
-from homesim.render.groundtruth import RecordingWriter, StepSpan, open_video
+from homesim.render.groundtruth import RecordingWriter, StepSpan
 from homesim.render.recorder import iter_still_frames, record
 from homesim.render.renderer import Renderer
 from homesim.render.scene import SceneModel, build_scene
 from homesim.render.shots import plan_shots
+from homesim.render.video import H264Writer, check_size
 from homesim.sim.execute import execute
 from homesim.world.graph import EnvironmentGraph
 
@@ -43,19 +44,6 @@ class RenderResult:
     @property
     def video(self) -> Path:
         return self.out_dir / "video.mp4"
-
-
-def _check_size(width: int, height: int, fps: int) -> None:
-    lo, hi = MIN_VIDEO_SIDE, MAX_VIDEO_SIDE
-    if not (lo <= width <= hi and lo <= height <= hi):
-        raise LimitError(f"image size {width}x{height} out of range ({lo}..{hi}; "
-                         "MIN_VIDEO_SIDE, MAX_VIDEO_SIDE)", "MAX_VIDEO_SIDE")
-    if width % 2 or height % 2:
-        raise HomesimError(f"image size {width}x{height}: width and height must be even "
-                           "(H.264 video)")
-    if not 1 <= fps <= MAX_VIDEO_FPS:
-        raise LimitError(f"fps {fps} out of range (1..{MAX_VIDEO_FPS}; MAX_VIDEO_FPS)",
-                         "MAX_VIDEO_FPS")
 
 
 def _check_length(frames: int, width: int, height: int,
@@ -110,7 +98,7 @@ def render_program(program: Program, graph: EnvironmentGraph, out_dir: str | Pat
     `homesim.render.groundtruth`; read it back with `load_recording`.
     """
     t0 = time.perf_counter()
-    _check_size(width, height, fps)
+    check_size(width, height, fps)
     out = Path(out_dir)
     if (out / "meta.json").exists() or (out / "video.mp4").exists():
         raise HomesimError(f"{out}: already holds a recording; choose another folder")
@@ -146,16 +134,16 @@ def render_video(program: Program, graph: EnvironmentGraph, path: str | Path, *,
     record) to the MP4 file `path`; returns the number of frames. `standing`: as for
     `render_program`; `limit`: (frames x pixels, its name in `homesim.limits`) instead
     of `MAX_VIDEO_PIXEL_FRAMES`."""
-    _check_size(width, height, fps)
+    check_size(width, height, fps)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=fps,
                                  seed=seed, bindings=bindings, agent=agent, standing=standing)
     total = len(timeline)
     _check_length(total, width, height, limit)
-    video = open_video(Path(path), width, height, fps)
+    video = H264Writer(width, height, fps, Path(path))
     try:
         with Renderer(scene, width, height) as renderer:
             for truth in record(scene, timeline, renderer):
-                video.send(np.ascontiguousarray(truth.rgb))
+                video.add(truth.rgb)
                 if progress is not None:
                     progress(truth.index + 1, total)
     finally:
@@ -218,7 +206,7 @@ def iter_keyframes(program: Program, graph: EnvironmentGraph, *, width: int = 32
                    standing: Mapping[int, tuple[float, float]] | None = None
                    ) -> Iterator[tuple[int, np.ndarray]]:
     """`render_keyframes` one frame at a time: memory holds one frame, not all of them."""
-    _check_size(width, height, 30)
+    check_size(width, height, 30)
     scene, timeline, _ = prepare(program, graph, width=width, height=height, fps=10,
                                  seed=seed, bindings=bindings, agent=agent, standing=standing)
     keys = key_frames(timeline)

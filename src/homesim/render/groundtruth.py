@@ -27,6 +27,7 @@ import numpy as np
 from homesim.errors import DataError
 from homesim.files import write_text
 from homesim.render.recorder import FrameTruth
+from homesim.render.video import H264Writer, decode_video
 
 FORMAT_VERSION = 2
 """2: frames carry `flow_valid`."""
@@ -45,31 +46,17 @@ def write_npz(path: Path, arrays: dict[str, np.ndarray]) -> None:
     tmp.replace(path)
 
 
-def open_video(path: Path, width: int, height: int, fps: int):
-    """An H.264 (yuv420p) MP4 writer: ``send(rgb)`` each (H, W, 3) uint8 frame, then
-    ``close()``. The index is at the front of the file (``+faststart``), so a browser can
-    play it while it downloads."""
-    import imageio_ffmpeg
-
-    video = imageio_ffmpeg.write_frames(
-        str(path), (width, height), fps=fps, codec="libx264", pix_fmt_out="yuv420p",
-        quality=7, macro_block_size=1, ffmpeg_log_level="error",
-        output_params=["-preset", "veryfast", "-movflags", "+faststart"])
-    video.send(None)
-    return video
-
-
 class RecordingWriter:
     """Streams frames into a recording folder; `close(meta)` finishes it.
 
-    Video encoding and compression run on a worker thread (pipe writes and zlib release
-    the GIL), so they overlap with rendering the next frames.
+    Video encoding (`video.H264Writer`) and compression run on a worker thread (PyAV's
+    encoder and zlib release the GIL), so they overlap with rendering the next frames.
     """
 
     def __init__(self, out_dir: str | Path, width: int, height: int, fps: int):
         self.out = Path(out_dir)
         (self.out / "frames").mkdir(parents=True, exist_ok=True)
-        self._video = open_video(self.out / "video.mp4", width, height, fps)
+        self._video = H264Writer(width, height, fps, self.out / "video.mp4")
         self._pool = ThreadPoolExecutor(max_workers=1)
         self._pending: list[Future] = []
         self._per_frame: dict[str, list] = {k: [] for k in (
@@ -77,7 +64,7 @@ class RecordingWriter:
             "cut")}
 
     def _write(self, f: FrameTruth) -> None:
-        self._video.send(np.ascontiguousarray(f.rgb))
+        self._video.add(f.rgb)
         write_npz(self.out / "frames" / f"{f.index:06d}.npz", {
             "depth": f.depth, "class": f.class_seg, "instance": f.instance_seg,
             "flow": f.flow, "flow_valid": f.flow_valid})
@@ -166,13 +153,7 @@ class Recording:
 
     def rgb(self) -> np.ndarray:
         """All RGB frames (T, H, W, 3) uint8, decoded from video.mp4."""
-        import imageio_ffmpeg
-
-        w, h = self.meta["width"], self.meta["height"]
-        reader = imageio_ffmpeg.read_frames(str(self.path / "video.mp4"))
-        next(reader)  # the header
-        frames = [np.frombuffer(b, np.uint8).reshape(h, w, 3) for b in reader]
-        return np.stack(frames) if frames else np.zeros((0, h, w, 3), np.uint8)
+        return decode_video(self.path / "video.mp4", self.meta["width"], self.meta["height"])
 
 
 def load_recording(out_dir: str | Path) -> Recording:

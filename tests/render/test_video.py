@@ -1,11 +1,11 @@
-"""The episode video: H.264 in-process, the same frames give the same bytes."""
+"""The one H.264 writer and reader: in-process, the same frames give the same bytes."""
 
 import numpy as np
 import pytest
 
 pytest.importorskip("av")
 
-from homesim.dataset.video import H264Writer, iter_video
+from homesim.render.video import H264Writer, iter_video
 
 
 def frames(n: int = 6) -> list[np.ndarray]:
@@ -16,7 +16,7 @@ def frames(n: int = 6) -> list[np.ndarray]:
 
 def encode(images: list[np.ndarray], **x264: str) -> bytes:
     """The mp4 of `images`, with `x264` options added to the writer's for this call."""
-    from homesim.dataset import video
+    from homesim.render import video
 
     saved = dict(video.X264_OPTIONS)
     video.X264_OPTIONS.update(x264)
@@ -45,7 +45,7 @@ def test_the_same_frames_give_the_same_bytes():
 
 
 def test_rgb_to_yuv420p_matches_bt601_limited_range_and_any_memory_layout():
-    from homesim.dataset.video import rgb_to_yuv420p
+    from homesim.render.video import rgb_to_yuv420p
 
     flat = np.zeros((4, 6, 3), np.uint8)
     flat[:] = (255, 255, 255)
@@ -73,3 +73,32 @@ def test_x264_gives_the_bytes_of_its_plain_c_code():
     for images in (noise_frames(), noise_frames(8, (48, 64)), frames()):
         assert encode(images) == encode(images, **{"x264-params": "asm=0"})
 
+
+
+@pytest.mark.parametrize(("size", "pattern"), [
+    ((33, 24), "must be even"), ((64, 2), "out of range")])
+def test_a_size_h264_cannot_take_is_refused_in_one_line(size, pattern):
+    from homesim.errors import HomesimError
+
+    with pytest.raises(HomesimError, match=pattern):
+        H264Writer(*size, 15)
+
+
+def test_a_file_and_memory_hold_the_same_frames(tmp_path):
+    from homesim.render.video import decode_video
+
+    images = frames()
+    path = tmp_path / "v.mp4"
+    writer = H264Writer(64, 48, 15, path)
+    for image in images:
+        writer.add(image)
+    assert writer.close() == b""
+    assert np.array_equal(decode_video(path, 64, 48), decode_video(encode(images), 64, 48))
+
+
+def test_frames_of_another_size_than_expected_are_an_error():
+    from homesim.errors import DataError
+    from homesim.render.video import decode_video
+
+    with pytest.raises(DataError, match="video frames are 64x48, expected 32x24"):
+        decode_video(encode(frames()), 32, 24)
