@@ -7,6 +7,7 @@ from homesim.dataset import generate_dataset
 from homesim.dataset.layout import Layout
 from homesim.dataset.manifest import read_manifest
 from homesim.dataset.replay import replay_from_dataset
+from homesim.dataset.spec import FORMAT
 from homesim.dataset.verify import verify_dataset
 from homesim.errors import HomesimError
 from tests.cli.subprocess_cli import start_cli, wait_for
@@ -26,8 +27,9 @@ def test_a_dataset_is_complete_and_verifies(tiny_dataset):
 
 
 def test_replay_gives_the_same_bytes(tiny_dataset, tmp_path):
-    outcome, expected = replay_from_dataset(tiny_dataset, "ep-000001", tmp_path / "ep.tar")
-    assert outcome.ok and outcome.sha256 == expected
+    outcome, recorded = replay_from_dataset(tiny_dataset, "ep-000001", tmp_path / "ep.tar")
+    assert outcome.ok and outcome.sha256 == recorded.sha256
+    assert recorded.format == FORMAT and recorded.spec.index == 1
 
 
 def test_running_again_changes_nothing(tiny_dataset, program_file):

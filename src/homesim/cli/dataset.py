@@ -108,20 +108,21 @@ def replay(
 ) -> None:
     """Render one episode again from its recorded choices and say whether its bytes equal
     the stored ones."""
-    from homesim.dataset.replay import recorded_format, replay_from_dataset
+    from homesim.dataset.replay import replay_from_dataset
     from homesim.dataset.spec import FORMAT
 
-    outcome, expected = replay_from_dataset(root, key, out)
+    outcome, recorded = replay_from_dataset(root, key, out)
+    expected = recorded.sha256
     if not outcome.ok:
         raise HomesimError(f"{outcome.key}: failed again ({outcome.stage}: {outcome.reason})")
     same = "identical to" if outcome.sha256 == expected else "DIFFERENT from"
     console.print(f"[green]ok[/]: {outcome.key}, {outcome.num_frames} frames in {out}; "
                   f"members {same} the data set's")
     if outcome.sha256 != expected:
-        made_in = recorded_format(root)
-        if made_in != FORMAT:
-            console.print(f"the data set is in format {made_in}; this homesim writes {FORMAT}, "
-                          "whose bytes differ: replay it with the homesim that made it")
+        if recorded.format != FORMAT:
+            console.print(f"the data set is in format {recorded.format}; this homesim "
+                          f"writes {FORMAT}, whose bytes differ: replay it with the homesim "
+                          "that made it")
         raise typer.Exit(1)
 
 

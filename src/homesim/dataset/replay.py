@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 from homesim.dataset.episode import Outcome
@@ -14,14 +15,25 @@ from homesim.dataset.verify import iter_episodes
 from homesim.errors import DataError
 
 
-def find_spec(root: str | Path, key: str) -> tuple[EpisodeSpec, DatasetConfig, str | None]:
-    """The spec of episode `key` (or its index), the config, and its recorded checksum.
+@dataclass(frozen=True)
+class Recorded:
+    """What a data set recorded of one episode: its spec, the run's config, the episode's
+    checksum (None for a failed one) and the format the data set was written in."""
+
+    spec: EpisodeSpec
+    config: DatasetConfig
+    sha256: str | None
+    format: str | None
+
+
+def find_spec(root: str | Path, key: str) -> Recorded:
+    """What the data set at `root` recorded of episode `key` (or its index).
 
     A made episode's spec is read from its json member; a failed one's is drawn again
     from the config (the same seed gives the same spec)."""
     layout = Layout(root)
     info = read_json(layout.config_path) if layout.config_path.exists() else None
-    if info is None:
+    if not isinstance(info, dict):
         raise DataError(f"{root}: not a homesim data set (no dataset.json)")
     config = DatasetConfig.from_dict(info["config"])
     key = episode_key(int(key)) if key.isdigit() else key
@@ -30,26 +42,24 @@ def find_spec(root: str | Path, key: str) -> tuple[EpisodeSpec, DatasetConfig, s
         raise DataError(f"{root}: no episode {key} (ep-000000 .. "
                         f"{episode_key(config.n - 1)})")
     row = rows[key]
+    return Recorded(_spec(layout, config, key, row), config, row["sha256"], info.get("format"))
+
+
+def _spec(layout: Layout, config: DatasetConfig, key: str, row: dict) -> EpisodeSpec:
     index = int(row["index"])
     if row["status"] == "ok":
         shard = layout.shards / f"shard-{index // config.shard_size:06d}.tar"
         for k, members in iter_episodes(shard):
             if k == key:
                 meta = json.loads(dict(members)[f"{key}.json"])
-                return EpisodeSpec.from_dict(meta["spec"]), config, row["sha256"]
+                return EpisodeSpec.from_dict(meta["spec"])
     programs = load_programs(config.programs, config.n, config.seed)
-    return plan_episodes(config, programs)[index], config, row["sha256"]
-
-
-def recorded_format(root: str | Path) -> str | None:
-    """The format the data set at `root` was written in (None where it records none)."""
-    info = read_json(Layout(root).config_path)
-    return info.get("format") if isinstance(info, dict) else None
+    return plan_episodes(config, programs)[index]
 
 
 def replay_from_dataset(root: str | Path, key: str, out: str | Path
-                        ) -> tuple[Outcome, str | None]:
+                        ) -> tuple[Outcome, Recorded]:
     """Render episode `key` of the data set at `root` into `out`; returns its outcome and
-    the checksum the data set recorded (equal when the replay is exact)."""
-    spec, config, expected = find_spec(root, key)
-    return replay_episode(spec, config, Path(out)), expected
+    what the data set recorded (the checksums are equal when the replay is exact)."""
+    recorded = find_spec(root, key)
+    return replay_episode(recorded.spec, recorded.config, Path(out)), recorded
