@@ -66,15 +66,16 @@ def export(out: Path, seeds: int, vectors: Path) -> None:
 
 
 def export_run(out: Path, seed: int, vectors: Path) -> None:
-    from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
+    sys.path.insert(0, str(Path(__file__).parent))
+    from homesim.learn.experiment import RunSpec, load_run_splits
     from homesim.learn.rerank import Bank, Query, _labelled
+    from rerank_dev import training_queries
 
     splits = load_run_splits(RunSpec("real", "stratified", seed), vectors)
     bank = Bank(splits.train)
     everything = np.ones(len(splits.train), bool)
     rows, arrays = [], {}
-    queries = [("train", i, e, ~bank.hidden(e, HOLDOUT["stratified"]), i % FOLDS)
-               for i, e in enumerate(splits.train)]
+    queries = [("train", *query) for query in training_queries(bank, "stratified")]
     queries += [(kind, i, e, everything, -1) for kind in ("dev", "test")
                 for i, e in enumerate(getattr(splits, kind))]
     for kind, i, example, allowed, fold in queries:

@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from homesim.learn import baselines
+from homesim.learn.data import Example
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.rerank import Bank, Query, _labelled, design, fit_trees
 from homesim.learn.splits import SPLITS
@@ -46,18 +47,26 @@ BASELINE = {"stratified": ("title-medoid", baselines.title_medoid),
 """The baseline each split's goal is set against (`report.GOALS`)."""
 
 
+def training_queries(bank: Bank, split: str) -> list[tuple[int, Example, np.ndarray, int]]:
+    """(index, example, what it may see of training, cross-validation fold) of each training
+    query: folds by program for the stratified split, by activity for leave-activities-out,
+    as the split hides them."""
+    activities = sorted({e.activity for e in bank.train})
+    return [(i, e, ~bank.hidden(e, HOLDOUT[split]),
+             i % FOLDS if split == "stratified" else activities.index(e.activity) % FOLDS)
+            for i, e in enumerate(bank.train)]
+
+
 def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float]:
     """(cross-validated, dev, the baseline's dev) mean steps LCS of one run."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
     bank = Bank(splits.train)
     groups, folds = [], []
-    activities = sorted({e.activity for e in splits.train})
-    for i, e in enumerate(splits.train):
-        query = Query(bank, e, ~bank.hidden(e, HOLDOUT[split]))
+    for _, example, allowed, fold in training_queries(bank, split):
+        query = Query(bank, example, allowed)
         if query.candidates:
             groups.append(_labelled(query))
-            folds.append(i % FOLDS if split == "stratified"
-                         else activities.index(e.activity) % FOLDS)
+            folds.append(fold)
     everything = np.ones(len(splits.train), bool)
     dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
     baseline = BASELINE[split][1](splits.train, splits.dev)
