@@ -10,7 +10,7 @@ from homesim.program.model import Program
 from homesim.sim import execute
 from homesim.synth import generate
 from homesim.synth.describe import Thing, clauses, commute, describe, names_for
-from homesim.synth.phrasebook import EXTRAS, LEADS, PHRASINGS
+from homesim.synth.phrasebook import EXTRAS, LEADS, PHRASINGS, UNITY_NAMES
 from homesim.synth.textstats import text_stats
 from homesim.world import load_home
 from homesim.world.vocab import HOLDS_LH, HOLDS_RH, INSIDE, ON
@@ -132,3 +132,29 @@ def test_more_varied_than_the_templates():
     old = text_stats(sp.program.description for sp in generate(200, seed=2, style="templates"))
     assert people.vocabulary > 1.5 * old.vocabulary
     assert people.distinct_2 > 1.5 * old.distinct_2
+
+
+def test_names_for_the_homes_with_geometry_leave_the_trimmed_homes_as_they_were():
+    from homesim.synth.grammar import DEFAULT_HOMES as TRIMMED
+
+    trimmed = {n.class_name for home in TRIMMED for n in load_home(home)}
+    assert not trimmed & set(UNITY_NAMES)
+
+
+RUN_TOGETHER = ("wallpictureframe", "kitchencounter", "coffeetable", "dishbowl", "garbagecan",
+                "lightswitch", "remotecontrol", "washingmachine", "mousemat", "tvstand",
+                "kitchentable", "cutleryfork", "waterglass", "wineglass", "coffeemaker")
+"""Unity class names of the homes with geometry that are not words."""
+
+
+def test_in_the_homes_with_geometry_objects_go_by_words_people_use():
+    used = set()
+    for sp in generate(60, seed=3, homes=("scene1", "gen-0")):
+        text = sp.program.description.lower()
+        for step in sp.program.steps:
+            for ref in step.args:
+                used.add(ref.name)
+                assert ref.name not in RUN_TOGETHER or mentions(text, ref.name), text
+        for class_name in RUN_TOGETHER:
+            assert not re.search(rf"\b{class_name}\b", text), text
+    assert len(used & set(RUN_TOGETHER)) >= 5  # the check above had something to check

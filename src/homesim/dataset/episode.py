@@ -14,8 +14,8 @@ import json
 import random
 import tarfile
 import time
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -60,11 +60,13 @@ class Outcome:
     sha256: str | None = None  # `MemberHash` of its members
     bytes: dict[str, int] = field(default_factory=dict)  # member bytes per modality
     seconds: float = 0.0  # wall time (not part of the manifest: it varies run to run)
+    home: str | None = None  # where it was made (the spec's or one of `homes_to_try`)
 
     def to_row(self, spec: EpisodeSpec) -> dict[str, Any]:
         return {"key": self.key, "index": self.index, "status": "ok" if self.ok else "failed",
                 "stage": self.stage, "reason": self.reason, "program_id": spec.program_id,
-                "home": spec.home, "agent": spec.agent, "speed": spec.speed,
+                "home": self.home or spec.home, "drawn_home": spec.home,
+                "agent": spec.agent, "speed": spec.speed,
                 "render_seed": spec.render_seed, "ground_seed": spec.ground_seed,
                 "placement_seed": spec.placement_seed, "moves": spec.moves,
                 "num_frames": self.num_frames, "num_steps": self.num_steps,
@@ -76,15 +78,18 @@ class Outcome:
 class EpisodeHome:
     """The home of an episode after its random changes, and the program run in it."""
 
+    home: str
     run: Run
     moves: list[Move]
     start: Start | None
 
 
-def build_home(spec: EpisodeSpec) -> tuple[EnvironmentGraph, list[Move], Start | None]:
-    """The spec's home with objects moved and the agent placed (from `placement_seed`)."""
+def build_home(spec: EpisodeSpec, home: str | None = None
+               ) -> tuple[EnvironmentGraph, list[Move], Start | None]:
+    """`home` (default: the spec's) with objects moved and the agent placed (from
+    `placement_seed`)."""
     try:
-        graph = load_home(spec.home)
+        graph = load_home(home or spec.home)
     except HomesimError as e:
         raise EpisodeFailed("home", str(e)) from None
     rng = random.Random(spec.placement_seed)
@@ -93,13 +98,31 @@ def build_home(spec: EpisodeSpec) -> tuple[EnvironmentGraph, list[Move], Start |
     return graph, moves, start
 
 
-def ground_episode(spec: EpisodeSpec) -> EpisodeHome:
-    """Randomise the home and run the program there (`run_program`, `ground_seed`)."""
-    graph, moves, start = build_home(spec)
-    run = run_program(parse_program(spec.program), graph, seed=spec.ground_seed, trace=True)
-    if not run.executable or run.grounding is None:
-        raise EpisodeFailed(run.stage or "execution", run.message)
-    return EpisodeHome(run, moves, start)
+def homes_to_try(spec: EpisodeSpec, homes: Sequence[str]) -> list[str]:
+    """The spec's home, then the other `homes` in an order drawn from its placement seed."""
+    others = sorted(set(homes) - {spec.home})
+    random.Random(f"homesim-episode-homes-{spec.placement_seed}").shuffle(others)
+    return [spec.home, *others]
+
+
+def ground_episode(spec: EpisodeSpec, homes: Sequence[str] = ()) -> EpisodeHome:
+    """Randomise the spec's home and run the program there (`run_program`, `ground_seed`);
+    where it does not run, the next of `homes_to_try` that it runs in. The reason given
+    when it runs in none is the spec's home's."""
+    program = parse_program(spec.program)
+    first: EpisodeFailed | None = None
+    for home in homes_to_try(spec, homes):
+        try:
+            graph, moves, start = build_home(spec, home)
+        except EpisodeFailed as e:
+            first = first or e
+            continue
+        run = run_program(program, graph, seed=spec.ground_seed, trace=True)
+        if run.executable and run.grounding is not None:
+            return EpisodeHome(home, run, moves, start)
+        first = first or EpisodeFailed(run.stage or "execution", run.message)
+    assert first is not None  # homes_to_try gives at least the spec's home
+    raise first
 
 
 def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> Outcome:
@@ -131,7 +154,7 @@ def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any) -> Out
     from homesim.render.recorder import record
     from homesim.render.renderer import Renderer
 
-    home = ground_episode(spec)
+    home = ground_episode(spec, config.homes)
     run, grounding = home.run, home.run.grounding
     assert grounding is not None  # ground_episode checked
     scene, timeline, agent = prepare(
@@ -144,7 +167,7 @@ def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any) -> Out
     with Renderer(scene, config.width, config.height) as renderer:
         for truth in record(scene, timeline, renderer):
             writer.add(truth, len(timeline))
-    return writer.finish(timeline.step_frames)
+    return replace(writer.finish(timeline.step_frames), home=home.home)
 
 
 class _EpisodeWriter:
@@ -256,7 +279,7 @@ def _meta(spec: EpisodeSpec, config: DatasetConfig, home: EpisodeHome, scene: An
         "title": program.title, "description": program.description,
         "program": "\n".join(str(s) for s in program.steps),
         "grounded_program": "\n".join(str(s) for s in grounded.steps),
-        "home": spec.home, "agent": agent, "width": w, "height": h, "fps": config.fps,
+        "home": home.home, "agent": agent, "width": w, "height": h, "fps": config.fps,
         "num_frames": len(timeline), "gt_stride": config.gt_stride,
         "modalities": list(config.modalities),
         "steps": [{"index": i, "step": str(program.steps[i]), "grounded": str(grounded.steps[i]),

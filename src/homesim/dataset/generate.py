@@ -45,15 +45,18 @@ class Summary:
         return self.disk_bytes / self.frames if self.frames else 0.0
 
 
-def load_programs(source: str, n: int, seed: int) -> list[tuple[str, str]]:
-    """(id, text) of the programs: ``synth`` samples `n` from the grammar with `seed`; else
-    a data set file (JSONL), a folder of program files or one program file."""
-    if source == "synth":
+def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
+    """(id, text) of the config's programs: ``synth`` samples `n` from the grammar with the
+    config's seed, drawing each in one of its homes; else a data set file (JSONL), a folder
+    of program files or one program file."""
+    if config.programs == "synth":
         from homesim.synth import generate
 
-        return [(p.id, str(p.program)) for p in generate(n, seed)]
+        return [(p.id, str(p.program))
+                for p in generate(config.n, config.seed, homes=config.homes)]
     from homesim.knowledge.datasets import ActivityDataset
 
+    source = config.programs
     path = Path(source)
     if path.is_dir():
         ds = ActivityDataset.from_folder(path)
@@ -75,7 +78,7 @@ def generate_dataset(config: DatasetConfig, out: str | Path, *, workers: int = 2
     (Ray started here with `workers` CPUs, or the cluster at `ray_address`)."""
     layout = Layout(out)
     layout.open(config)
-    specs = plan_episodes(config, load_programs(config.programs, config.n, config.seed))
+    specs = plan_episodes(config, load_programs(config))
     job = _Job(layout, config, specs, progress)
     todo = job.resume()
     if workers == 0 and ray_address is None:

@@ -1,5 +1,6 @@
-"""The manifest: one Parquet row per episode (key, status and reason, home, agent, seeds,
-frames, steps, bytes per modality, checksum), read by any Parquet tool."""
+"""The manifest: one Parquet row per episode (key, status and reason, home made in and home
+drawn, agent, seeds, frames, steps, bytes per modality, checksum), read by any Parquet
+tool."""
 
 from __future__ import annotations
 
@@ -40,7 +41,8 @@ def _schema(pa: Any) -> Any:
     text, i64 = pa.string(), pa.int64()
     return pa.schema([
         ("key", text), ("index", i64), ("status", text), ("stage", text), ("reason", text),
-        ("program_id", text), ("home", text), ("agent", text), ("speed", pa.float64()),
+        ("program_id", text), ("home", text), ("drawn_home", text), ("agent", text),
+        ("speed", pa.float64()),
         ("render_seed", i64), ("ground_seed", i64), ("placement_seed", i64), ("moves", i64),
         ("num_frames", i64), ("num_steps", i64), ("sha256", text), ("bytes", i64),
         *[(c, i64) for c in MODALITY_COLUMNS]])

@@ -53,7 +53,7 @@ def _spec(layout: Layout, config: DatasetConfig, key: str, row: dict) -> Episode
             if k == key:
                 meta = json.loads(dict(members)[f"{key}.json"])
                 return EpisodeSpec.from_dict(meta["spec"])
-    programs = load_programs(config.programs, config.n, config.seed)
+    programs = load_programs(config)
     return plan_episodes(config, programs)[index]
 
 
