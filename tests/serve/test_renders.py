@@ -249,7 +249,7 @@ def test_video_with_the_real_renderer_is_a_playable_mp4(watch_tv, tmp_path):
     gl = pytest.importorskip("homesim.render.gl")
     if not gl.gl_available():
         pytest.skip(f"no OpenGL context with MUJOCO_GL={gl.BACKEND}")
-    import imageio_ffmpeg
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")  # a decoder other than the writer's
 
     app = create_app()
     with TestClient(app, base_url="http://127.0.0.1") as client:
