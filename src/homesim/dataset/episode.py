@@ -84,12 +84,11 @@ class EpisodeHome:
     start: Start | None
 
 
-def build_home(spec: EpisodeSpec, home: str | None = None
+def build_home(spec: EpisodeSpec, home: str
                ) -> tuple[EnvironmentGraph, list[Move], Start | None]:
-    """`home` (default: the spec's) with objects moved and the agent placed (from
-    `placement_seed`)."""
+    """`home` with objects moved and the agent placed (from the spec's `placement_seed`)."""
     try:
-        graph = load_home(home or spec.home)
+        graph = load_home(home)
     except HomesimError as e:
         raise EpisodeFailed("home", str(e)) from None
     rng = random.Random(spec.placement_seed)
