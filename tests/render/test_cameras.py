@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 
 from homesim.render.agent import AGENTS
-from homesim.render.cameras import look_at
+from homesim.render.cameras import FRAMED_HEIGHT, MIN_TRACK_FOVY, TRACK_HEIGHT, look_at, tracking
+from homesim.render.gl import mujoco
 from homesim.render.scene import build_scene
 
 pytestmark = pytest.mark.render
@@ -15,6 +16,28 @@ def test_look_at_gives_orthonormal_axes_facing_the_target():
     np.testing.assert_allclose([x @ x, y @ y, x @ y], [1, 1, 0], atol=1e-12)
     np.testing.assert_allclose(forward, (target - pos) / np.linalg.norm(target - pos))
     assert y[2] > 0  # image up points up
+
+
+def _forward(quat: np.ndarray) -> np.ndarray:
+    mat = np.zeros(9)
+    mujoco.mju_quat2Mat(mat, quat)
+    return -mat.reshape(3, 3)[:, 2]  # MuJoCo cameras look along their -z axis
+
+
+@pytest.mark.parametrize("agent", [(1.0, 0.5, 0.9), (-6.0, 4.0, 0.5), (0.3, -0.2, 0.9)])
+def test_a_tracking_camera_faces_the_agent_and_zooms_with_distance(agent):
+    pos, base = np.array([2.0, 2.0, 2.15]), 70.0
+    quat, fovy = tracking(pos, np.array(agent), base)
+    target = np.array(agent) + [0.0, 0.0, TRACK_HEIGHT]
+    distance = np.linalg.norm(target - pos)
+    np.testing.assert_allclose(_forward(quat), (target - pos) / distance, atol=1e-9)
+    assert MIN_TRACK_FOVY <= fovy <= base
+    if fovy < base:  # zoomed: the view spans FRAMED_HEIGHT at the agent
+        assert 2 * distance * np.tan(np.radians(fovy) / 2) == pytest.approx(
+            max(FRAMED_HEIGHT, 2 * distance * np.tan(np.radians(MIN_TRACK_FOVY) / 2)))
+    near, far = tracking(pos, np.array([1.5, 1.5, 0.9]), base)[1], \
+        tracking(pos, np.array([-4.0, -4.0, 0.9]), base)[1]
+    assert far < near  # farther agents are zoomed in on more
 
 
 def test_cameras_per_room_are_randomised_by_seed(box_home):

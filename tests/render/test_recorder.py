@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from homesim.render.agent import AGENTS
+from homesim.render.agent import AGENTS, JOINTS
 from homesim.render.animate import Timeline
 from homesim.render.gl import mujoco
 from homesim.render.recorder import record
@@ -67,3 +67,22 @@ def test_every_channel_has_its_shape_and_dtype(box_home, gl):
     assert vis.any()
     uv = np.round(f.joints2d[vis]).astype(int)
     assert np.all((uv >= 0) & (uv < [64, 48]))
+
+
+def test_room_cameras_follow_the_agent_and_the_flow_follows_the_camera(box_home, gl):
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    with Renderer(scene, 64, 48) as r:
+        first, second = list(record(scene, _two_frames(scene, 0.4), r))
+    assert first.camera == second.camera and not first.cut  # one camera, held
+    assert not np.allclose(first.world_to_cam, second.world_to_cam)  # that turned
+    for frame in (first, second):  # the agent's pelvis stays near the middle column
+        assert abs(frame.joints2d[JOINTS.index("pelvis"), 0] - 31.5) < 0.15 * 64
+    still = first.flow_valid & (first.instance_seg > 0) \
+        & (first.instance_seg != scene.character_id)
+    v, u = np.nonzero(still)
+    u1 = np.round(u + first.flow[v, u, 0]).astype(int)
+    v1 = np.round(v + first.flow[v, u, 1]).astype(int)
+    inside = (u1 >= 0) & (u1 < 64) & (v1 >= 0) & (v1 < 48)
+    assert np.abs(first.flow[still]).max() > 1.0  # the turn moved the still things
+    landed = second.instance_seg[v1[inside], u1[inside]] == first.instance_seg[v[inside], u[inside]]
+    assert landed.mean() > 0.9  # and the flow says where each one went

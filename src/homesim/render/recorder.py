@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from homesim.render.animate import Timeline
+from homesim.render.cameras import tracking
 from homesim.render.director import Director
 from homesim.render.flow import intrinsics, optical_flow, project, world_to_cam
 from homesim.render.gl import mujoco
@@ -57,16 +58,21 @@ FOCUS_BONUS = 0.5
 """Score added when the object the step acts on is in view too."""
 
 
+def camera_intrinsics(scene: SceneModel, cam: int, width: int, height: int) -> np.ndarray:
+    """The pinhole matrix of a camera as it is now (room cameras zoom as they track)."""
+    return intrinsics(width, height, float(scene.model.cam_fovy[cam]))
+
+
 def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: int,
-               ks: list[np.ndarray], focus: int = -1) -> float:
+               focus: int = -1) -> float:
     """How well a camera shows the agent (visible pixels, capped; joints in frame) and
     the object it acts on (`focus`, a node id; -1 for none)."""
     share, seen = renderer.probe_nodes(data, cam, (scene.character_id, focus))
     if share <= 0.0:
         return 0.0
     w2c = world_to_cam(data.cam_xpos[cam], data.cam_xmat[cam])
-    uv, z = project(data.site_xpos[scene.joint_sites], ks[cam], w2c)
     w, h = renderer.width, renderer.height
+    uv, z = project(data.site_xpos[scene.joint_sites], camera_intrinsics(scene, cam, w, h), w2c)
     inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
     return _size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
 
@@ -80,10 +86,14 @@ def focus_per_frame(timeline: Timeline) -> list[int]:
 
 
 class SceneState:
-    """Applies one frame of a timeline to the model and data."""
+    """Applies one frame of a timeline to the model and data; with `track`, the room
+    cameras turn toward the agent and zoom in on it (`cameras.tracking`)."""
 
-    def __init__(self, scene: SceneModel, timeline: Timeline):
+    def __init__(self, scene: SceneModel, timeline: Timeline, track: bool = True):
         self.scene, self.tl = scene, timeline
+        self._tracking = [(i, c.pos, c.fovy) for i, c in enumerate(scene.cameras)
+                          if track and c.shot < 0]
+        self._agent = scene.model.body("agent").id
         self.data = mujoco.MjData(scene.model)
         m = scene.model
         self._emission = {n: 1.0 for n in scene.lamp_mat}
@@ -110,6 +120,9 @@ class SceneState:
         for n, g in self.scene.screen_geom.items():
             m.geom_matid[g] = screen_on if n in tl.screens[i] else screen_off
         mujoco.mj_kinematics(m, d)
+        agent = d.xpos[self._agent]
+        for cam, pos, fovy in self._tracking:
+            m.cam_quat[cam], m.cam_fovy[cam] = tracking(pos, agent, fovy)
         mujoco.mj_camlight(m, d)
         return d
 
@@ -117,11 +130,10 @@ class SceneState:
 def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
            fixed_camera: int | None = None) -> Iterator[FrameTruth]:
     """Yield each frame's ground truth, in order."""
-    state = SceneState(scene, timeline)
+    state = SceneState(scene, timeline, track=fixed_camera is None)
     director = Director(scene)
     char = scene.character_id
     w, h = renderer.width, renderer.height
-    ks = [intrinsics(w, h, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
     shots = shot_frames(scene, timeline)
     node_lut = np.concatenate([[BACKGROUND], scene.geom_node]).astype(np.int32)
@@ -137,7 +149,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
             cam = director.force(shots[i])
         else:
             cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: view_score(
-                renderer, d, scene, c, ks, f))
+                renderer, d, scene, c, f))
+        k = camera_intrinsics(scene, cam, w, h)
         rgb = renderer.rgb(d, cam)
         ids, depth = renderer.ids_depth(d, cam)
         seen = ids >= 0
@@ -146,9 +159,9 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         w2c = world_to_cam(d.cam_xpos[cam], d.cam_xmat[cam])
         poses = (d.geom_xpos.copy(), d.geom_xmat.copy())
         if pending is not None:
-            yield _finish(pending, cam, ks[cam], w2c, poses)
+            yield _finish(pending, cam, k, w2c, poses)
         joints = d.site_xpos[scene.joint_sites].copy()
-        uv, z = project(joints, ks[cam], w2c)
+        uv, z = project(joints, k, w2c)
         iu = np.clip(np.round(uv).astype(int), 0, [w - 1, h - 1])
         inside = (uv[:, 0] >= -0.5) & (uv[:, 0] < w - 0.5) & (uv[:, 1] >= -0.5) \
             & (uv[:, 1] < h - 0.5) & (z > 0)
@@ -158,7 +171,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         depth[~seen] = 0.0
         truth = FrameTruth(
             i, cam, rgb, depth, class_lut[ids + 1], instance,
-            np.zeros((h, w, 2), np.float32), np.zeros((h, w), bool), ks[cam], w2c, joints, uv,
+            np.zeros((h, w, 2), np.float32), np.zeros((h, w), bool), k, w2c, joints, uv,
             inside & unhidden, False)
         pending = (truth, ids, poses)
     if pending is not None:
@@ -191,7 +204,6 @@ def iter_still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     """`still_frames` one at a time, so a caller can store each and drop it."""
     state = SceneState(scene, timeline)
     body = scene.model.body("agent").id
-    ks = [intrinsics(renderer.width, renderer.height, c.fovy) for c in scene.cameras]
     focus = focus_per_frame(timeline)
     shots = shot_frames(scene, timeline)
     for i in frames:
@@ -199,7 +211,7 @@ def iter_still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         director = Director(scene)  # a fresh choice per frame: no continuity needed
         cam = shots[i] if shots[i] >= 0 else director.choose(
             d.xpos[body].copy(), None,
-            lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, ks, f))
+            lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, f))
         yield i, renderer.rgb(d, cam)
 
 

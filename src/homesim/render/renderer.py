@@ -51,6 +51,7 @@ class Renderer:
         self._seg4: np.ndarray | None = None
         self._luts: dict[int, np.ndarray] = {}  # camera -> segid + 1 -> geom id
         self._camera_now = -1
+        self._culled_for: dict[int, bytes] = {}  # camera -> the pose it was culled for
         self._groups = self._cull_groups()
         self._opt.geomgroup[HIDDEN_GROUP] = 0
         # The light of the room a camera is in casts shadows in its colour draws.
@@ -105,7 +106,13 @@ class Renderer:
         groups = {-1: m.geom_group.copy()}
         for cam in range(m.ncam):
             groups[cam] = self._cull(data, cam, groups[-1])
+            self._culled_for[cam] = self._pose(data, cam)
         return groups
+
+    def _pose(self, data: mujoco.MjData, cam: int) -> bytes:
+        """A camera's position, orientation and field of view, as a key."""
+        return (data.cam_xpos[cam].tobytes() + data.cam_xmat[cam].tobytes()
+                + self.scene.model.cam_fovy[cam:cam + 1].tobytes())
 
     def _cull(self, data: mujoco.MjData, cam: int, own: np.ndarray) -> np.ndarray:
         """Camera `cam`'s geom groups (posed as in `data`): static geoms whose bounding
@@ -126,13 +133,17 @@ class Renderer:
 
     def camera_moved(self, data: mujoco.MjData, camera_id: int) -> None:
         """A camera was moved, turned or zoomed (`data` posed with `mj_camlight` after):
-        cull for where it is now (else geoms it now sees could stay hidden)."""
+        cull for where it is now (else geoms it now sees could stay hidden). Each draw
+        does this by itself when the camera is not where it was culled for."""
         self._groups[camera_id] = self._cull(data, camera_id, self._groups[-1])
+        self._culled_for[camera_id] = self._pose(data, camera_id)
         self._luts.pop(camera_id, None)
 
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
               rect: mujoco.MjrRect | None = None) -> None:
         self._gl.make_current()
+        if self._culled_for.get(camera_id) != self._pose(data, camera_id):
+            self.camera_moved(data, camera_id)  # a tracking room camera turned or zoomed
         # Set on every draw (a small copy): another renderer of the same model may have
         # changed the groups since.
         self.scene.model.geom_group[:] = self._groups.get(camera_id, self._groups[-1])
