@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from homesim.render.agent import AGENTS
-from homesim.render.cameras import FRAMED_HEIGHT, MIN_TRACK_FOVY, TRACK_HEIGHT, look_at, tracking
+from homesim.render.cameras import AIM_HEIGHT, FRAMED_HEIGHT, MIN_AIMED_FOVY, aimed, look_at
 from homesim.render.gl import mujoco
 from homesim.render.scene import build_scene
 
@@ -25,18 +25,18 @@ def _forward(quat: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize("agent", [(1.0, 0.5, 0.9), (-6.0, 4.0, 0.5), (0.3, -0.2, 0.9)])
-def test_a_tracking_camera_faces_the_agent_and_zooms_with_distance(agent):
+def test_an_aimed_camera_faces_the_agent_and_zooms_with_distance(agent):
     pos, base = np.array([2.0, 2.0, 2.15]), 70.0
-    quat, fovy = tracking(pos, np.array(agent), base)
-    target = np.array(agent) + [0.0, 0.0, TRACK_HEIGHT]
+    quat, fovy = aimed(pos, np.array(agent), base)
+    target = np.array(agent) + np.array([0.0, 0.0, AIM_HEIGHT])
     distance = np.linalg.norm(target - pos)
     np.testing.assert_allclose(_forward(quat), (target - pos) / distance, atol=1e-9)
-    assert MIN_TRACK_FOVY <= fovy <= base
+    assert MIN_AIMED_FOVY <= fovy <= base
     if fovy < base:  # zoomed: the view spans FRAMED_HEIGHT at the agent
         assert 2 * distance * np.tan(np.radians(fovy) / 2) == pytest.approx(
-            max(FRAMED_HEIGHT, 2 * distance * np.tan(np.radians(MIN_TRACK_FOVY) / 2)))
-    near, far = tracking(pos, np.array([1.5, 1.5, 0.9]), base)[1], \
-        tracking(pos, np.array([-4.0, -4.0, 0.9]), base)[1]
+            max(FRAMED_HEIGHT, 2 * distance * np.tan(np.radians(MIN_AIMED_FOVY) / 2)))
+    near, far = aimed(pos, np.array([1.5, 1.5, 0.9]), base)[1], \
+        aimed(pos, np.array([-4.0, -4.0, 0.9]), base)[1]
     assert far < near  # farther agents are zoomed in on more
 
 

@@ -287,7 +287,7 @@ def _meta(spec: EpisodeSpec, config: DatasetConfig, home: EpisodeHome, scene: An
         "classes": list(scene.classes), "instances": instances,
         "character_id": scene.character_id, "joints": list(JOINTS),
         "cameras": [{"name": c.name, "room_id": c.room_id, "fovy": c.fovy,
-                     "tracks_agent": c.shot < 0,
+                     "aimed_at_agent": c.shot < 0,
                      "position": [float(x) for x in c.pos],
                      "intrinsics": intrinsics(w, h, c.fovy).tolist()} for c in scene.cameras],
         "moves": [m.to_dict() for m in home.moves],

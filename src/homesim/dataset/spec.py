@@ -38,9 +38,9 @@ FORMAT = "homesim-activity/4"
 """Data set format; /2: the mp4 encoded as `video.H264Writer` does since x264 was pinned
 to SSE2 (other bytes than /1 for the same frames); /3: an episode whose program does not
 run in its drawn home is made in the next home it runs in (`episode.homes_to_try`; /2
-recorded it as failed), and the manifest has a `drawn_home` column; /4: room cameras turn
-toward the agent and zoom in on it as it moves (`cameras.tracking`; /3 and before kept
-them fixed)."""
+recorded it as failed), and the manifest has a `drawn_home` column; /4: a room camera is
+turned toward the agent and zoomed in on it each time it is chosen (`cameras.aimed`; /3
+and before kept them fixed)."""
 
 
 @dataclass(frozen=True)

@@ -175,7 +175,7 @@ def _meta(program, home: str, scene: SceneModel, agent, width, height, fps, seed
         "character_id": scene.character_id,
         "joints": list(JOINTS),
         "cameras": [{"name": c.name, "room_id": c.room_id, "fovy": c.fovy,
-                     "tracks_agent": c.shot < 0,
+                     "aimed_at_agent": c.shot < 0,
                      "step": None if c.step < 0 else c.step,
                      "position": [float(x) for x in c.pos],
                      "intrinsics": intrinsics(width, height, c.fovy).tolist()}

@@ -75,27 +75,26 @@ def room_cameras(layout: Layout, seed: int = 0) -> list[CameraSpec]:
     return cams
 
 
-TRACK_HEIGHT = 0.15
+AIM_HEIGHT = 0.15
 """Metres above the agent's pelvis that a room camera aims at (mid-torso)."""
 FRAMED_HEIGHT = 3.6
-"""Metres: a room camera zooms so that its view spans this much at the agent (about twice
-a person's height: the agent and what it is near stay in the picture)."""
-MIN_TRACK_FOVY = 35.0
+"""Metres: an aimed room camera zooms so that its view spans this much at the agent
+(about twice a person's height: the agent and what it is near stay in the picture)."""
+MIN_AIMED_FOVY = 35.0
 """Degrees: the narrowest a room camera zooms in (a far agent)."""
 
 
-def tracking(pos: np.ndarray, agent: np.ndarray, fovy: float) -> tuple[np.ndarray, float]:
+def aimed(pos: np.ndarray, agent: np.ndarray, fovy: float) -> tuple[np.ndarray, float]:
     """A room camera at `pos` turned toward the agent (pelvis at `agent`) and zoomed in on
     it: the MuJoCo camera quaternion (w, x, y, z) and field of view (degrees, no wider
-    than the camera's own `fovy`). A function of the agent's position alone, so the view
-    moves as smoothly as the agent does."""
-    target = agent + np.array([0.0, 0.0, TRACK_HEIGHT])
+    than the camera's own `fovy`)."""
+    target = agent + np.array([0.0, 0.0, AIM_HEIGHT])
     xaxis, yaxis = look_at(pos, target)
     rotation = np.column_stack([xaxis, yaxis, np.cross(xaxis, yaxis)])
     quat = _quaternion(rotation)
     distance = float(np.linalg.norm(target - pos))
     zoom = float(np.degrees(2.0 * np.arctan2(FRAMED_HEIGHT / 2.0, distance)))
-    return quat, float(np.clip(zoom, min(MIN_TRACK_FOVY, fovy), fovy))
+    return quat, float(np.clip(zoom, min(MIN_AIMED_FOVY, fovy), fovy))
 
 
 def _quaternion(rotation: np.ndarray) -> np.ndarray:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from homesim.render.animate import Timeline
-from homesim.render.cameras import tracking
+from homesim.render.cameras import aimed
 from homesim.render.director import Director
 from homesim.render.flow import intrinsics, optical_flow, project, world_to_cam
 from homesim.render.gl import mujoco
@@ -59,7 +59,7 @@ FOCUS_BONUS = 0.5
 
 
 def camera_intrinsics(scene: SceneModel, cam: int, width: int, height: int) -> np.ndarray:
-    """The pinhole matrix of a camera as it is now (room cameras zoom as they track)."""
+    """The pinhole matrix of a camera as it is now (a room camera zooms when aimed)."""
     return intrinsics(width, height, float(scene.model.cam_fovy[cam]))
 
 
@@ -77,6 +77,14 @@ def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: 
     return _size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
 
 
+def aimed_score(state: SceneState, renderer: Renderer, scene: SceneModel, cam: int,
+                focus: int = -1) -> float:
+    """`view_score` of a camera once aimed at the agent (a probed camera is aimed: the one
+    chosen films from there)."""
+    state.aim(cam)
+    return view_score(renderer, state.data, scene, cam, focus)
+
+
 def focus_per_frame(timeline: Timeline) -> list[int]:
     """The node each frame's step acts on (-1 before the first and for none)."""
     out = [-1] * len(timeline)
@@ -86,13 +94,14 @@ def focus_per_frame(timeline: Timeline) -> list[int]:
 
 
 class SceneState:
-    """Applies one frame of a timeline to the model and data; with `track`, the room
-    cameras turn toward the agent and zoom in on it (`cameras.tracking`)."""
+    """Applies one frame of a timeline to the model and data; with `aim_cameras`, a room
+    camera is turned toward the agent and zoomed in on it whenever it is probed or
+    chosen (`aim`), and holds that view until the next time (`cameras.aimed`)."""
 
-    def __init__(self, scene: SceneModel, timeline: Timeline, track: bool = True):
+    def __init__(self, scene: SceneModel, timeline: Timeline, aim_cameras: bool = True):
         self.scene, self.tl = scene, timeline
-        self._tracking = [(i, c.pos, c.fovy) for i, c in enumerate(scene.cameras)
-                          if track and c.shot < 0]
+        self._aimable = {i: (c.pos, c.fovy) for i, c in enumerate(scene.cameras)
+                         if aim_cameras and c.shot < 0}
         self._agent = scene.model.body("agent").id
         self.data = mujoco.MjData(scene.model)
         m = scene.model
@@ -100,6 +109,16 @@ class SceneState:
         self._light_ids = dict(scene.lamp_light)
         self._mocap = m.nmocap > 0
         del m
+
+    def aim(self, cam: int) -> None:
+        """Turn room camera `cam` toward the agent as posed now and zoom in on it (a no-op
+        for close-ups and without `aim_cameras`)."""
+        if cam not in self._aimable:
+            return
+        m, d = self.scene.model, self.data
+        pos, fovy = self._aimable[cam]
+        m.cam_quat[cam], m.cam_fovy[cam] = aimed(pos, d.xpos[self._agent], fovy)
+        mujoco.mj_camlight(m, d)
 
     def apply(self, i: int) -> mujoco.MjData:
         m, d, tl = self.scene.model, self.data, self.tl
@@ -120,9 +139,6 @@ class SceneState:
         for n, g in self.scene.screen_geom.items():
             m.geom_matid[g] = screen_on if n in tl.screens[i] else screen_off
         mujoco.mj_kinematics(m, d)
-        agent = d.xpos[self._agent]
-        for cam, pos, fovy in self._tracking:
-            m.cam_quat[cam], m.cam_fovy[cam] = tracking(pos, agent, fovy)
         mujoco.mj_camlight(m, d)
         return d
 
@@ -130,7 +146,7 @@ class SceneState:
 def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
            fixed_camera: int | None = None) -> Iterator[FrameTruth]:
     """Yield each frame's ground truth, in order."""
-    state = SceneState(scene, timeline, track=fixed_camera is None)
+    state = SceneState(scene, timeline, aim_cameras=fixed_camera is None)
     director = Director(scene)
     char = scene.character_id
     w, h = renderer.width, renderer.height
@@ -148,8 +164,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         elif shots[i] >= 0:  # a close-up of the interaction under way
             cam = director.force(shots[i])
         else:
-            cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: view_score(
-                renderer, d, scene, c, f))
+            cam = director.choose(agent, visible, lambda c, d=d, f=focus[i]: aimed_score(
+                state, renderer, scene, c, f))
         k = camera_intrinsics(scene, cam, w, h)
         rgb = renderer.rgb(d, cam)
         ids, depth = renderer.ids_depth(d, cam)
@@ -187,10 +203,17 @@ def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> Fra
     truth.flow, truth.flow_valid = optical_flow(
         truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1, xpos0, xmat0,
         poses1[0], poses1[1])
-    truth.cut = cam1 != truth.camera
-    if truth.cut:  # across a cut the flow is no visual correspondence
+    truth.cut = is_cut(truth.camera, truth.intrinsics, truth.world_to_cam, cam1, k1, w2c1)
+    if truth.cut:  # across a cut (or a camera aimed anew) the flow is no correspondence
         truth.flow_valid[:] = False
     return truth
+
+
+def is_cut(cam0: int, k0: np.ndarray, w2c0: np.ndarray,
+           cam1: int, k1: np.ndarray, w2c1: np.ndarray) -> bool:
+    """Whether the view changes between two frames: another camera, or the same one aimed
+    or zoomed anew."""
+    return cam0 != cam1 or not (np.array_equal(k0, k1) and np.array_equal(w2c0, w2c1))
 
 
 def still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
@@ -211,7 +234,7 @@ def iter_still_frames(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         director = Director(scene)  # a fresh choice per frame: no continuity needed
         cam = shots[i] if shots[i] >= 0 else director.choose(
             d.xpos[body].copy(), None,
-            lambda c, d=d, f=focus[i]: view_score(renderer, d, scene, c, f))
+            lambda c, f=focus[i]: aimed_score(state, renderer, scene, c, f))
         yield i, renderer.rgb(d, cam)
 
 

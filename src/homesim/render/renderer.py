@@ -143,7 +143,7 @@ class Renderer:
               rect: mujoco.MjrRect | None = None) -> None:
         self._gl.make_current()
         if self._culled_for.get(camera_id) != self._pose(data, camera_id):
-            self.camera_moved(data, camera_id)  # a tracking room camera turned or zoomed
+            self.camera_moved(data, camera_id)  # a room camera aimed at the agent anew
         # Set on every draw (a small copy): another renderer of the same model may have
         # changed the groups since.
         self.scene.model.geom_group[:] = self._groups.get(camera_id, self._groups[-1])
