@@ -5,7 +5,8 @@
 
 Prints, over every frame with a class map, the share of frames in which the agent covers
 less than 0.5% of the image (a figure at the far end of a room, or at the image's edge),
-none of it, and the median share it covers; with --first N, only the first N episodes.
+none of it, and the median share it covers, and how often the view cuts (another camera,
+or one aimed anew); with --first N, only the first N episodes.
 """
 
 from __future__ import annotations
@@ -34,11 +35,16 @@ def main() -> None:
     parser.add_argument("--first", type=int, default=None, help="Only the first N episodes.")
     args = parser.parse_args()
     source = args.source[0] if len(args.source) == 1 else args.source
-    episodes = islice(read_episodes(source, modalities=("class",)), args.first)
-    shares = np.concatenate([agent_shares(e) for e in episodes])
+    per_episode, cuts, seconds = [], 0, 0.0
+    for episode in islice(read_episodes(source, modalities=("class",)), args.first):
+        per_episode.append(agent_shares(episode))
+        cuts += int(np.count_nonzero(episode["cut"]))
+        seconds += len(episode["cut"]) / episode["meta"]["fps"]
+    shares = np.concatenate(per_episode)
     print(f"{shares.size} frames: agent on < {100 * SMALL:.1f}% of the image in "
           f"{100 * np.mean(shares < SMALL):.1f}%, not seen in {100 * np.mean(shares == 0):.1f}%;"
-          f" median share {100 * np.median(shares):.2f}%")
+          f" median share {100 * np.median(shares):.2f}%; {60 * cuts / seconds:.1f} cuts a "
+          f"minute")
 
 
 if __name__ == "__main__":
