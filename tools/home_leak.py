@@ -47,6 +47,7 @@ def leaked_classes() -> None:
 def reading_the_home(seeds: int, vectors: Path) -> None:
     """Print the dev steps LCS of the reranker and the title-medoid, each with and without
     the executability check in the example's home."""
+    from homesim.learn.baselines import medoid_order
     from homesim.learn.execution import executable
     from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
     from homesim.learn.rerank import CHECK_EXECUTABLE, Query, Reranker
@@ -60,7 +61,8 @@ def reading_the_home(seeds: int, vectors: Path) -> None:
     for seed in range(seeds):
         splits = load_run_splits(RunSpec("real", "stratified", seed), vectors)
         reranker = Reranker.fit(splits.train, HOLDOUT["stratified"])
-        ranked = medoid_order(splits.train)
+        ranked = {activity: [Program(e.program.steps) for e in group]
+                  for activity, group in medoid_order(splits.train).items()}
         everything = np.ones(len(splits.train), bool)
         row = np.zeros(4)
         for e in splits.dev:
@@ -80,23 +82,6 @@ def reading_the_home(seeds: int, vectors: Path) -> None:
 def describe(row: np.ndarray) -> str:
     return (f"reranker {row[0]:.4f} (checked in the home {row[1]:.4f}), "
             f"title-medoid {row[2]:.4f} (checked {row[3]:.4f})")
-
-
-def medoid_order(train) -> dict[str, list[Program]]:
-    """Activity -> its training programs by mean steps LCS to the others (the title-medoid
-    first)."""
-    from homesim.program.metrics import normalized_lcs, step_tokens
-
-    groups: dict[str, list] = {}
-    for e in train:
-        groups.setdefault(e.activity, []).append(e)
-    out = {}
-    for activity, group in groups.items():
-        tokens = [step_tokens(e.program) for e in group]
-        totals = [sum(normalized_lcs(a, b) for b in tokens) for a in tokens]
-        order = sorted(range(len(group)), key=lambda i: (-totals[i], i))
-        out[activity] = [Program(group[i].program.steps) for i in order]
-    return out
 
 
 def main() -> None:

@@ -82,6 +82,12 @@ def _nearest(train: list[Example], test: list[Example], field) -> list[Program]:
 def medoids(train: list[Example]) -> dict[str, Example]:
     """Activity -> its medoid training example: the one with the highest mean steps LCS
     to the other programs of its activity (ties: the first)."""
+    return {activity: ranked[0] for activity, ranked in medoid_order(train).items()}
+
+
+def medoid_order(train: list[Example]) -> dict[str, list[Example]]:
+    """Activity -> its training examples by mean steps LCS to the other programs of the
+    activity, highest first (ties: in training order); the medoid leads."""
     groups: dict[str, list[Example]] = {}
     for e in train:
         groups.setdefault(e.activity, []).append(e)
@@ -89,7 +95,8 @@ def medoids(train: list[Example]) -> dict[str, Example]:
     for activity, group in groups.items():
         tokens = [step_tokens(e.program) for e in group]
         totals = [sum(normalized_lcs(a, b) for b in tokens) for a in tokens]
-        out[activity] = group[max(range(len(group)), key=lambda i: (totals[i], -i))]
+        out[activity] = [group[i] for i in sorted(range(len(group)),
+                                                  key=lambda i: (-totals[i], i))]
     return out
 
 
