@@ -90,3 +90,27 @@ def test_a_camera_aimed_anew_is_a_cut():
     assert is_cut(3, k, w2c, 4, k, w2c)  # another camera
     assert is_cut(3, k, w2c, 3, k, turned)  # the same one turned
     assert is_cut(3, k, w2c, 3, intrinsics(64, 48, 40.0), w2c)  # or zoomed
+
+
+def test_a_view_blocked_close_to_the_camera_scores_less(box_home, gl):
+    """Two cameras on one wall that both see the agent across the room: the one standing
+    beside the fridge (which fills a side of its view) scores less, by what it blocks."""
+    from homesim.render.recorder import BLOCK_PENALTY, NEAR, view_score
+
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    data = mujoco.MjData(scene.model)
+    mujoco.mj_forward(scene.model, data)
+    agent = data.xpos[scene.model.body("agent").id].copy()
+    blocked_at = np.array([-1.15, 1.85, 1.5])  # the fridge: x -1.9..-1.3, y 1.1..1.7
+    clear_at = np.array([0.6, 1.85, 1.5])  # along the same wall, nothing near
+    for cam, pos in ((0, clear_at), (1, blocked_at)):
+        place_camera(scene, data, cam, pos, agent - pos)
+        scene.model.cam_fovy[cam] = 60.0
+    mujoco.mj_camlight(scene.model, data)
+    with Renderer(scene, 64, 48) as r:
+        clear, blocked = (r.probe_view(data, c, (scene.character_id,), near=NEAR)
+                          for c in (0, 1))
+        scores = [view_score(r, data, scene, c) for c in (0, 1)]
+    assert clear.shares[0] > 0.01 and blocked.shares[0] > 0.01  # both see the agent
+    assert clear.near < 0.02 < 0.15 < blocked.near
+    assert scores[0] - scores[1] > 0.5 * BLOCK_PENALTY * blocked.near

@@ -74,3 +74,24 @@ def test_a_camera_moved_after_the_renderer_was_made_sees_what_it_now_faces(scene
     assert scene.geom_node[away[24, 32]] != 3
     assert scene.geom_node[ids[24, 32]] == 3  # the +x wall
     assert abs(float(depth[24, 32]) - 2.95) < 0.01
+
+
+def test_probe_measures_what_stands_close_in_front_of_the_camera(scene):
+    """What blocks a room camera's view: pixels nearer than a distance, not counting the
+    nodes asked about (the agent walking up to the camera blocks nothing)."""
+    data = mujoco.MjData(scene.model)
+    mujoco.mj_forward(scene.model, data)
+    place_camera(scene, data, 0, (1.45, 1.0, 1.6), (1.0, 0.0, 0.0))  # 0.5 m from the wall
+    agent = scene.character_id
+    with Renderer(scene, 64, 48) as r:
+        blocked = r.probe_view(data, 0, (agent,), near=1.0)
+        farther = r.probe_view(data, 0, (agent,), near=0.3)
+        start = scene.model.body("agent").pos.copy()
+        cam = np.array([start[0], start[1] + 0.7, 1.0])  # level with the agent's chest
+        place_camera(scene, data, 0, cam, (0.0, -1.0, 0.0))  # the wall 0.55 m behind it
+        close_agent = r.probe_view(data, 0, (agent,), near=1.0)
+        not_asked = r.probe_view(data, 0, (), near=1.0)
+        assert close_agent.shares == r.probe_nodes(data, 0, (agent,))
+    assert blocked.near > 0.95 and farther.near == 0.0
+    assert close_agent.shares[0] > 0.1 and close_agent.near < 0.02
+    assert not_asked.near > close_agent.shares[0] - 0.02

@@ -53,3 +53,22 @@ def test_recording_films_interactions_with_their_close_up(prepared, gl):
         assert seen.mean() >= 0.005  # the object fills a fair part of the frame
     others = {f.camera for f in frames if per_frame[f.index] < 0}
     assert all(scene.cameras[c].shot < 0 for c in others)
+
+
+@pytest.mark.parametrize(("share", "hand", "close_ups"), [(0.0, False, 0), (0.0, True, 2),
+                                                          (0.01, False, 2)])
+def test_a_step_no_candidate_view_shows_gets_no_close_up(monkeypatch, gl, share, hand,
+                                                         close_ups):
+    """Where every drawn candidate shows neither the object nor the hand (a counter in
+    front of the camera), the room camera films the step instead."""
+    from homesim.render import shots
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    monkeypatch.setattr(shots._SpareCamera, "view", lambda *a: (share, hand))
+    g = EnvironmentGraph.from_dict(box_home_dict())
+    scene, tl, _ = prepare(homesim.parse_program(PROGRAM), g, width=64, height=48, fps=6,
+                           seed=0, bindings=None, agent="male1")
+    assert len(tl.interactions) == 2
+    assert sum(c.shot >= 0 for c in scene.cameras) == close_ups

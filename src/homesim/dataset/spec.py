@@ -34,13 +34,15 @@ SPEED_RANGE = (0.8, 1.25)
 MAX_MOVES = 6
 """At most this many objects are moved to other allowed places per episode."""
 
-FORMAT = "homesim-activity/4"
+FORMAT = "homesim-activity/5"
 """Data set format; /2: the mp4 encoded as `video.H264Writer` does since x264 was pinned
 to SSE2 (other bytes than /1 for the same frames); /3: an episode whose program does not
 run in its drawn home is made in the next home it runs in (`episode.homes_to_try`; /2
 recorded it as failed), and the manifest has a `drawn_home` column; /4: a room camera is
 turned toward the agent and zoomed in on it each time it is chosen (`cameras.aimed`; /3
-and before kept them fixed)."""
+and before kept them fixed); /5: a room camera with something close in front of it (a
+wall edge, a door) scores less when cameras are chosen (`recorder.BLOCK_PENALTY`), and
+a step that no candidate close-up shows gets none (`shots.plan_shots`)."""
 
 
 @dataclass(frozen=True)

@@ -56,6 +56,11 @@ def _size_score(share: float) -> float:
 
 FOCUS_BONUS = 0.5
 """Score added when the object the step acts on is in view too."""
+NEAR = 1.0
+"""Metres: what stands nearer than this to a room camera (a wall edge or a door beside
+it), other than the agent and the object acted on, blocks its view..."""
+BLOCK_PENALTY = 2.0
+"""... and costs this much score per share of the image it covers."""
 
 
 def camera_intrinsics(scene: SceneModel, cam: int, width: int, height: int) -> np.ndarray:
@@ -66,15 +71,18 @@ def camera_intrinsics(scene: SceneModel, cam: int, width: int, height: int) -> n
 def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: int,
                focus: int = -1) -> float:
     """How well a camera shows the agent (visible pixels, capped; joints in frame) and
-    the object it acts on (`focus`, a node id; -1 for none)."""
-    share, seen = renderer.probe_nodes(data, cam, (scene.character_id, focus))
+    the object it acts on (`focus`, a node id; -1 for none), less what blocks the view
+    near the camera (`BLOCK_PENALTY`)."""
+    probe = renderer.probe_view(data, cam, (scene.character_id, focus), near=NEAR)
+    share, seen = probe.shares
     if share <= 0.0:
         return 0.0
     w2c = world_to_cam(data.cam_xpos[cam], data.cam_xmat[cam])
     w, h = renderer.width, renderer.height
     uv, z = project(data.site_xpos[scene.joint_sites], camera_intrinsics(scene, cam, w, h), w2c)
     inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
-    return _size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
+    return (_size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
+            - BLOCK_PENALTY * probe.near)
 
 
 def aimed_score(state: SceneState, renderer: Renderer, scene: SceneModel, cam: int,
@@ -182,8 +190,8 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         inside = (uv[:, 0] >= -0.5) & (uv[:, 0] < w - 0.5) & (uv[:, 1] >= -0.5) \
             & (uv[:, 1] < h - 0.5) & (z > 0)
         unhidden = z <= depth[iu[:, 1], iu[:, 0]] + 0.15  # joints sit inside the limbs
-        visible = 0.0 if share == 0 else _size_score(share) + float(inside.mean()) + (
-            FOCUS_BONUS if focus[i] >= 0 and np.any(instance == focus[i]) else 0.0)
+        visible = 0.0 if share == 0 else _frame_score(share, inside, instance, depth, seen,
+                                                      char, focus[i])
         depth[~seen] = 0.0
         truth = FrameTruth(
             i, cam, rgb, depth, class_lut[ids + 1], instance,
@@ -195,6 +203,15 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         last = _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
         last.flow_valid[:] = False  # no next frame to flow to
         yield last
+
+
+def _frame_score(share: float, inside: np.ndarray, instance: np.ndarray, depth: np.ndarray,
+                 seen: np.ndarray, char: int, focus: int) -> float:
+    """`view_score` of the frame just drawn, from its full-size maps."""
+    shown = np.any(instance == focus) if focus >= 0 else False
+    near = seen & (depth < NEAR) & (instance != char) & (instance != focus)
+    return (_size_score(share) + float(inside.mean()) + (FOCUS_BONUS if shown else 0.0)
+            - BLOCK_PENALTY * float(np.count_nonzero(near)) / near.size)
 
 
 def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> FrameTruth:

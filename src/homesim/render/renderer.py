@@ -8,6 +8,8 @@ context is freed: ``with Renderer(scene, 640, 480) as r: ...``.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from homesim.errors import HomesimError
@@ -16,6 +18,15 @@ from homesim.render.scene import SceneModel
 
 HIDDEN_GROUP = 5
 """Geom group of the static geoms a camera cannot see (not drawn)."""
+
+
+@dataclass(frozen=True)
+class Probe:
+    """A small view drawn to choose a camera: the share of it each node asked about
+    covers, and the share of it near the camera that none of them covers."""
+
+    shares: list[float]
+    near: float
 
 
 class Renderer:
@@ -85,14 +96,25 @@ class Renderer:
     def probe_nodes(self, data: mujoco.MjData, camera_id: int, node_ids: tuple[int, ...],
                     size: tuple[int, int] = (80, 60)) -> list[float]:
         """Shares of a small (w, h) view covered by each of some graph nodes."""
+        return self.probe_view(data, camera_id, node_ids, size).shares
+
+    def probe_view(self, data: mujoco.MjData, camera_id: int, node_ids: tuple[int, ...],
+                   size: tuple[int, int] = (80, 60), near: float = 0.0) -> Probe:
+        """A small (w, h) view: the share each of some graph nodes covers, and the share
+        nearer than `near` metres that none of them covers (what stands in front of the
+        camera)."""
         w, h = min(size[0], self.width), min(size[1], self.height)  # inside the buffer
         rect = mujoco.MjrRect(0, 0, w, h)
         self._draw(data, camera_id, segment=True, rect=rect)
         buf = np.empty((h, w, 3), np.uint8)
-        mujoco.mjr_readPixels(buf, None, rect, self._con)
+        raw = np.empty((h, w), np.float32)
+        mujoco.mjr_readPixels(buf, raw, rect, self._con)
         ids = self._decode(buf)
-        nodes = self.scene.geom_node[ids[ids >= 0]]
-        return [float(np.count_nonzero(nodes == n)) / ids.size for n in node_ids]
+        seen = ids >= 0
+        nodes = self.scene.geom_node[ids[seen]]
+        close = (self._metric_depth(raw[::-1])[seen] < near) & ~np.isin(nodes, node_ids)
+        return Probe([float(np.count_nonzero(nodes == n)) / ids.size for n in node_ids],
+                     float(np.count_nonzero(close)) / ids.size)
 
     def _cull_groups(self) -> dict[int, np.ndarray]:
         """Per camera, the geom groups that hide static geoms outside its view (-1: the

@@ -8,7 +8,7 @@ until they fill the frame (with a margin). The camera kept is the one that shows
 object (and the hand) best at the moment of the effect: candidates are ranked by rays
 cast with `mj_ray` against every geom, and the best few drawn in segmentation at a small
 size. A step is never filmed from another room: a room without cameras gets no
-close-up.
+close-up, nor does a step that no candidate view shows.
 """
 
 from __future__ import annotations
@@ -65,7 +65,9 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
 
     Candidates are ranked by rays (object and hand seen at the effect); the best `DRAWN`
     are aimed and drawn in segmentation at a small size, and the one kept shows the
-    object well (`GOOD_SHARE` of the view) and the hand, else most of the object."""
+    object well (`GOOD_SHARE` of the view) and the hand, else most of the object. Where
+    none of them shows the object (`SEEN_SHARE`) or the hand, the step gets no close-up
+    (the room camera films it) rather than a view of whatever stands in front."""
     data = mujoco.MjData(scene.model)
     aspect = size[0] / size[1]
     plans = []
@@ -91,7 +93,8 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
             drawn = [(*spare.view(renderer, data, spec, it, arm), n)
                      for n, (spec, _) in enumerate(aimed)]
             best = max(drawn, key=lambda d: (_view_score(d[0], d[1], aimed[d[2]][0]), -d[2]))
-            shots.append(aimed[best[2]][0])
+            if best[0] >= SEEN_SHARE or best[1]:
+                shots.append(aimed[best[2]][0])
     return shots
 
 
