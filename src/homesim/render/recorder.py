@@ -81,8 +81,14 @@ def view_score(renderer: Renderer, data: mujoco.MjData, scene: SceneModel, cam: 
     w, h = renderer.width, renderer.height
     uv, z = project(data.site_xpos[scene.joint_sites], camera_intrinsics(scene, cam, w, h), w2c)
     inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] < w) & (uv[:, 1] >= 0) & (uv[:, 1] < h)
-    return (_size_score(share) + float(inside.mean()) + (FOCUS_BONUS if seen > 0 else 0.0)
-            - BLOCK_PENALTY * probe.near)
+    return _score(share, float(inside.mean()), seen > 0, probe.near)
+
+
+def _score(share: float, inside: float, focus_seen: bool, near: float) -> float:
+    """A view's score from the agent's share of it, the share of its joints inside it,
+    whether the step's object shows, and the share of it near the camera."""
+    return (_size_score(share) + inside + (FOCUS_BONUS if focus_seen else 0.0)
+            - BLOCK_PENALTY * near)
 
 
 def aimed_score(state: SceneState, renderer: Renderer, scene: SceneModel, cam: int,
@@ -208,10 +214,9 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
 def _frame_score(share: float, inside: np.ndarray, instance: np.ndarray, depth: np.ndarray,
                  seen: np.ndarray, char: int, focus: int) -> float:
     """`view_score` of the frame just drawn, from its full-size maps."""
-    shown = np.any(instance == focus) if focus >= 0 else False
+    shown = bool(np.any(instance == focus)) if focus >= 0 else False
     near = seen & (depth < NEAR) & (instance != char) & (instance != focus)
-    return (_size_score(share) + float(inside.mean()) + (FOCUS_BONUS if shown else 0.0)
-            - BLOCK_PENALTY * float(np.count_nonzero(near)) / near.size)
+    return _score(share, float(inside.mean()), shown, float(np.count_nonzero(near)) / near.size)
 
 
 def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> FrameTruth:
