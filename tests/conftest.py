@@ -70,3 +70,19 @@ def _no_leftover_cli_children():
     from tests.cli.subprocess_cli import kill_leftover_children
 
     kill_leftover_children()
+
+
+WRITER_ACTIVITIES = ("Watch TV", "Turn on light", "Drink", "Read book")
+"""The activities the small program writer of the tests is fitted on."""
+
+
+@pytest.fixture(scope="session")
+def small_writer(real_data):
+    """A program writer fitted on the real programs of `WRITER_ACTIVITIES` (seconds, where
+    all 518 take half a minute)."""
+    pytest.importorskip("sklearn")
+    from homesim.learn.data import real_examples
+    from homesim.learn.writer import ProgramWriter
+
+    examples = [e for e in real_examples(real_data) if e.title in WRITER_ACTIVITIES]
+    return ProgramWriter.fit(examples)

@@ -23,6 +23,10 @@ within 32-bit integers, which MuJoCo and numpy indexes use."""
 MAX_NAME_CHARS = 100
 """Longest action or object name between brackets (``[Walk]``, ``<sofa>``)."""
 
+MAX_DESCRIPTION_CHARS = 2000
+"""Longest title or description a program is written for (``homesim learn write``,
+``POST /api/write``)."""
+
 EXCERPT_CHARS = 80
 """Most characters of user text an error message quotes (then an ellipsis)."""
 

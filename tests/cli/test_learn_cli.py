@@ -1,3 +1,5 @@
+import json
+
 import pytest
 
 from homesim.cli.main import main
@@ -62,3 +64,39 @@ def test_device_auto_is_cpu_without_cuda_and_cuda_is_refused(capsys):
         assert "no CUDA device" in capsys.readouterr().err
     assert main(["learn", "table", "--out", "x", "--device", "tpu"]) == 2
     assert "--device tpu: choose from auto, cpu, cuda" in capsys.readouterr().err
+
+
+@pytest.fixture
+def writer_on_small_data(small_writer, monkeypatch):
+    """`homesim learn write` answers with the small writer (not one fitted on all 518)."""
+    from homesim.learn import writer
+
+    monkeypatch.setattr(writer, "real_writer", lambda: small_writer)
+    return small_writer
+
+
+def test_write_prints_a_program_that_homesim_run_reads(writer_on_small_data, tmp_path, capsys):
+    out = tmp_path / "tv.txt"
+    args = ["learn", "write", "Turn on the TV and watch it from the sofa.", "--home", "scene2",
+            "--out", str(out)]
+    assert main(args) == 0
+    captured = capsys.readouterr()
+    assert captured.out.startswith("Watch TV\nTurn on the TV and watch it from the sofa.\n\n[")
+    assert "title guessed: Watch TV" in captured.err and "runs in scene2" in captured.err
+    assert out.read_text() == captured.out
+    assert main(["run", str(out), "--home", "scene2"]) == 0
+    capsys.readouterr()
+    assert main(args) == 2  # --out exists
+    assert "pass --force" in capsys.readouterr().err
+    assert main(["learn", "write", "watch tv", "--title", "Watch TV", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["home"] == "scene1" and data["title_given"] and data["run"]["executable"]
+
+
+def test_write_bad_input_is_one_line(writer_on_small_data, capsys):
+    assert main(["learn", "write", "  "]) == 2
+    assert capsys.readouterr().err.strip() == "error: description: empty"
+    assert main(["learn", "write", "x" * 2001]) == 2
+    assert "over the limit of 2000 (MAX_DESCRIPTION_CHARS)" in capsys.readouterr().err
+    assert main(["learn", "write", "watch tv", "--home", "nowhere"]) == 2
+    assert "unknown home 'nowhere'" in capsys.readouterr().err

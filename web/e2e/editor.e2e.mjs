@@ -381,6 +381,31 @@ async function main() {
     await page.waitForFunction(() => document.querySelector("#status").textContent
       .includes("picks every object anew"));
 
+    // 11. Write: a program written for the title and description becomes blocks and runs
+    // (the server's program writer; without the real programs fetched, a clear message).
+    await page.locator("#clear").click();
+    await page.locator("#title").fill("Watch TV");
+    await page.locator("#description").fill("Turn on the TV and watch it from the sofa.");
+    await page.locator("#write").click();
+    await page.waitForFunction(() => /^✓ written|^✗ written|homesim data fetch|not available/
+      .test(document.querySelector("#status").textContent), null, { timeout: 120000 });
+    const writeStatus = await page.locator("#status").textContent();
+    const writtenBlocks = await page.evaluate(() => window.homesimEditor.workspace()
+      .getAllBlocks(false).map((b) => b.type));
+    const writtenText = await page.locator("#text").inputValue();
+    if (writeStatus.startsWith("✓ written")) {
+      check(writtenText.startsWith("Watch TV\nTurn on the TV and watch it from the sofa.\n\n"),
+        `the written program's text is ${JSON.stringify(writtenText)}`);
+      check(writtenBlocks.includes("hs_SWITCHON") && !writtenBlocks.includes("hs_free_text"),
+        `written blocks are ${writtenBlocks}`);
+      check(await page.locator("#results li.ok").count() === writtenBlocks.length,
+        "the written program's run is not shown step by step");
+    } else {
+      check(writeStatus.includes("homesim data fetch") || writeStatus.includes("not available"),
+        `write: ${writeStatus}`);
+    }
+    if (opts.shots) await page.screenshot({ path: `${opts.shots}/write.png` });
+
     check(errors.length === 0, `browser errors: ${errors.join(" | ")}`);
     console.log(JSON.stringify({ ok: true, seconds: (Date.now() - started) / 1000,
       keyframes: frames, video }));

@@ -28,6 +28,11 @@ export interface Execution {
   reason: string | null; message: string; steps: StepResult[];
   not_run: { index: number; line: number; step: string }[];
 }
+/** A program written for a description (`homesim learn write`) and its run in the home. */
+export interface Written {
+  program: string; steps: string[]; title: string; title_given: boolean;
+  executable: boolean; run: Execution;
+}
 export interface Frame { index: number; line: number; url: string }
 export interface RenderJob {
   id: string; url: string; kind: "keyframes" | "video";
@@ -68,6 +73,8 @@ export const api = {
   objects: (home: string) => call<Objects>(`homes/${encodeURIComponent(home)}/objects`),
   validate: (program: string, home: string) => call<Validation>("validate", { program, home }),
   execute: (program: string, home: string) => call<Execution>("execute", { program, home }),
+  write: (description: string, title: string | null, home: string) =>
+    call<Written>("write", { description, title, home }),
   render: (program: string, home: string) => call<RenderJob>("render", { program, home }),
   renderVideo: (program: string, home: string, fps: number) =>
     call<RenderJob>("render/video", { program, home, fps }),

@@ -301,6 +301,34 @@ async function run(): Promise<void> {
   }
 }
 
+/** Write a program for the title and description (the server's program writer, as
+ * `homesim learn write`), show it as blocks and show its run. */
+async function writeProgram(): Promise<void> {
+  const description = descriptionInput.value.trim();
+  if (!description) {
+    setStatus("Type a description first: the program is written for it.", "error");
+    return;
+  }
+  window.clearTimeout(validateTimer);
+  requestEpoch++;
+  clearMarks();
+  clearResults();
+  setStatus("writing a program for the description… (the first time takes a while)");
+  try {
+    const written = await api.write(description, titleInput.value.trim() || null,
+      homeSelect.value);
+    textArea.value = written.program;
+    applyText(written.program);
+    showRun(written.run);
+    const guessed = written.title_given ? "" : ` (title guessed: ${written.title})`;
+    const verdict = written.executable ? "✓ written and executable" : "✗ written, does not run";
+    setStatus(`${verdict}: ${written.steps.length} steps${guessed}`,
+      written.executable ? "ok" : "error");
+  } catch (e) {
+    showError(e);
+  }
+}
+
 async function renderFrames(): Promise<void> {
   frameBox.replaceChildren();
   setStatus("rendering key frames…");
@@ -363,6 +391,7 @@ async function start(): Promise<void> {
     textTimer = window.setTimeout(() => applyText(textArea.value), 400);
   });
   $("run").addEventListener("click", () => void run());
+  $("write").addEventListener("click", () => void writeProgram());
   $("check").addEventListener("click", () => void validate());
   $("render").addEventListener("click", () => void renderFrames());
   $("video").addEventListener("click", () => void playVideo());

@@ -20,6 +20,7 @@ from rich.table import Table
 from homesim.cli.common import console
 from homesim.errors import HomesimError
 from homesim.files import check_target, write_text
+from homesim.limits import MAX_DESCRIPTION_CHARS
 
 app = typer.Typer(help="Learn to write programs from descriptions (paper section 5).",
                   no_args_is_help=True)
@@ -390,3 +391,48 @@ def rules(
     exact = sum(s == 1.0 for s in scores)
     console.print(f"rule parser: steps LCS {sum(scores) / max(1, len(scores)):.3f} on "
                   f"{len(scores)} programs, {exact} exact; parsing took {seconds:.1f} s")
+
+
+@app.command("write")
+def write(
+    description: Annotated[str, typer.Argument(
+        help="What the program should do, in words ('-' reads standard input).")],
+    title: Annotated[str | None, typer.Option(
+        help="The activity (e.g. 'Watch TV'); default: guessed from the description.")
+    ] = None,
+    home: Annotated[str | None, typer.Option(
+        help="Built-in home to write it for (see 'homesim homes'); default scene1.")] = None,
+    graph: Annotated[str | None, typer.Option(help="Environment graph JSON file.")] = None,
+    out: Annotated[Path | None, typer.Option(
+        help="Also write the program to this file (ActivityPrograms format).")] = None,
+    force: Annotated[bool, typer.Option(help="Replace --out if it exists.")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="Print JSON instead of text.")]
+    = False,
+    seed: Annotated[int, typer.Option(help="Seed of preparation and grounding.")] = 0,
+) -> None:
+    """Write a program for a description with the reranker fitted on the real programs
+    (needs 'homesim data fetch'; the first call fits it, about half a minute) and run it in
+    the home: prints the program (ungrounded, as 'homesim run' reads it)."""
+    import json
+    import sys
+
+    from homesim.cli.common import err_console, read_graph
+    from homesim.examples import DEMO_HOME
+    from homesim.learn.writer import write_program
+
+    if description == "-":
+        description = sys.stdin.read(MAX_DESCRIPTION_CHARS + 1)
+    target = check_target(out, force) if out is not None else None
+    g, gname = read_graph(graph, home, DEMO_HOME)
+    written = write_program(description, g, title=title, seed=seed)
+    if target is not None:
+        write_text(target, str(written.program) + "\n", force=force)
+    if as_json:
+        console.print_json(json.dumps({**written.to_dict(), "home": gname}))
+    else:
+        print(written.program)
+        if not written.title_given:
+            err_console.print(f"title guessed: {written.program.title}", markup=False)
+        verdict = "runs" if written.run.executable else "does not run"
+        err_console.print(f"{verdict} in {gname}: {written.run.message}", markup=False)
+    raise typer.Exit(0 if written.run.executable else 1)

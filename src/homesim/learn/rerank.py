@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -116,10 +117,14 @@ class Query:
     bank: Bank
     example: Example
     allowed: np.ndarray
+    vectors: tuple[np.ndarray, np.ndarray] | None = None
+    """The description's and the title's sentence vectors (default: embedded here)."""
 
     def __post_init__(self) -> None:
-        desc, title = _vectors([self.example])
-        self.desc, self.title = desc[0], title[0]
+        if self.vectors is None:
+            desc, title = _vectors([self.example])
+            self.vectors = (desc[0], title[0])
+        self.desc, self.title = self.vectors
         self.sims = 0.5 * (self.bank.desc @ self.desc) + 0.5 * (self.bank.title @ self.title)
         sims = np.where(self.allowed, self.sims, -np.inf)
         top = sims.max()
@@ -303,18 +308,28 @@ class Reranker:
 
     def predict(self, examples: list[Example]) -> list[Program]:
         """One program per example: the best-scoring candidate that executes in its home."""
-        from homesim.learn.execution import executable
+        return [self.choose(e, partial(_executable_in, e)) for e in examples]
 
-        out = []
-        everything = np.ones(len(self.bank.train), bool)
-        for e in examples:
-            query = Query(self.bank, e, everything)
-            order = np.argsort(-self.scores(query), kind="stable")
-            programs = [query.candidates[int(i)].program for i in order]
-            chosen = next((p for p in programs[:CHECK_EXECUTABLE] if executable(p, e)),
-                          programs[0])
-            out.append(chosen)
-        return out
+    def ranked(self, example: Example,
+               vectors: tuple[np.ndarray, np.ndarray] | None = None) -> list[Program]:
+        """The candidates for an example's title and description, best-scoring first (its
+        program is not read); `vectors` as `Query` takes them."""
+        query = Query(self.bank, example, np.ones(len(self.bank.train), bool), vectors)
+        order = np.argsort(-self.scores(query), kind="stable")
+        return [query.candidates[int(i)].program for i in order]
+
+    def choose(self, example: Example, runs: Callable[[Program], bool],
+               vectors: tuple[np.ndarray, np.ndarray] | None = None) -> Program:
+        """The best-scoring candidate that `runs` accepts among the first
+        `CHECK_EXECUTABLE`; the best one if none is."""
+        programs = self.ranked(example, vectors)
+        return next((p for p in programs[:CHECK_EXECUTABLE] if runs(p)), programs[0])
+
+
+def _executable_in(example: Example, program: Program) -> bool:
+    from homesim.learn.execution import executable
+
+    return executable(program, example)
 
 
 def _labelled(query: Query) -> tuple[np.ndarray, np.ndarray]:

@@ -182,3 +182,15 @@ def _too_many_steps(source: str | None) -> LimitError:
     most = limits.MAX_STEPS
     return LimitError(f"{where}more than {most} steps, over the limit of {most} steps "
                       "(MAX_STEPS)", "MAX_STEPS")
+
+
+def step_lines(text: str) -> list[int]:
+    """1-based line numbers of the step lines of a program text that parsed.
+
+    After a successful parse every step line starts with ``[`` and no title or
+    description line does, so the i-th such line is the i-th step.
+
+    >>> step_lines("Title\\nDesc\\n\\n[Walk] <tv> (1)\\n# note\\n[Sit] <sofa> (1)")
+    [4, 6]
+    """
+    return [n for n, line in enumerate(text.splitlines(), 1) if line.lstrip().startswith("[")]

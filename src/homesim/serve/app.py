@@ -10,7 +10,7 @@ from pathlib import Path
 from fastapi import FastAPI
 
 from homesim.limits import BODY_TIMEOUT_S
-from homesim.serve import homes, programs, renders
+from homesim.serve import homes, programs, renders, writer
 from homesim.serve.errors import CatchBugs, SafeJSONResponse, install_error_handlers
 from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
 from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit, LargeBodyGate
@@ -51,6 +51,7 @@ def create_app(static_dir: Path | None = None,
     app.include_router(homes.router)
     app.include_router(programs.router)
     app.include_router(renders.router)
+    app.include_router(writer.router)
     app.add_middleware(BodySizeLimit, max_bytes=max_body_bytes, timeout=body_timeout)
     app.add_middleware(LargeBodyGate)  # outside BodySizeLimit: waiting bodies stay unread
     app.add_middleware(HostCheck, allowed=allowed_hosts)

@@ -9,18 +9,9 @@ from __future__ import annotations
 from typing import Any
 
 from homesim.program.model import Program, Step
+from homesim.program.parse import step_lines
 
-
-def step_lines(text: str) -> list[int]:
-    """1-based line numbers of the step lines of a program text that parsed.
-
-    After a successful parse every step line starts with ``[`` and no title or
-    description line does, so the i-th such line is the i-th step.
-
-    >>> step_lines("Title\\nDesc\\n\\n[Walk] <tv> (1)\\n# note\\n[Sit] <sofa> (1)")
-    [4, 6]
-    """
-    return [n for n, line in enumerate(text.splitlines(), 1) if line.lstrip().startswith("[")]
+__all__ = ["program_json", "step_json", "step_lines"]
 
 
 def step_json(step: Step) -> dict[str, Any]:

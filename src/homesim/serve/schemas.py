@@ -12,7 +12,8 @@ from homesim.limits import (
     MIN_RENDER_SIDE,
 )
 
-__all__ = ["MAX_STEPS", "ExecuteRequest", "ProgramRequest", "RenderRequest", "VideoRequest"]
+__all__ = ["MAX_STEPS", "ExecuteRequest", "ProgramRequest", "RenderRequest", "VideoRequest",
+           "WriteRequest"]
 
 
 class ProgramRequest(BaseModel):
@@ -51,3 +52,15 @@ class VideoRequest(RenderRequest):
     """A program to render as one video of the whole program (MP4, H.264)."""
 
     fps: int = Field(default=12, ge=1, le=MAX_RENDER_VIDEO_FPS)
+
+
+class WriteRequest(BaseModel):
+    """A description to write a program for (``homesim learn write``), in a built-in home.
+
+    Title and description are checked against `homesim.limits.MAX_DESCRIPTION_CHARS`.
+    Without a title, the writer guesses the activity from the description."""
+
+    description: str
+    title: str | None = None
+    home: str = Field(default="scene1", description="built-in home to run the program in")
+    seed: int = Field(default=0, description="seed of preparation and grounding")
