@@ -3,7 +3,7 @@ import pytest
 
 import homesim
 from homesim.render.api import prepare
-from homesim.render.recorder import record
+from homesim.render.recorder import SceneState, record, shot_camera
 from homesim.render.renderer import Renderer
 from homesim.render.shots import LOW_HEIGHT, shot_frames
 
@@ -72,3 +72,19 @@ def test_a_step_no_candidate_view_shows_gets_no_close_up(monkeypatch, gl, share,
                            seed=0, bindings=None, agent="male1")
     assert len(tl.interactions) == 2
     assert sum(c.shot >= 0 for c in scene.cameras) == close_ups
+
+
+def test_switching_a_screen_is_filmed_from_the_screen_side(gl):
+    """In scene 1 the room camera nearest the TV sees its back: the close-up of switching
+    it on must show the panel that lights up, not the set's back."""
+    ran = homesim.run_program("[Walk] <television> (1)\n[SwitchOn] <television> (1)", "scene1",
+                              seed=0)
+    scene, tl, _ = prepare(ran.grounding.program, ran.graph, width=64, height=48, fps=6,
+                           seed=0, bindings=None, agent="male1",
+                           standing=ran.grounding.standing)
+    (it,) = tl.interactions
+    cam = shot_camera(scene, tl, it.peak)
+    assert cam is not None and scene.cameras[cam].shot == 0
+    with Renderer(scene, 64, 48) as r:
+        ids, _ = r.ids_depth(SceneState(scene, tl).apply(it.peak), cam)
+    assert (ids == scene.screen_geom[it.nodes[0]]).mean() >= 0.05

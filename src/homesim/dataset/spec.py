@@ -34,7 +34,7 @@ SPEED_RANGE = (0.8, 1.25)
 MAX_MOVES = 6
 """At most this many objects are moved to other allowed places per episode."""
 
-FORMAT = "homesim-activity/5"
+FORMAT = "homesim-activity/6"
 """Data set format; /2: the mp4 encoded as `video.H264Writer` does since x264 was pinned
 to SSE2 (other bytes than /1 for the same frames); /3: an episode whose program does not
 run in its drawn home is made in the next home it runs in (`episode.homes_to_try`; /2
@@ -42,7 +42,9 @@ recorded it as failed), and the manifest has a `drawn_home` column; /4: a room c
 turned toward the agent and zoomed in on it each time it is chosen (`cameras.aimed`; /3
 and before kept them fixed); /5: a room camera with something close in front of it (a
 wall edge, a door) scores less when cameras are chosen (`recorder.BLOCK_PENALTY`), and
-a step that no candidate close-up shows gets none (`shots.plan_shots`)."""
+a step that no candidate close-up shows gets none (`shots.plan_shots`); /6: the close-up
+of switching a screen on or off is chosen by how much of the screen it shows, not of the
+whole set (`shots._seen_part`; /5 often filmed a TV's back)."""
 
 
 @dataclass(frozen=True)

@@ -7,8 +7,9 @@ room): it is turned toward the hand and the object, and its field of view is nar
 until they fill the frame (with a margin). The camera kept is the one that shows the
 object (and the hand) best at the moment of the effect: candidates are ranked by rays
 cast with `mj_ray` against every geom, and the best few drawn in segmentation at a small
-size. A step is never filmed from another room: a room without cameras gets no
-close-up, nor does a step that no candidate view shows.
+size. A step that switches a screen on or off is judged by the screen (the panel that
+lights up), not by the set's back. A step is never filmed from another room: a room
+without cameras gets no close-up, nor does a step that no candidate view shows.
 """
 
 from __future__ import annotations
@@ -77,25 +78,37 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
         if not cams:
             continue
         _pose(scene, timeline, it.peak, data)
-        targets = _targets(scene, it, data)
-        scored = sorted(((_score(scene, data, c, it, targets), i) for i, c in enumerate(cams)),
-                        reverse=True)[:DRAWN]
-        plans.append((it, [(_aim(cams[i], framed, aspect, k, it.step), hand)
-                           for (_, hand), i in scored]))
+        seen = _seen_part(scene, timeline, it)
+        targets = _targets(scene, it, data, seen)
+        scored = sorted(((_score(scene, data, c, it, targets, seen), i)
+                         for i, c in enumerate(cams)), reverse=True)[:DRAWN]
+        plans.append((it, seen, [(_aim(cams[i], framed, aspect, k, it.step), hand)
+                                 for (_, hand), i in scored]))
     if not plans:
         return []
     probe = (max(2, min(size[0], round(PROBE_HEIGHT * aspect))), min(size[1], PROBE_HEIGHT))
     shots = []
     with Renderer(scene, *probe) as renderer, _spare_camera(scene) as spare:
-        for it, aimed in plans:
+        for it, seen, aimed in plans:
             _pose(scene, timeline, it.peak, data)
             arm = _arm_bodies(scene, it.side)
-            drawn = [(*spare.view(renderer, data, spec, it, arm), n)
+            drawn = [(*spare.view(renderer, data, spec, it, arm, seen), n)
                      for n, (spec, _) in enumerate(aimed)]
             best = max(drawn, key=lambda d: (_view_score(d[0], d[1], aimed[d[2]][0]), -d[2]))
             if best[0] >= SEEN_SHARE or best[1]:
                 shots.append(aimed[best[2]][0])
     return shots
+
+
+def _seen_part(scene: SceneModel, timeline: Timeline, it: Interaction) -> int | None:
+    """The screen geom of the acted-on object when the step switches it on or off (what a
+    close-up must show then), else None (the whole object counts)."""
+    node = it.nodes[0]
+    screen = scene.screen_geom.get(node)
+    if screen is None:
+        return None
+    switched = (node in timeline.screens[it.start]) != (node in timeline.screens[it.end])
+    return screen if switched else None
 
 
 def _view_score(share: float, hand: bool, spec: CameraSpec) -> float:
@@ -117,9 +130,11 @@ class _SpareCamera:
         self.saved = (m.cam_pos[0].copy(), m.cam_quat[0].copy(), float(m.cam_fovy[0]))
 
     def view(self, renderer: Renderer, data: mujoco.MjData, spec: CameraSpec,
-             it: Interaction, arm: frozenset[int]) -> tuple[float, bool]:
+             it: Interaction, arm: frozenset[int], seen: int | None = None
+             ) -> tuple[float, bool]:
         """Drawn from `spec` at the renderer's (small) size: the share of the view the
-        acted-on object covers, and whether the hand shows (its pixel is on the arm)."""
+        acted-on object covers (only geom `seen` of it, when given), and whether the hand
+        shows (its pixel is on the arm)."""
         m = self.scene.model
         mat = np.stack([spec.xaxis, spec.yaxis, np.cross(spec.xaxis, spec.yaxis)], axis=1)
         quat = np.zeros(4)
@@ -128,8 +143,11 @@ class _SpareCamera:
         mujoco.mj_camlight(m, data)
         renderer.camera_moved(data, 0)  # cull for the candidate, not for camera 0
         ids, _ = renderer.ids_depth(data, 0)
-        nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
-        share = float(np.count_nonzero(nodes == it.nodes[0])) / ids.size
+        if seen is None:
+            nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
+            share = float(np.count_nonzero(nodes == it.nodes[0])) / ids.size
+        else:
+            share = float(np.count_nonzero(ids == seen)) / ids.size
         h, w = ids.shape
         k = intrinsics(w, h, spec.fovy)
         uv, z = project(data.site_xpos[self.scene.hand_sites[it.side]][None], k,
@@ -196,15 +214,19 @@ def _pose(scene: SceneModel, timeline: Timeline, frame: int, data: mujoco.MjData
     mujoco.mj_kinematics(scene.model, data)
 
 
+_SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+
+
+def geom_corners(scene: SceneModel, data: mujoco.MjData, geom: int) -> np.ndarray:
+    """(8, 3) world corners of a geom's bounding box as posed."""
+    m = scene.model
+    local = m.geom_aabb[geom, :3] + _SIGNS * m.geom_aabb[geom, 3:]
+    return data.geom_xpos[geom] + local @ data.geom_xmat[geom].reshape(3, 3).T
+
+
 def node_corners(scene: SceneModel, data: mujoco.MjData, node: int) -> np.ndarray:
     """World corners (8 per geom) of the bounding boxes of a node's geoms as posed."""
-    m = scene.model
-    out = []
-    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
-    for g in np.flatnonzero(scene.geom_node == node):
-        center, half = m.geom_aabb[g, :3], m.geom_aabb[g, 3:]
-        local = center + signs * half
-        out.append(data.geom_xpos[g] + local @ data.geom_xmat[g].reshape(3, 3).T)
+    out = [geom_corners(scene, data, int(g)) for g in np.flatnonzero(scene.geom_node == node)]
     return np.concatenate(out) if out else np.zeros((0, 3))
 
 
@@ -233,22 +255,24 @@ def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
     return np.concatenate([p.reshape(-1, 3) for p in pts])
 
 
-def _targets(scene: SceneModel, it: Interaction, data: mujoco.MjData) -> list[np.ndarray]:
-    """Points to see at the effect: the acted-on object's centre and the corners of its
-    box shrunk to 60 %."""
-    corners = node_corners(scene, data, it.nodes[0])
+def _targets(scene: SceneModel, it: Interaction, data: mujoco.MjData,
+             seen: int | None = None) -> list[np.ndarray]:
+    """Points to see at the effect: the centre of the acted-on object (of its geom `seen`,
+    when given) and the corners of its box shrunk to 60 %."""
+    corners = (node_corners(scene, data, it.nodes[0]) if seen is None
+               else geom_corners(scene, data, seen))
     if len(corners) == 0:
         return []
     lo, hi = corners.min(axis=0), corners.max(axis=0)
     c = 0.5 * (lo + hi)
-    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
-    return [c, *(c + 0.3 * signs * (hi - lo))]
+    return [c, *(c + 0.3 * _SIGNS * (hi - lo))]
 
 
 def visible(scene: SceneModel, data: mujoco.MjData, eye: np.ndarray, point: np.ndarray,
-            nodes: tuple[int, ...], bodies: frozenset[int] = frozenset()) -> bool:
+            nodes: tuple[int, ...], bodies: frozenset[int] = frozenset(),
+            geoms: frozenset[int] = frozenset()) -> bool:
     """Whether the first geom on the ray from `eye` to `point` belongs to one of `nodes`
-    or of `bodies` (or nothing stands before the point)."""
+    or of `bodies`, or is one of `geoms` (or nothing stands before the point)."""
     vec = point - eye
     dist = float(np.linalg.norm(vec))
     if dist < 1e-6:
@@ -258,7 +282,8 @@ def visible(scene: SceneModel, data: mujoco.MjData, eye: np.ndarray, point: np.n
     if hit < 0 or hit >= dist - 1e-3:
         return True
     g = int(geom[0])
-    return bool(int(scene.geom_node[g]) in nodes or int(scene.model.geom_bodyid[g]) in bodies)
+    return bool(int(scene.geom_node[g]) in nodes or int(scene.model.geom_bodyid[g]) in bodies
+                or g in geoms)
 
 
 def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
@@ -277,11 +302,12 @@ def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
 
 
 def _score(scene: SceneModel, data: mujoco.MjData, cam: CameraSpec, it: Interaction,
-           targets: list[np.ndarray]) -> tuple[float, bool]:
-    """How well a camera position sees the object (2 per share of points seen) and the
-    hand (1 when seen) at the effect, nearer cameras winning ties; and whether it sees
-    the hand."""
-    seen = sum(visible(scene, data, cam.pos, p, it.nodes) for p in targets)
+           targets: list[np.ndarray], part: int | None = None) -> tuple[float, bool]:
+    """How well a camera position sees the object (2 per share of points seen; of its
+    geom `part` only, when given) and the hand (1 when seen) at the effect, nearer cameras
+    winning ties; and whether it sees the hand."""
+    owners, geoms = (it.nodes, frozenset()) if part is None else ((), frozenset({part}))
+    seen = sum(visible(scene, data, cam.pos, p, owners, geoms=geoms) for p in targets)
     obj = seen / len(targets) if targets else 0.0
     hand = data.site_xpos[scene.hand_sites[it.side]]
     hand_seen = visible(scene, data, cam.pos, hand, it.nodes, _arm_bodies(scene, it.side))
