@@ -100,3 +100,12 @@ def test_write_bad_input_is_one_line(writer_on_small_data, capsys):
     assert "over the limit of 2000 (MAX_DESCRIPTION_CHARS)" in capsys.readouterr().err
     assert main(["learn", "write", "watch tv", "--home", "nowhere"]) == 2
     assert "unknown home 'nowhere'" in capsys.readouterr().err
+
+
+def test_write_reads_the_description_from_stdin(writer_on_small_data, monkeypatch, capsys):
+    import io
+
+    monkeypatch.setattr("sys.stdin", io.StringIO("Switch on the light.\n"))
+    assert main(["learn", "write", "-", "--title", "Turn on light"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("Turn on light\nSwitch on the light.\n\n[") and "<light>" in out
