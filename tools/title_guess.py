@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from homesim.learn.writer import TITLE_TAU, real_writer
+from homesim.learn.writer import TITLE_TAU, real_writer, vote_titles
 
 TAUS = (0.01, 0.02, 0.05, 0.1, 0.2)
 
@@ -20,18 +20,16 @@ TAUS = (0.01, 0.02, 0.05, 0.1, 0.2)
 def main() -> None:
     bank = real_writer().reranker.bank
     titles = np.array([e.title for e in bank.train])
-    names = np.array(sorted(set(titles)))
     sims = bank.desc @ bank.desc.T
     same = np.array([[t == u for u in bank.tokens] for t in bank.tokens])
     sims = np.where(same, -np.inf, sims)  # itself and copies of its program
     nearest = titles[sims.argmax(axis=1)]
-    print(f"{len(titles)} descriptions, {len(names)} activities")
+    print(f"{len(titles)} descriptions, {len(set(titles))} activities")
     print(f"nearest description's title: {np.mean(nearest == titles):.1%}")
     for tau in TAUS:
-        weights = np.exp((sims - sims.max(axis=1, keepdims=True)) / tau)
-        votes = np.stack([weights[:, titles == n].sum(axis=1) for n in names], axis=1)
+        voted = np.array(vote_titles(sims, list(titles), tau))
         mark = "  (the writer's)" if tau == TITLE_TAU else ""
-        print(f"vote, tau {tau}: {np.mean(names[votes.argmax(axis=1)] == titles):.1%}{mark}")
+        print(f"vote, tau {tau}: {np.mean(voted == titles):.1%}{mark}")
 
 
 if __name__ == "__main__":

@@ -89,41 +89,51 @@ class ProgramWriter:
               seed: int = SEED) -> Written:
         """The program for `description` (and `title`; without one, or a blank one,
         `guess_title`) that runs in `graph`, if one of the best candidates does."""
+        from homesim.learn.embeddings import sentence_vectors
+
         description, asked = check_text("description", description), check_title(title)
-        title = asked if asked is not None else self.guess_title(description)
+        # embedded on its own, so the floats (and the choice) are the same in every process
+        desc_vector = sentence_vectors([description])[0]
+        title = asked if asked is not None else self.guess_title(desc_vector)
         given = asked is not None
         query = ActivityProgram("query", Program((), title=title, description=description))
 
         def runs(p: Program) -> bool:
             return run_program(p, graph, seed=seed).executable
 
-        chosen = self.reranker.choose(query, runs, self.vectors(description, title))
+        vectors = (desc_vector, self.title_vector(title))
+        chosen = self.reranker.choose(query, runs, vectors)
         program = Program(chosen.steps, title=title, description=description)
         return Written(program, given, run_program(program, graph, seed=seed, trace=True))
 
-    def vectors(self, description: str, title: str) -> tuple[np.ndarray, np.ndarray]:
-        """The sentence vectors of a query, the same in every process: a training title's
-        is the one the model was fitted with, other texts are embedded one at a time (a
-        text's floats depend on the batch it is embedded in, and the choice can follow)."""
+    def title_vector(self, title: str) -> np.ndarray:
+        """A title's sentence vector, the same in every process: a training title's is the
+        one the model was fitted with, another is embedded on its own (a text's floats
+        depend on the batch it is embedded in, and the choice can follow)."""
         from homesim.learn.embeddings import sentence_vectors
 
         bank = self.reranker.bank
         known = next((i for i, e in enumerate(bank.train) if e.title == title), None)
-        title_vector = bank.title[known] if known is not None else sentence_vectors([title])[0]
-        return sentence_vectors([description])[0], title_vector
+        return bank.title[known] if known is not None else sentence_vectors([title])[0]
 
-    def guess_title(self, description: str) -> str:
-        """The activity whose training descriptions are nearest: titles voted for with
-        weights softmax(MiniLM cosine / `TITLE_TAU`) over the training descriptions."""
-        from homesim.learn.embeddings import sentence_vectors
-
+    def guess_title(self, desc_vector: np.ndarray) -> str:
+        """The activity whose training descriptions are nearest to a description's
+        sentence vector (`vote_titles`)."""
         bank = self.reranker.bank
-        sims = bank.desc @ sentence_vectors([description])[0]
-        weights = np.exp((sims - sims.max()) / TITLE_TAU)
-        votes: dict[str, float] = {}
-        for e, w in zip(bank.train, weights, strict=True):
-            votes[e.title] = votes.get(e.title, 0.0) + float(w)
-        return max(sorted(votes), key=lambda t: votes[t])
+        return vote_titles((bank.desc @ desc_vector)[None], [e.title for e in bank.train])[0]
+
+
+def vote_titles(sims: np.ndarray, titles: list[str], tau: float = TITLE_TAU) -> list[str]:
+    """For each row of `sims` (queries x training descriptions, MiniLM cosines; -inf for
+    one a query may not see), the title the training descriptions vote for with weights
+    softmax(cosine / `tau`); ties go to the first title in sorted order."""
+    names = sorted(set(titles))
+    column = {name: i for i, name in enumerate(names)}
+    weights = np.exp((sims - sims.max(axis=1, keepdims=True)) / tau)
+    votes = np.zeros((len(sims), len(names)))
+    for j, title in enumerate(titles):
+        votes[:, column[title]] += weights[:, j]
+    return [names[int(k)] for k in votes.argmax(axis=1)]
 
 
 def check_text(field: str, text: str) -> str:
