@@ -2,6 +2,7 @@
 the dev split, for every real-data run (docs/learn.md, "How it was chosen").
 
     python tools/rerank_dev.py [--seeds 5] [--vectors out/learn/real/vectors.npz]
+                               [--split S] [--without-copies]
 
 Prints, per split and seed, the mean steps LCS of the top-scoring candidate (no
 executability check) in cross-validation (folds by program for the stratified split, by
@@ -47,22 +48,29 @@ BASELINE = {"stratified": ("title-medoid", baselines.title_medoid),
 """The baseline each split's goal is set against (`report.GOALS`)."""
 
 
-def training_queries(bank: Bank, split: str) -> list[tuple[int, Example, np.ndarray, int]]:
+def training_queries(bank: Bank, split: str, without_copies: bool = False
+                     ) -> list[tuple[int, Example, np.ndarray, int]]:
     """(index, example, what it may see of training, cross-validation fold) of each training
     query: folds by program for the stratified split, by activity for leave-activities-out,
-    as the split hides them."""
+    as the split hides them. `without_copies`: only the queries whose program has no copy
+    elsewhere in training (as no test program of the stratified split has)."""
     activities = sorted({e.activity for e in bank.train})
-    return [(i, e, ~bank.hidden(e, HOLDOUT[split]),
+    rows = [(i, e, ~bank.hidden(e, HOLDOUT[split]),
              i % FOLDS if split == "stratified" else activities.index(e.activity) % FOLDS)
             for i, e in enumerate(bank.train)]
+    if without_copies:
+        rows = [r for r in rows if bank.hidden(r[1], "program").sum() == 1]
+    return rows
 
 
-def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float]:
-    """(cross-validated, dev, the baseline's dev) mean steps LCS of one run."""
+def measure(split: str, seed: int, vectors: Path, without_copies: bool = False
+            ) -> tuple[float, float, float]:
+    """(cross-validated, dev, the baseline's dev) mean steps LCS of one run (fitted and
+    cross-validated on `training_queries`)."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
     bank = Bank(splits.train)
     groups, folds = [], []
-    for _, example, allowed, fold in training_queries(bank, split):
+    for _, example, allowed, fold in training_queries(bank, split, without_copies):
         query = Query(bank, example, allowed)
         if query.candidates:
             groups.append(_labelled(query))
@@ -82,9 +90,13 @@ def main() -> None:
     parser.add_argument("--vectors", type=Path, default=Path("out/learn/real/vectors.npz"))
     parser.add_argument("--split", choices=SPLITS, action="append",
                         help="Only this split (repeatable; default: both).")
+    parser.add_argument("--without-copies", action="store_true",
+                        help="Fit and cross-validate on only the training queries whose "
+                             "program has no copy elsewhere in training.")
     args = parser.parse_args()
     for split in args.split or SPLITS:
-        rows = [measure(split, seed, args.vectors) for seed in range(args.seeds)]
+        rows = [measure(split, seed, args.vectors, args.without_copies)
+                for seed in range(args.seeds)]
         for seed, (cv, dev, base) in enumerate(rows):
             print(f"{split} seed {seed}: cross-validated {cv:.4f}, dev {dev:.4f} "
                   f"({BASELINE[split][0]} {base:.4f})", flush=True)
