@@ -20,11 +20,11 @@ import numpy as np
 from homesim.learn import baselines
 from homesim.learn.data import Example
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
+from homesim.learn.likelihood import FOLDS
+from homesim.learn.likelihood import folds as fold_of_each
 from homesim.learn.rerank import Bank, Query, _labelled, design, fit_trees
 from homesim.learn.splits import SPLITS
 from homesim.program.metrics import normalized_lcs, step_tokens
-
-FOLDS = 5
 
 Group = tuple[np.ndarray, np.ndarray]
 
@@ -54,9 +54,8 @@ def training_queries(bank: Bank, split: str, without_copies: bool = False
     query: folds by program for the stratified split, by activity for leave-activities-out,
     as the split hides them. `without_copies`: only the queries whose program has no copy
     elsewhere in training (as no test program of the stratified split has)."""
-    activities = sorted({e.activity for e in bank.train})
-    rows = [(i, e, ~bank.hidden(e, HOLDOUT[split]),
-             i % FOLDS if split == "stratified" else activities.index(e.activity) % FOLDS)
+    assigned = fold_of_each(bank.train, HOLDOUT[split])
+    rows = [(i, e, ~bank.hidden(e, HOLDOUT[split]), assigned[i])
             for i, e in enumerate(bank.train)]
     if without_copies:
         rows = [r for r in rows if bank.hidden(r[1], "program").sum() == 1]

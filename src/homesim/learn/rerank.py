@@ -48,6 +48,9 @@ from homesim.program.model import Program
 if TYPE_CHECKING:
     from sklearn.ensemble import HistGradientBoostingRegressor
 
+    from homesim.learn.likelihood import CrossFitted
+    from homesim.learn.text2prog import Text2Prog
+
 TAUS = (0.02, 0.05, 0.1, 0.3)
 TOP_K = 8
 NEAR = 25
@@ -292,19 +295,36 @@ class Reranker:
 
     bank: Bank
     trees: HistGradientBoostingRegressor
+    likelihood: CrossFitted | None = None
+    """With it, each candidate also gets `likelihood.FEATURES` (docs/learn.md: measured on
+    dev, not yet in the table)."""
 
     @classmethod
-    def fit(cls, train: list[Example], holdout: str) -> Reranker:
+    def fit(cls, train: list[Example], holdout: str, likelihood: bool = False,
+            seed: int = 0) -> Reranker:
         """Trees fitted on `train` queried against itself, hiding `holdout` (one of
-        `HOLDOUTS`)."""
+        `HOLDOUTS`); `likelihood`: with the likelihood features of cross-fitted MLE models
+        (trained with `seed`)."""
+        from homesim.learn.likelihood import CrossFitted
+
         bank = Bank(train)
-        groups = [_labelled(q) for q in (
-            Query(bank, e, ~bank.hidden(e, holdout)) for e in train) if q.candidates]
-        return cls(bank, fit_trees(groups))
+        fitted = CrossFitted.fit(train, holdout, seed) if likelihood else None
+        groups = []
+        for i, example in enumerate(train):
+            query = Query(bank, example, ~bank.hidden(example, holdout))
+            if query.candidates:
+                features, targets = _labelled(query)
+                if fitted is not None:
+                    features = _with_likelihoods(features, query, fitted.for_training_query(i))
+                groups.append((features, targets))
+        return cls(bank, fit_trees(groups), fitted)
 
     def scores(self, query: Query) -> np.ndarray:
         """(candidates,) the trees' score of each of the query's candidates."""
-        return np.asarray(self.trees.predict(design(query.features())))
+        features = query.features()
+        if self.likelihood is not None:
+            features = _with_likelihoods(features, query, self.likelihood.full)
+        return np.asarray(self.trees.predict(design(features)))
 
     def predict(self, examples: list[Example]) -> list[Program]:
         """One program per example: the best-scoring candidate that executes in its home."""
@@ -330,6 +350,14 @@ def _executable_in(example: Example, program: Program) -> bool:
     from homesim.learn.execution import executable
 
     return executable(program, example)
+
+
+def _with_likelihoods(features: np.ndarray, query: Query, t2p: Text2Prog) -> np.ndarray:
+    """The query's feature rows with `likelihood.FEATURES` under `t2p` appended."""
+    from homesim.learn.likelihood import likelihoods
+
+    programs = [c.program for c in query.candidates]
+    return np.hstack([features, likelihoods(t2p, query.example, programs)])
 
 
 def _labelled(query: Query) -> tuple[np.ndarray, np.ndarray]:
