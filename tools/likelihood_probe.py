@@ -2,7 +2,7 @@
 (docs/learn.md, "Measured, not yet in the table"): the cross-validated and dev figures of
 `tools/rerank_dev.py` with and without three more features per candidate.
 
-    python tools/likelihood_probe.py [--seeds 5] [--split stratified]
+    python tools/likelihood_probe.py [--seeds 5] [--split stratified] [--test]
 
 The features (`homesim.learn.likelihood`) are the teacher-forced log-likelihood of the
 candidate's steps (its end included) under an MLE model given the description: the total,
@@ -23,8 +23,10 @@ import torch
 
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.likelihood import CrossFitted
-from homesim.learn.rerank import Bank, Query, _labelled, _with_likelihoods, fit_trees
-from rerank_dev import cross_validated, top_lcs, training_queries
+from homesim.learn.rerank import Bank, Query, Reranker, _labelled, _with_likelihoods, fit_trees
+from homesim.learn.summary import summarize, summarize_gap
+from homesim.program.metrics import normalized_lcs, step_tokens
+from rerank_dev import BASELINE, cross_validated, top_lcs, training_queries
 
 Group = tuple[np.ndarray, np.ndarray]
 
@@ -55,15 +57,42 @@ def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float, 
             float(np.mean(top_lcs(fit_trees(extended), extended_dev))))
 
 
+def on_test(split: str, seeds: int, vectors: Path) -> None:
+    """The one test measurement: `Reranker.fit(..., likelihood=True).predict` (executability
+    checked, as the table's row) against the split's baseline, over the seeds, summarised
+    as the table summarises a gap (`learn.summary`)."""
+    baseline = BASELINE[split][1]
+    ours: list[list[dict]] = []
+    theirs: list[list[dict]] = []
+    for seed in range(seeds):
+        splits = load_run_splits(RunSpec("real", split, seed), vectors)
+        model = Reranker.fit(splits.train, HOLDOUT[split], likelihood=True, seed=seed)
+        for programs, out in ((model.predict(splits.test), ours),
+                              (baseline(splits.train, splits.test), theirs)):
+            out.append([{"steps": normalized_lcs(step_tokens(p), step_tokens(e.program))}
+                        for p, e in zip(programs, splits.test, strict=True)])
+        print(f"{split} seed {seed}: test {np.mean([r['steps'] for r in ours[-1]]):.4f}, "
+              f"{BASELINE[split][0]} {np.mean([r['steps'] for r in theirs[-1]]):.4f}", flush=True)
+    row, gap = summarize(ours, "steps"), summarize_gap(ours, theirs, "steps")
+    print(f"{split} test: {row['mean']:.4f} ± {row['sd']:.4f} [{row['lo']:.4f}, "
+          f"{row['hi']:.4f}]; gap to {BASELINE[split][0]} {gap['mean']:+.4f} ± {gap['sd']:.4f} "
+          f"[{gap['lo']:+.4f}, {gap['hi']:+.4f}]")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=5)
     parser.add_argument("--split", default="stratified",
                         choices=("stratified", "leave-activities-out"))
     parser.add_argument("--vectors", type=Path, default=Path("out/learn/real/vectors.npz"))
+    parser.add_argument("--test", action="store_true",
+                        help="Measure on test instead (once, after the choice on dev).")
     args = parser.parse_args()
     torch.set_num_threads(1)  # as `homesim learn` (the thread count changes float sums)
     torch.use_deterministic_algorithms(True)
+    if args.test:
+        on_test(args.split, args.seeds, args.vectors)
+        return
     rows = []
     for seed in range(args.seeds):
         rows.append(measure(args.split, seed, args.vectors))

@@ -9,8 +9,8 @@ The reranker's trees learn from training queries, so their likelihoods must come
 models that never read the query's program: `CrossFitted` trains one model per fold of the
 training set (`folds`: round robin, or by activity when the split hides whole activities),
 each without its fold's programs and every copy of them, and one model on all of training
-for new descriptions. docs/learn.md gives what the features gain (measured on dev with
-``tools/likelihood_probe.py``) and why the table does not use them yet.
+for new descriptions. docs/learn.md gives what the features gained (on dev, not on test:
+``tools/likelihood_probe.py``) and so why the table's reranker does not use them.
 """
 
 from __future__ import annotations

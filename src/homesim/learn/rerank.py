@@ -296,8 +296,8 @@ class Reranker:
     bank: Bank
     trees: HistGradientBoostingRegressor
     likelihood: CrossFitted | None = None
-    """With it, each candidate also gets `likelihood.FEATURES` (docs/learn.md: measured on
-    dev, not yet in the table)."""
+    """With it, each candidate also gets `likelihood.FEATURES` (docs/learn.md: they gained on
+    dev, not on test, so the table's reranker has none)."""
 
     @classmethod
     def fit(cls, train: list[Example], holdout: str, likelihood: bool = False,
