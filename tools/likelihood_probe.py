@@ -1,6 +1,7 @@
-"""The MLE model's likelihood of each candidate as reranker features, measured without test
-(docs/learn.md, "Measured, not yet in the table"): the cross-validated and dev figures of
-`tools/rerank_dev.py` with and without three more features per candidate.
+"""The MLE model's likelihood of each candidate as reranker features, measured on dev
+(docs/learn.md, "Measured on dev and once on test, not kept"): the cross-validated and
+dev figures of `tools/rerank_dev.py` with and without three more features per candidate;
+with --test, the one test measurement made after that choice.
 
     python tools/likelihood_probe.py [--seeds 5] [--split stratified] [--test]
 
@@ -48,7 +49,7 @@ def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float, 
                              targets))
             folds.append(fold)
     everything = np.ones(len(splits.train), bool)
-    dev = [(Query(bank, e, everything)) for e in splits.dev]
+    dev = [Query(bank, e, everything) for e in splits.dev]
     base_dev = [_labelled(q) for q in dev]
     extended_dev = [(_with_likelihoods(f, q, fitted.full), t)
                     for q, (f, t) in zip(dev, base_dev, strict=True)]

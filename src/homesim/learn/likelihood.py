@@ -28,8 +28,6 @@ if TYPE_CHECKING:
     from homesim.learn.text2prog import Text2Prog
 
 FOLDS = 5
-MLE_EPOCHS = 12
-"""Epochs of each model (the table's MLE epochs; no dev selection)."""
 UNKNOWN_LOGP = -12.0
 """Log-probability counted for a step the model cannot emit."""
 FEATURES = ("log-likelihood", "mean log-likelihood", "unknown steps")
@@ -45,12 +43,15 @@ def folds(train: list[Example], holdout: str) -> list[int]:
 
 
 def trained(examples: list[Example], seed: int) -> Text2Prog:
-    """A fresh MLE model trained on `examples` for `MLE_EPOCHS` epochs, in eval mode."""
+    """A fresh MLE model trained on `examples` with the table's epochs, batch and learning
+    rate (`experiment.RunSpec`'s; no dev selection), in eval mode."""
+    from homesim.learn.experiment import RunSpec
     from homesim.learn.text2prog import Text2Prog
     from homesim.learn.train import TrainConfig, train_mle
 
     t2p = Text2Prog.create(examples, seed)
-    train_mle(t2p, examples, TrainConfig(MLE_EPOCHS, 32, 4e-3, seed))
+    train_mle(t2p, examples, TrainConfig(RunSpec.mle_epochs, RunSpec.batch_size,
+                                         RunSpec.mle_lr, seed))
     t2p.model.eval()
     return t2p
 
