@@ -73,6 +73,21 @@ def test_trees_learn_which_feature_ranks_within_a_group():
     assert np.mean(hits) > 0.8
 
 
+def test_tree_seed_defaults_to_the_settings_and_picks_the_early_stopping_holdout():
+    """From 10 000 samples scikit-learn holds some out for early stopping; `random_state`
+    picks which (docs/learn.md, "How much of a dev difference is noise")."""
+    from homesim.learn.rerank import TREES, design
+
+    rng = np.random.default_rng(1)
+    groups = [(x, x[:, 0] + rng.normal(scale=0.5, size=20))
+              for x in (rng.normal(size=(20, 2)) for _ in range(520))]
+    probe = design(rng.normal(size=(50, 2)))
+    default, same, other = (fit_trees(groups, r).predict(probe)
+                            for r in (None, int(TREES["random_state"]), 1))
+    assert np.array_equal(default, same)
+    assert not np.array_equal(default, other)
+
+
 def test_drops_leave_out_unnamed_objects_but_never_rooms_or_everything():
     program = Program.parse(TV + "\n[Walk] <couch> (1)\n[Sit] <couch> (1)")
     rate = {"couch": 0.1, "television": 0.2}.get

@@ -280,13 +280,20 @@ def design(features: np.ndarray) -> np.ndarray:
     return np.hstack([features - features.mean(0), features])
 
 
-def fit_trees(groups: list[tuple[np.ndarray, np.ndarray]]) -> HistGradientBoostingRegressor:
-    """Trees regressing targets centred within each group on `design` (`TREES` settings)."""
+def fit_trees(groups: list[tuple[np.ndarray, np.ndarray]],
+              random_state: int | None = None) -> HistGradientBoostingRegressor:
+    """Trees regressing targets centred within each group on `design` (`TREES` settings).
+
+    `random_state` (default `TREES`'s) only picks the 10% of samples scikit-learn holds out
+    for early stopping (on from 10 000 samples; it has not stopped before `max_iter` in the
+    real runs), yet that moves the dev score by about .01 (docs/learn.md):
+    `tools/rerank_dev.py --tree-seeds` averages over it."""
     from sklearn.ensemble import HistGradientBoostingRegressor
 
     x = np.vstack([design(f) for f, _ in groups])
     y = np.concatenate([t - t.mean() for _, t in groups])
-    return HistGradientBoostingRegressor(**TREES).fit(x, y)
+    settings = TREES if random_state is None else {**TREES, "random_state": random_state}
+    return HistGradientBoostingRegressor(**settings).fit(x, y)
 
 
 @dataclass
