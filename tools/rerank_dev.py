@@ -7,7 +7,10 @@ the dev split, for every real-data run (docs/learn.md, "How it was chosen").
 Prints, per split and seed, the mean steps LCS of the top-scoring candidate (no
 executability check) in cross-validation (folds by program for the stratified split, by
 activity for leave-activities-out, as the split hides them) and on dev, with the dev score
-of the baseline the goal is set against on that split, then the means. `--tree-seeds K`
+of the baseline the goal is set against on that split, then the means; also the
+cross-validated gap to that baseline (computed for each training query from what it may
+see), over all training queries and over those whose program has no copy in training, as
+no test program has: the steadiest estimate of the test gap. `--tree-seeds K`
 averages each over the trees' `random_state` 0..K-1 (it picks the samples held out for
 early stopping, which alone moves dev by about .01; docs/learn.md) and prints dev's range.
 """
@@ -15,6 +18,7 @@ early stopping, which alone moves dev by about .01; docs/learn.md) and prints de
 from __future__ import annotations
 
 import argparse
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -36,14 +40,21 @@ def top_lcs(trees, groups: list[Group]) -> list[float]:
     return [float(t[int(np.argmax(trees.predict(design(f))))]) for f, t in groups]
 
 
-def cross_validated(groups: list[Group], folds: list[int], random_state: int = 0) -> float:
-    """Mean top-candidate LCS with each fold scored by trees fitted on the others."""
-    out: list[float] = []
+def cross_validated_each(groups: list[Group], folds: list[int], random_state: int = 0
+                         ) -> np.ndarray:
+    """Each group's top-candidate LCS, its fold scored by trees fitted on the others."""
+    out = np.zeros(len(groups))
     for k in range(FOLDS):
+        held = [i for i, f in enumerate(folds) if f == k]
         trees = fit_trees([g for g, f in zip(groups, folds, strict=True) if f != k],
                           random_state)
-        out += top_lcs(trees, [g for g, f in zip(groups, folds, strict=True) if f == k])
-    return float(np.mean(out))
+        out[held] = top_lcs(trees, [groups[i] for i in held])
+    return out
+
+
+def cross_validated(groups: list[Group], folds: list[int], random_state: int = 0) -> float:
+    """Mean top-candidate LCS with each fold scored by trees fitted on the others."""
+    return float(np.mean(cross_validated_each(groups, folds, random_state)))
 
 
 BASELINE = {"stratified": ("title-medoid", baselines.title_medoid),
@@ -65,27 +76,62 @@ def training_queries(bank: Bank, split: str, without_copies: bool = False
     return rows
 
 
+def baseline_on_query(query: Query, split: str) -> float:
+    """The steps LCS of the split's baseline for a training query, from what it may see:
+    the medoid of its activity's programs (stratified; NaN if it may see none of them) or
+    the program of the nearest description (leave-activities-out)."""
+    bank, truth = query.bank, step_tokens(query.example.program)
+    if split == "stratified":
+        same = np.flatnonzero(query.allowed & np.array(
+            [e.activity == query.example.activity for e in bank.train]))
+        if not len(same):
+            return float("nan")
+        choice = same[int(np.argmax(bank.lcs[np.ix_(same, same)].sum(1)))]
+    else:
+        choice = int(np.argmax(np.where(query.allowed, bank.desc @ query.desc, -np.inf)))
+    return normalized_lcs(bank.tokens[choice], truth)
+
+
+@dataclass
+class Measured:
+    """One run's figures, one entry per tree seed where a list."""
+
+    cv: list[float]
+    dev: list[float]
+    baseline_dev: float
+    cv_gap: list[float]
+    """Cross-validated gap to the baseline on the training queries."""
+    cv_gap_alone: list[float]
+    """The same over the queries whose program has no copy in training, as test's."""
+
+
 def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
-            tree_seeds: int = 1) -> tuple[list[float], list[float], float]:
-    """(cross-validated, dev) mean steps LCS of one run (fitted and cross-validated on
-    `training_queries`) for each of the trees' `random_state` 0..`tree_seeds`-1, and the
-    baseline's dev score."""
+            tree_seeds: int = 1) -> Measured:
+    """Cross-validated (on `training_queries`) and dev steps LCS of one run for each of the
+    trees' `random_state` 0..`tree_seeds`-1, the baseline's dev score, and the
+    cross-validated gap to the baseline."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
     bank = Bank(splits.train)
-    groups, folds = [], []
+    groups, folds, base, alone = [], [], [], []
     for _, example, allowed, fold in training_queries(bank, split, without_copies):
         query = Query(bank, example, allowed)
         if query.candidates:
             groups.append(_labelled(query))
             folds.append(fold)
+            base.append(baseline_on_query(query, split))
+            alone.append(bank.hidden(example, "program").sum() == 1)
     everything = np.ones(len(splits.train), bool)
     dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
     baseline = BASELINE[split][1](splits.train, splits.dev)
     baseline_dev = np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
                             for p, e in zip(baseline, splits.dev, strict=True)])
-    return ([cross_validated(groups, folds, r) for r in range(tree_seeds)],
-            [float(np.mean(top_lcs(fit_trees(groups, r), dev))) for r in range(tree_seeds)],
-            float(baseline_dev))
+    each = [cross_validated_each(groups, folds, r) for r in range(tree_seeds)]
+    gaps = [e - np.array(base) for e in each]
+    return Measured([float(e.mean()) for e in each],
+                    [float(np.mean(top_lcs(fit_trees(groups, r), dev)))
+                     for r in range(tree_seeds)],
+                    float(baseline_dev), [float(np.nanmean(g)) for g in gaps],
+                    [float(np.nanmean(g[np.array(alone)])) for g in gaps])
 
 
 def main() -> None:
@@ -106,16 +152,22 @@ def main() -> None:
         for seed in range(args.seeds):
             rows.append(measure(split, seed, args.vectors, args.without_copies,
                                 args.tree_seeds))
-            print(f"{split} seed {seed}: {_line(*rows[-1], split)}", flush=True)
-        cv, dev, base = (np.mean([r[k] for r in rows], axis=0) for k in range(3))
-        print(f"{split} mean: {_line(list(cv), list(dev), float(base), split)}")
+            print(f"{split} seed {seed}: {_line(rows[-1], split)}", flush=True)
+        mean = Measured(*(list(np.mean([getattr(r, k) for r in rows], axis=0))
+                          for k in ("cv", "dev")),
+                        float(np.mean([r.baseline_dev for r in rows])),
+                        *(list(np.mean([getattr(r, k) for r in rows], axis=0))
+                          for k in ("cv_gap", "cv_gap_alone")))
+        print(f"{split} mean: {_line(mean, split)}")
 
 
-def _line(cv: list[float], dev: list[float], base: float, split: str) -> str:
-    """Cross-validated and dev means over tree seeds (dev's range when several)."""
-    spread = f" [tree seeds {min(dev):.4f}-{max(dev):.4f}]" if len(dev) > 1 else ""
-    return (f"cross-validated {np.mean(cv):.4f}, dev {np.mean(dev):.4f}{spread} "
-            f"({BASELINE[split][0]} {base:.4f})")
+def _line(m: Measured, split: str) -> str:
+    """Means over tree seeds (dev's range when several)."""
+    spread = f" [tree seeds {min(m.dev):.4f}-{max(m.dev):.4f}]" if len(m.dev) > 1 else ""
+    name = BASELINE[split][0]
+    return (f"cross-validated {np.mean(m.cv):.4f} (gap to {name} {np.mean(m.cv_gap):+.4f}, "
+            f"without copies {np.mean(m.cv_gap_alone):+.4f}), dev {np.mean(m.dev):.4f}"
+            f"{spread} ({name} {m.baseline_dev:.4f})")
 
 
 if __name__ == "__main__":
