@@ -72,14 +72,21 @@ def training_queries(bank: Bank, split: str, without_copies: bool = False
     rows = [(i, e, ~bank.hidden(e, HOLDOUT[split]), assigned[i])
             for i, e in enumerate(bank.train)]
     if without_copies:
-        rows = [r for r in rows if bank.hidden(r[1], "program").sum() == 1]
+        rows = [r for r in rows if not has_copy(bank, r[1])]
     return rows
+
+
+def has_copy(bank: Bank, example: Example) -> bool:
+    """Whether another training example has the same steps as `example` (a training one)."""
+    return int(bank.hidden(example, "program").sum()) > 1
 
 
 def baseline_on_query(query: Query, split: str) -> float:
     """The steps LCS of the split's baseline for a training query, from what it may see:
     the medoid of its activity's programs (stratified; NaN if it may see none of them) or
-    the program of the nearest description (leave-activities-out)."""
+    the program of the nearest description (leave-activities-out). The same choices as
+    `baselines.title_medoid` and `baselines.nn_description` (checked on dev, where a query
+    sees all of training), from the bank's stored LCS instead of recomputing them."""
     bank, truth = query.bank, step_tokens(query.example.program)
     if split == "stratified":
         same = np.flatnonzero(query.allowed & np.array(
@@ -119,7 +126,7 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
             groups.append(_labelled(query))
             folds.append(fold)
             base.append(baseline_on_query(query, split))
-            alone.append(bank.hidden(example, "program").sum() == 1)
+            alone.append(not has_copy(bank, example))
     everything = np.ones(len(splits.train), bool)
     dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
     baseline = BASELINE[split][1](splits.train, splits.dev)
@@ -153,11 +160,9 @@ def main() -> None:
             rows.append(measure(split, seed, args.vectors, args.without_copies,
                                 args.tree_seeds))
             print(f"{split} seed {seed}: {_line(rows[-1], split)}", flush=True)
-        mean = Measured(*(list(np.mean([getattr(r, k) for r in rows], axis=0))
-                          for k in ("cv", "dev")),
-                        float(np.mean([r.baseline_dev for r in rows])),
-                        *(list(np.mean([getattr(r, k) for r in rows], axis=0))
-                          for k in ("cv_gap", "cv_gap_alone")))
+        mean = Measured(baseline_dev=float(np.mean([r.baseline_dev for r in rows])),
+                        **{k: list(np.mean([getattr(r, k) for r in rows], axis=0))
+                           for k in ("cv", "dev", "cv_gap", "cv_gap_alone")})
         print(f"{split} mean: {_line(mean, split)}")
 
 
