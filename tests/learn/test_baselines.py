@@ -30,6 +30,24 @@ def test_title_medoid_is_the_activitys_most_central_program():
     assert [p.steps for p in preds] == [centres[e.activity].program.steps for e in train[:3]]
 
 
+def test_title_median_is_more_central_than_the_medoid_where_it_can_be():
+    from homesim.learn.baselines import medoids, title_median
+    from homesim.learn.data import Example
+    from homesim.program.metrics import lcs_steps
+    from homesim.program.model import Program
+    from tests.learn.test_median import program
+
+    dishes = [Example(f"d{i}", Program(program(s).steps, "Wash dishes", s))
+              for i, s in enumerate(("fae", "ebe", "ecda"))]
+    train = [*dishes, *_with_activity_copies()]
+    centres = medoids(train)
+    for pred, e in zip(title_median(train, train), train, strict=True):
+        group = [x.program for x in train if x.activity == e.activity]
+        median = sum(lcs_steps(pred, q) for q in group)
+        medoid = sum(lcs_steps(centres[e.activity].program, q) for q in group)
+        assert median > medoid + 0.1 if e in dishes else median >= medoid
+
+
 def test_an_unseen_activity_gets_the_medoid_of_the_nearest_title():
     from dataclasses import replace
 

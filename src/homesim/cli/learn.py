@@ -319,7 +319,8 @@ def table(
             if not runs:
                 console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
                 continue
-            beat = tuple(dict.fromkeys((GOALS[split][0], "Title-medoid", "NN (description)")))
+            beat = tuple(dict.fromkeys((GOALS[split][0], "Title-medoid", "Title-median",
+                                          "NN (description)")))
             blocks.setdefault(name, {})[split] = block(runs, MODEL_ROW, beat)
             console.print(_summary_table(name, split, blocks[name][split]))
     seconds = time.perf_counter() - start

@@ -1,5 +1,5 @@
-"""Baselines that learn nothing: random sampling and retrieval, the title's medoid program,
-nearest-neighbour retrieval by title or by description.
+"""Baselines that learn nothing: random sampling and retrieval, the title's medoid and
+median programs, nearest-neighbour retrieval by title or by description.
 
 Sentence vectors are all-MiniLM-L6-v2's (`embeddings.sentence_vectors`), the modern
 stand-in for the paper's skip-thoughts.
@@ -79,6 +79,23 @@ def _nearest(train: list[Example], test: list[Example], field) -> list[Program]:
     return [Program(train[i].program.steps) for i in nearest]
 
 
+def title_median(train: list[Example], test: list[Example]) -> list[Program]:
+    """The generalised median (`median.Medians`, uniform weights) of the test title's
+    activity's training programs, searched from their medoid; an activity not in training
+    is mapped as `title_medoid` maps it. Like the medoid it reads only the title, but it
+    may insert the steps most of the activity's programs share and drop the ones few do."""
+    from homesim.learn.median import Medians
+
+    groups: dict[str, list[Program]] = {}
+    for e in train:
+        groups.setdefault(e.activity, []).append(e.program)
+    starts = medoids(train)
+    centres = {activity: Medians(programs, np.ones(len(programs))).median(
+        starts[activity].program) for activity, programs in groups.items()}
+    nearest = _nearest_activity(sorted(centres), test)
+    return [Program(centres[nearest.get(e.activity, e.activity)].steps) for e in test]
+
+
 def medoids(train: list[Example]) -> dict[str, Example]:
     """Activity -> its medoid training example: the one with the highest mean steps LCS
     to the other programs of its activity (ties: the first)."""
@@ -103,13 +120,17 @@ def medoid_order(train: list[Example]) -> dict[str, list[Example]]:
 def title_medoid(train: list[Example], test: list[Example]) -> list[Program]:
     """The medoid program of the test title's activity; an activity not in training is
     mapped to the training activity whose name is nearest (MiniLM cosine)."""
+    centres = medoids(train)
+    nearest = _nearest_activity(sorted(centres), test)
+    return [Program(centres[nearest.get(e.activity, e.activity)].program.steps) for e in test]
+
+
+def _nearest_activity(known: list[str], test: list[Example]) -> dict[str, str]:
+    """Each test activity not in `known` -> the known one whose name is nearest (MiniLM)."""
     from homesim.learn.embeddings import cached_sentence_vectors
 
-    centres = medoids(train)
-    known = sorted(centres)
-    unseen = sorted({e.activity for e in test} - set(centres))
-    nearest: dict[str, str] = {}
-    if unseen:
-        sims = cached_sentence_vectors(unseen) @ cached_sentence_vectors(known).T
-        nearest = {a: known[int(i)] for a, i in zip(unseen, sims.argmax(1), strict=True)}
-    return [Program(centres[nearest.get(e.activity, e.activity)].program.steps) for e in test]
+    unseen = sorted({e.activity for e in test} - set(known))
+    if not unseen:
+        return {}
+    sims = cached_sentence_vectors(unseen) @ cached_sentence_vectors(known).T
+    return {a: known[int(i)] for a, i in zip(unseen, sims.argmax(1), strict=True)}

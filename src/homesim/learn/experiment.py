@@ -129,6 +129,7 @@ def baseline_jobs(splits: Splits, seed: int) -> list[Job]:
         ("Random sampling", lambda: baselines.random_sampling(train, test, seed)),
         ("Random retrieval", lambda: baselines.random_retrieval(train, test, seed)),
         ("Title-medoid", lambda: baselines.title_medoid(train, test)),
+        ("Title-median", lambda: baselines.title_median(train, test)),
         ("NN (title)", lambda: baselines.nn_title(train, test)),
         ("NN (description)", lambda: baselines.nn_description(train, test)),
         (ORACLE_ROW, lambda: baselines.oracle_retrieval(train, test)),

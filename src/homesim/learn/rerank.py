@@ -12,7 +12,10 @@ For a description x:
    action catalog's property needs, rooms only for rooms); singly and greedily all at once.
    Then the *drops* of the first `DROP_FROM` candidates: the steps using one class the text
    does not name (nor a room) left out, singly, and all such classes that training usually
-   names (implicit rate below `CHAIN_IMPLICIT`) left out at once.
+   names (implicit rate below `CHAIN_IMPLICIT`) left out at once. Last the *medians*
+   (`median.Medians`): under each tau, the step sequence of highest expected LCS to the
+   `NEAR` nearest neighbours, searched from that tau's best program; and the median of the
+   programs of the query's activity, searched from their medoid.
 3. **Score.** Gradient-boosted regression trees over features of (x, candidate)
    (`FEATURES`): the expected LCS under each tau against the `NEAR` nearest neighbours,
    the share of named classes the candidate uses and of its classes that are named, how
@@ -163,6 +166,31 @@ class Query:
                 if tokens not in seen:
                     seen.add(tokens)
                     out.append(Candidate(Program(p.steps), tokens, c.source, True))
+        for j, p in self._medians():
+            tokens = tuple(step_tokens(p))
+            if tokens and tokens not in seen:
+                seen.add(tokens)
+                out.append(Candidate(Program(p.steps), tokens, j, True))
+        return out
+
+    def _medians(self) -> list[tuple[int, Program]]:
+        """(start, median) pairs: the median of the `NEAR` nearest neighbours under each tau's
+        weights, started from that tau's best expected-LCS program, and the median of the
+        programs of the query's activity (uniform weights) started from their medoid."""
+        from homesim.learn.median import Medians
+
+        bank, out = self.bank, []
+        references = [bank.train[k].program for k in self.near]
+        for tau in TAUS:
+            start = int(np.argmax(np.where(self.allowed, self.weights[tau] @ bank.lcs, -1.0)))
+            medians = Medians(references, self.weights[tau][self.near])
+            out.append((start, medians.median(bank.train[start].program)))
+        same = np.flatnonzero(self.allowed & np.array(
+            [e.activity == self.example.activity for e in bank.train]))
+        if len(same):
+            start = int(same[int(np.argmax(bank.lcs[np.ix_(same, same)].sum(1)))])
+            medians = Medians([bank.train[k].program for k in same], np.ones(len(same)))
+            out.append((start, medians.median(bank.train[start].program)))
         return out
 
     def features(self) -> np.ndarray:
