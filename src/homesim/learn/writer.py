@@ -32,9 +32,9 @@ from homesim.program.model import Program
 from homesim.program.parse import step_lines
 from homesim.world.graph import EnvironmentGraph
 
-FORMAT = 1
-"""Bumped when what a stored model holds changes (a stored model of another format is
-fitted again)."""
+FORMAT = 2
+"""Bumped when what a stored model holds, or the candidates its trees were fitted on,
+change (a stored model of another format is fitted again); 2: the reranker's medians."""
 SEED = 0
 """Seed of preparation and grounding when a written program is run."""
 TITLE_TAU = 0.05
