@@ -89,11 +89,10 @@ def baseline_on_query(query: Query, split: str) -> float:
     sees all of training), from the bank's stored LCS instead of recomputing them."""
     bank, truth = query.bank, step_tokens(query.example.program)
     if split == "stratified":
-        same = np.flatnonzero(query.allowed & np.array(
-            [e.activity == query.example.activity for e in bank.train]))
+        same = query.activity_programs()
         if not len(same):
             return float("nan")
-        choice = same[int(np.argmax(bank.lcs[np.ix_(same, same)].sum(1)))]
+        choice = bank.medoid(same)
     else:
         choice = int(np.argmax(np.where(query.allowed, bank.desc @ query.desc, -np.inf)))
     return normalized_lcs(bank.tokens[choice], truth)

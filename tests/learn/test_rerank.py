@@ -6,6 +6,7 @@ from homesim.knowledge.datasets import ActivityProgram
 from homesim.learn.lexicon import ObjectLexicon
 from homesim.learn.rerank import (
     FEATURES,
+    TAUS,
     Bank,
     Query,
     Reranker,
@@ -134,5 +135,6 @@ def test_candidates_include_the_median_of_the_querys_activity():
         bank.lcs[bank.tokens.index(tuple(step_tokens(p)))][:3]))
     median = tuple(step_tokens(Medians(references, np.ones(3)).median(medoid)))
     assert median not in bank.tokens
-    assert median in {tuple(step_tokens(p)) for _, p in query._medians()}
+    best = {tau: int(np.argmax(query.weights[tau] @ bank.lcs)) for tau in TAUS}
+    assert median in {tuple(step_tokens(p)) for _, p in query._medians(best)}
     assert median in {c.tokens for c in query.candidates if c.edited}

@@ -82,9 +82,9 @@ class Medians:
         """Greedy local search from `start`: at each of up to `MEDIAN_ITERS` moves, the
         single-step deletion or insertion (of a `vocab` step, anywhere) that raises
         `expected_lcs` most; stops when none does. Ties go to the first move tried."""
-        current = self._encode(start)
         if not self.weights:
             return start
+        current = self._encode(start)
         best = self.expected_lcs(current)
         for _ in range(MEDIAN_ITERS):
             moves = [current[:i] + current[i + 1:] for i in range(len(current))

@@ -108,6 +108,11 @@ class Bank:
         self.lexicon = ObjectLexicon.fit(self.train)
         self.idf, self.bags = _bags([e.text for e in self.train])
 
+    def medoid(self, indices: np.ndarray) -> int:
+        """The one of `indices` (not empty) with the highest summed steps LCS to the others
+        (ties: the first)."""
+        return int(indices[int(np.argmax(self.lcs[np.ix_(indices, indices)].sum(1)))])
+
     def hidden(self, example: Example, holdout: str) -> np.ndarray:
         """(train,) True where a training query `example` may not see the example."""
         if holdout == "activity":
@@ -144,11 +149,19 @@ class Query:
         self.near = np.argsort(-self.weights[TAUS[1]], kind="stable")[:NEAR]
         self.candidates = self._candidates(sims)
 
+    def activity_programs(self) -> np.ndarray:
+        """Indices of the training programs of the query's activity that it may see."""
+        return np.flatnonzero(self.allowed & np.array(
+            [e.activity == self.example.activity for e in self.bank.train]))
+
     def _candidates(self, sims: np.ndarray) -> list[Candidate]:
         sources: list[int] = []
+        best: dict[float, int] = {}
         for tau in TAUS:
             expected = np.where(self.allowed, self.weights[tau] @ self.bank.lcs, -1.0)
-            sources += [int(j) for j in np.argsort(-expected, kind="stable")[:TOP_K]]
+            ranked = [int(j) for j in np.argsort(-expected, kind="stable")[:TOP_K]]
+            best[tau] = ranked[0]
+            sources += ranked
         sources += [int(j) for j in np.argsort(-sims, kind="stable")[:3]]
         out: list[Candidate] = []
         seen: set[tuple] = set()
@@ -166,29 +179,27 @@ class Query:
                 if tokens not in seen:
                     seen.add(tokens)
                     out.append(Candidate(Program(p.steps), tokens, c.source, True))
-        for j, p in self._medians():
+        for j, p in self._medians(best):
             tokens = tuple(step_tokens(p))
             if tokens and tokens not in seen:
                 seen.add(tokens)
                 out.append(Candidate(Program(p.steps), tokens, j, True))
         return out
 
-    def _medians(self) -> list[tuple[int, Program]]:
+    def _medians(self, best: dict[float, int]) -> list[tuple[int, Program]]:
         """(start, median) pairs: the median of the `NEAR` nearest neighbours under each tau's
-        weights, started from that tau's best expected-LCS program, and the median of the
-        programs of the query's activity (uniform weights) started from their medoid."""
+        weights, started from that tau's best expected-LCS program (`best`), and the median
+        of the programs of the query's activity (uniform weights) started from their medoid."""
         from homesim.learn.median import Medians
 
         bank, out = self.bank, []
         references = [bank.train[k].program for k in self.near]
         for tau in TAUS:
-            start = int(np.argmax(np.where(self.allowed, self.weights[tau] @ bank.lcs, -1.0)))
             medians = Medians(references, self.weights[tau][self.near])
-            out.append((start, medians.median(bank.train[start].program)))
-        same = np.flatnonzero(self.allowed & np.array(
-            [e.activity == self.example.activity for e in bank.train]))
+            out.append((best[tau], medians.median(bank.train[best[tau]].program)))
+        same = self.activity_programs()
         if len(same):
-            start = int(same[int(np.argmax(bank.lcs[np.ix_(same, same)].sum(1)))])
+            start = bank.medoid(same)
             medians = Medians([bank.train[k].program for k in same], np.ones(len(same)))
             out.append((start, medians.median(bank.train[start].program)))
         return out
