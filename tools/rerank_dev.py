@@ -3,6 +3,7 @@ the dev split, for every real-data run (docs/learn.md, "How it was chosen").
 
     python tools/rerank_dev.py [--seeds 5] [--vectors out/learn/real/vectors.npz]
                                [--split S] [--without-copies] [--tree-seeds K]
+                               [--train-fraction F]
 
 Prints, per split and seed, the mean steps LCS of the top-scoring candidate (no
 executability check) in cross-validation (folds by program for the stratified split, by
@@ -13,11 +14,14 @@ see), over all training queries and over those whose program has no copy in trai
 no test program has: the steadiest estimate of the test gap. `--tree-seeds K`
 averages each over the trees' `random_state` 0..K-1 (it picks the samples held out for
 early stopping, which alone moves dev by about .01; docs/learn.md) and prints dev's range.
+`--train-fraction F` keeps a seeded random share F of each run's training programs (the
+bank, the training queries and the baseline alike): a learning curve.
 """
 
 from __future__ import annotations
 
 import argparse
+import random
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -109,15 +113,28 @@ class Measured:
     """Cross-validated gap to the baseline on the training queries."""
     cv_gap_alone: list[float]
     """The same over the queries whose program has no copy in training, as test's."""
+    cv_alone: list[float]
+    """The cross-validated score over those queries (where the baseline has one)."""
+    baseline_alone: float
+    """The baseline's score over the same queries."""
+
+
+def subsample(train: list[Example], fraction: float, seed: int) -> list[Example]:
+    """A random share `fraction` of `train` (seeded by `seed`), in its order."""
+    if fraction >= 1:
+        return train
+    kept = random.Random(seed).sample(range(len(train)), round(fraction * len(train)))
+    return [train[i] for i in sorted(kept)]
 
 
 def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
-            tree_seeds: int = 1) -> Measured:
+            tree_seeds: int = 1, train_fraction: float = 1.0) -> Measured:
     """Cross-validated (on `training_queries`) and dev steps LCS of one run for each of the
     trees' `random_state` 0..`tree_seeds`-1, the baseline's dev score, and the
-    cross-validated gap to the baseline."""
+    cross-validated gap to the baseline; training cut to `train_fraction` (`subsample`)."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
-    bank = Bank(splits.train)
+    train = subsample(splits.train, train_fraction, seed)
+    bank = Bank(train)
     groups, folds, base, alone = [], [], [], []
     for _, example, allowed, fold in training_queries(bank, split, without_copies):
         query = Query(bank, example, allowed)
@@ -126,18 +143,21 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
             folds.append(fold)
             base.append(baseline_on_query(query, split))
             alone.append(not has_copy(bank, example))
-    everything = np.ones(len(splits.train), bool)
+    everything = np.ones(len(train), bool)
     dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
-    baseline = BASELINE[split][1](splits.train, splits.dev)
+    baseline = BASELINE[split][1](train, splits.dev)
     baseline_dev = np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
                             for p, e in zip(baseline, splits.dev, strict=True)])
     each = [cross_validated_each(groups, folds, r) for r in range(tree_seeds)]
     gaps = [e - np.array(base) for e in each]
+    scored_alone = np.array(alone) & ~np.isnan(base)
     return Measured([float(e.mean()) for e in each],
                     [float(np.mean(top_lcs(fit_trees(groups, r), dev)))
                      for r in range(tree_seeds)],
                     float(baseline_dev), [float(np.nanmean(g)) for g in gaps],
-                    [float(np.nanmean(g[np.array(alone)])) for g in gaps])
+                    [float(np.nanmean(g[np.array(alone)])) for g in gaps],
+                    [float(e[scored_alone].mean()) for e in each],
+                    float(np.array(base)[scored_alone].mean()))
 
 
 def main() -> None:
@@ -152,17 +172,29 @@ def main() -> None:
     parser.add_argument("--tree-seeds", type=int, default=1,
                         help="Average over the trees' random_state 0..K-1 (default 1: the "
                              "reranker's own, 0).")
+    parser.add_argument("--train-fraction", type=float, default=1.0,
+                        help="Keep this seeded random share of the training programs "
+                             "(default 1: all).")
     args = parser.parse_args()
     for split in args.split or SPLITS:
         rows = []
         for seed in range(args.seeds):
             rows.append(measure(split, seed, args.vectors, args.without_copies,
-                                args.tree_seeds))
+                                args.tree_seeds, args.train_fraction))
             print(f"{split} seed {seed}: {_line(rows[-1], split)}", flush=True)
-        mean = Measured(baseline_dev=float(np.mean([r.baseline_dev for r in rows])),
-                        **{k: list(np.mean([getattr(r, k) for r in rows], axis=0))
-                           for k in ("cv", "dev", "cv_gap", "cv_gap_alone")})
-        print(f"{split} mean: {_line(mean, split)}")
+        print(f"{split} mean: {_line(mean_of(rows), split)}")
+
+
+def mean_of(rows: list[Measured]) -> Measured:
+    """The seeds' means, field by field (per tree seed where a list)."""
+    def lists(name: str) -> list[float]:
+        return [float(v) for v in np.mean([getattr(r, name) for r in rows], axis=0)]
+
+    def floats(name: str) -> float:
+        return float(np.mean([getattr(r, name) for r in rows]))
+
+    return Measured(lists("cv"), lists("dev"), floats("baseline_dev"), lists("cv_gap"),
+                    lists("cv_gap_alone"), lists("cv_alone"), floats("baseline_alone"))
 
 
 def _line(m: Measured, split: str) -> str:
@@ -170,7 +202,8 @@ def _line(m: Measured, split: str) -> str:
     spread = f" [tree seeds {min(m.dev):.4f}-{max(m.dev):.4f}]" if len(m.dev) > 1 else ""
     name = BASELINE[split][0]
     return (f"cross-validated {np.mean(m.cv):.4f} (gap to {name} {np.mean(m.cv_gap):+.4f}, "
-            f"without copies {np.mean(m.cv_gap_alone):+.4f}), dev {np.mean(m.dev):.4f}"
+            f"without copies {np.mean(m.cv_gap_alone):+.4f}: {np.mean(m.cv_alone):.4f} "
+            f"against {m.baseline_alone:.4f}), dev {np.mean(m.dev):.4f}"
             f"{spread} ({name} {m.baseline_dev:.4f})")
 
 
