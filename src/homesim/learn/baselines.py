@@ -86,12 +86,9 @@ def title_median(train: list[Example], test: list[Example]) -> list[Program]:
     may insert the steps most of the activity's programs share and drop the ones few do."""
     from homesim.learn.median import Medians
 
-    groups: dict[str, list[Program]] = {}
-    for e in train:
-        groups.setdefault(e.activity, []).append(e.program)
     starts = medoids(train)
-    centres = {activity: Medians(programs, np.ones(len(programs))).median(
-        starts[activity].program) for activity, programs in groups.items()}
+    centres = {activity: Medians([e.program for e in group], np.ones(len(group))).median(
+        starts[activity].program) for activity, group in by_activity(train).items()}
     nearest = _nearest_activity(sorted(centres), test)
     return [Program(centres[nearest.get(e.activity, e.activity)].steps) for e in test]
 
@@ -102,14 +99,19 @@ def medoids(train: list[Example]) -> dict[str, Example]:
     return {activity: ranked[0] for activity, ranked in medoid_order(train).items()}
 
 
-def medoid_order(train: list[Example]) -> dict[str, list[Example]]:
-    """Activity -> its training examples by mean steps LCS to the other programs of the
-    activity, highest first (ties: in training order); the medoid leads."""
+def by_activity(train: list[Example]) -> dict[str, list[Example]]:
+    """Activity -> its training examples, in training order."""
     groups: dict[str, list[Example]] = {}
     for e in train:
         groups.setdefault(e.activity, []).append(e)
+    return groups
+
+
+def medoid_order(train: list[Example]) -> dict[str, list[Example]]:
+    """Activity -> its training examples by mean steps LCS to the other programs of the
+    activity, highest first (ties: in training order); the medoid leads."""
     out = {}
-    for activity, group in groups.items():
+    for activity, group in by_activity(train).items():
         tokens = [step_tokens(e.program) for e in group]
         totals = [sum(normalized_lcs(a, b) for b in tokens) for a in tokens]
         out[activity] = [group[i] for i in sorted(range(len(group)),
