@@ -27,8 +27,10 @@ def test_same_seed_same_scores_and_the_cache_is_reused(tmp_path, monkeypatch):
     text = evaluation_markdown({"real": {"stratified": summary}}, "box", "v")
     assert "| Empty program | 1 | 0.000 ± 0.000 |" in text
     assert "Goal (steps LCS at least 0.05 above Title-medoid):" in text
-    text = evaluation_markdown({"synthetic": {"stratified": summary}}, "box", "v")
+    text = evaluation_markdown({"synthetic": {"stratified": summary}}, "box", "v", 12.0,
+                               cache="/tmp/fresh")
     assert "### Synthetic data, template text, stratified split" in text
+    assert "12 s (with whatever was cached under /tmp/fresh)" in text
     assert "Goal" not in text  # the goal is set on real data only
 
 

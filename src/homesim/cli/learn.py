@@ -330,7 +330,7 @@ def table(
                 f"with fewer than {seeds} seeds had not finished for the others."
                 if only_cached else "")
         text = evaluation_markdown(blocks, _machine(device), _versions(),
-                                   None if only_cached else seconds, note)
+                                   None if only_cached else seconds, note, str(out))
         from homesim.learn.videoreport import with_table2
         write_text(markdown, with_table2(markdown, text), force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
