@@ -131,8 +131,7 @@ def test_candidates_include_the_median_of_the_querys_activity():
                  _example("Turn on light", "switch the lamp on", LAMP)])
     query = Query(bank, replace(dishes[0], id="q"), np.ones(len(bank.train), bool))
     references = [e.program for e in dishes]
-    medoid = max(references, key=lambda p: sum(
-        bank.lcs[bank.tokens.index(tuple(step_tokens(p)))][:3]))
+    medoid = bank.train[bank.medoid(np.arange(3))].program
     median = tuple(step_tokens(Medians(references, np.ones(3)).median(medoid)))
     assert median not in bank.tokens
     best = {tau: int(np.argmax(query.weights[tau] @ bank.lcs)) for tau in TAUS}

@@ -165,25 +165,25 @@ class Query:
         sources += [int(j) for j in np.argsort(-sims, kind="stable")[:3]]
         out: list[Candidate] = []
         seen: set[tuple] = set()
+
+        def add(p: Program, source: int, edited: bool) -> None:
+            """`p` as a candidate unless one with its steps is already there."""
+            tokens = tuple(step_tokens(p))
+            if tokens not in seen:
+                seen.add(tokens)
+                out.append(Candidate(Program(p.steps), tokens, source, edited))
+
         for j in sources:
             program = self.bank.train[j].program
-            for edited, p in [(False, program), *((True, q) for q in substitutions(
-                    program, self.named))]:
-                tokens = tuple(step_tokens(p))
-                if tokens not in seen:
-                    seen.add(tokens)
-                    out.append(Candidate(Program(p.steps), tokens, j, edited))
+            add(program, j, False)
+            for q in substitutions(program, self.named):
+                add(q, j, True)
         for c in out[:DROP_FROM]:
             for p in drops(c.program, self.named, self.bank.lexicon.implicit_rate):
-                tokens = tuple(step_tokens(p))
-                if tokens not in seen:
-                    seen.add(tokens)
-                    out.append(Candidate(Program(p.steps), tokens, c.source, True))
+                add(p, c.source, True)
         for j, p in self._medians(best):
-            tokens = tuple(step_tokens(p))
-            if tokens and tokens not in seen:
-                seen.add(tokens)
-                out.append(Candidate(Program(p.steps), tokens, j, True))
+            if p.steps:
+                add(p, j, True)
         return out
 
     def _medians(self, best: dict[float, int]) -> list[tuple[int, Program]]:
