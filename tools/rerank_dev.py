@@ -111,12 +111,16 @@ class Measured:
     baseline_dev: float
     cv_gap: list[float]
     """Cross-validated gap to the baseline on the training queries."""
-    cv_gap_alone: list[float]
-    """The same over the queries whose program has no copy in training, as test's."""
     cv_alone: list[float]
-    """The cross-validated score over those queries (where the baseline has one)."""
+    """The cross-validated score over the queries whose program has no copy in training,
+    as test's (where the baseline has one)."""
     baseline_alone: float
     """The baseline's score over the same queries."""
+
+    @property
+    def cv_gap_alone(self) -> list[float]:
+        """The cross-validated gap to the baseline over those queries."""
+        return [c - self.baseline_alone for c in self.cv_alone]
 
 
 def subsample(train: list[Example], fraction: float, seed: int) -> list[Example]:
@@ -149,15 +153,14 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     baseline_dev = np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
                             for p, e in zip(baseline, splits.dev, strict=True)])
     each = [cross_validated_each(groups, folds, r) for r in range(tree_seeds)]
-    gaps = [e - np.array(base) for e in each]
-    scored_alone = np.array(alone) & ~np.isnan(base)
+    base_lcs = np.array(base)
+    scored_alone = np.array(alone) & ~np.isnan(base_lcs)
     return Measured([float(e.mean()) for e in each],
                     [float(np.mean(top_lcs(fit_trees(groups, r), dev)))
                      for r in range(tree_seeds)],
-                    float(baseline_dev), [float(np.nanmean(g)) for g in gaps],
-                    [float(np.nanmean(g[np.array(alone)])) for g in gaps],
+                    float(baseline_dev), [float(np.nanmean(e - base_lcs)) for e in each],
                     [float(e[scored_alone].mean()) for e in each],
-                    float(np.array(base)[scored_alone].mean()))
+                    float(base_lcs[scored_alone].mean()))
 
 
 def main() -> None:
@@ -194,7 +197,7 @@ def mean_of(rows: list[Measured]) -> Measured:
         return float(np.mean([getattr(r, name) for r in rows]))
 
     return Measured(lists("cv"), lists("dev"), floats("baseline_dev"), lists("cv_gap"),
-                    lists("cv_gap_alone"), lists("cv_alone"), floats("baseline_alone"))
+                    lists("cv_alone"), floats("baseline_alone"))
 
 
 def _line(m: Measured, split: str) -> str:
