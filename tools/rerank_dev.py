@@ -30,9 +30,19 @@ import numpy as np
 from homesim.learn import baselines
 from homesim.learn.data import Example
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
+from homesim.learn.insertion import Inserter
+from homesim.learn.lexicon import ObjectLexicon
 from homesim.learn.likelihood import FOLDS
 from homesim.learn.likelihood import folds as fold_of_each
-from homesim.learn.rerank import Bank, Query, _labelled, design, fit_trees
+from homesim.learn.rerank import (
+    Bank,
+    Query,
+    _labelled,
+    cross_fitted_best,
+    design,
+    fit_inserter,
+    fit_trees,
+)
 from homesim.learn.splits import SPLITS
 from homesim.program.metrics import normalized_lcs, step_tokens
 
@@ -47,12 +57,25 @@ def top_lcs(trees, groups: list[Group]) -> list[float]:
 def cross_validated_each(groups: list[Group], folds: list[int], random_state: int = 0
                          ) -> np.ndarray:
     """Each group's top-candidate LCS, its fold scored by trees fitted on the others."""
-    out = np.zeros(len(groups))
+    best = cross_fitted_best(groups, folds, random_state)
+    return np.array([float(t[b]) for (_, t), b in zip(groups, best, strict=True)])
+
+
+def inserted_cross_validated(queries: list[Query], groups: list[Group], folds: list[int],
+                             lexicons: list[ObjectLexicon]) -> np.ndarray:
+    """Each query's steps LCS after the inserter adds steps to its cross-validated choice
+    (the reranker's trees at `random_state` 0), the inserter of its fold fitted on the
+    queries of the other folds as `rerank.fit_inserter` fits it."""
+    best = cross_fitted_best(groups, folds)
+    out = np.zeros(len(queries))
     for k in range(FOLDS):
-        held = [i for i, f in enumerate(folds) if f == k]
-        trees = fit_trees([g for g, f in zip(groups, folds, strict=True) if f != k],
-                          random_state)
-        out[held] = top_lcs(trees, [groups[i] for i in held])
+        inserter = Inserter.fit([(q, lexicons[f], q.candidates[b].tokens) for q, f, b
+                                 in zip(queries, folds, best, strict=True) if f != k])
+        for i in (i for i, f in enumerate(folds) if f == k):
+            chosen = queries[i].candidates[best[i]].program
+            if inserter is not None:
+                chosen = inserter.insert(queries[i], chosen, lexicons[k])
+            out[i] = normalized_lcs(step_tokens(chosen), step_tokens(queries[i].example.program))
     return out
 
 
@@ -116,6 +139,10 @@ class Measured:
     as test's (where the baseline has one)."""
     baseline_alone: float
     """The baseline's score over the same queries."""
+    inserted_alone: float
+    """`cv_alone` with the inserter's steps added (trees' random_state 0)."""
+    inserted_dev: float
+    """The dev score with them (same)."""
 
     @property
     def cv_gap_alone(self) -> list[float]:
@@ -139,16 +166,31 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
     train = subsample(splits.train, train_fraction, seed)
     bank = Bank(train)
-    groups, folds, base, alone = [], [], [], []
-    for _, example, allowed, fold in training_queries(bank, split, without_copies):
+    groups, folds, base, alone, queries, indexed = [], [], [], [], [], []
+    for i, example, allowed, fold in training_queries(bank, split, without_copies):
         query = Query(bank, example, allowed)
         if query.candidates:
             groups.append(_labelled(query))
             folds.append(fold)
             base.append(baseline_on_query(query, split))
             alone.append(not has_copy(bank, example))
+            queries.append(query)
+            indexed.append((i, query))
     everything = np.ones(len(train), bool)
-    dev = [_labelled(Query(bank, e, everything)) for e in splits.dev]
+    dev_queries = [Query(bank, e, everything) for e in splits.dev]
+    dev = [_labelled(q) for q in dev_queries]
+    fold_of = fold_of_each(train, HOLDOUT[split])
+    lexicons = [ObjectLexicon.fit([e for e, f in zip(train, fold_of, strict=True) if f != k])
+                for k in range(FOLDS)]
+    inserted = inserted_cross_validated(queries, groups, folds, lexicons)
+    inserter = fit_inserter(bank, HOLDOUT[split], indexed, groups)
+    trees = fit_trees(groups)
+    dev_inserted = []
+    for q, (f, _) in zip(dev_queries, dev, strict=True):
+        chosen = q.candidates[int(np.argmax(trees.predict(design(f))))].program
+        if inserter is not None:
+            chosen = inserter.insert(q, chosen)
+        dev_inserted.append(normalized_lcs(step_tokens(chosen), step_tokens(q.example.program)))
     baseline = BASELINE[split][1](train, splits.dev)
     baseline_dev = np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
                             for p, e in zip(baseline, splits.dev, strict=True)])
@@ -160,7 +202,8 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
                      for r in range(tree_seeds)],
                     float(baseline_dev), [float(np.nanmean(e - base_lcs)) for e in each],
                     [float(e[scored_alone].mean()) for e in each],
-                    float(base_lcs[scored_alone].mean()))
+                    float(base_lcs[scored_alone].mean()), float(inserted[scored_alone].mean()),
+                    float(np.mean(dev_inserted)))
 
 
 def main() -> None:
@@ -197,7 +240,8 @@ def mean_of(rows: list[Measured]) -> Measured:
         return float(np.mean([getattr(r, name) for r in rows]))
 
     return Measured(lists("cv"), lists("dev"), floats("baseline_dev"), lists("cv_gap"),
-                    lists("cv_alone"), floats("baseline_alone"))
+                    lists("cv_alone"), floats("baseline_alone"), floats("inserted_alone"),
+                    floats("inserted_dev"))
 
 
 def _line(m: Measured, split: str) -> str:
@@ -207,7 +251,9 @@ def _line(m: Measured, split: str) -> str:
     return (f"cross-validated {np.mean(m.cv):.4f} (gap to {name} {np.mean(m.cv_gap):+.4f}, "
             f"without copies {np.mean(m.cv_gap_alone):+.4f}: {np.mean(m.cv_alone):.4f} "
             f"against {m.baseline_alone:.4f}), dev {np.mean(m.dev):.4f}"
-            f"{spread} ({name} {m.baseline_dev:.4f})")
+            f"{spread} ({name} {m.baseline_dev:.4f}); with the inserted steps: without "
+            f"copies {m.inserted_alone:.4f} (gap {m.inserted_alone - m.baseline_alone:+.4f}), "
+            f"dev {m.inserted_dev:.4f}")
 
 
 if __name__ == "__main__":

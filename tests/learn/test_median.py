@@ -53,3 +53,12 @@ def test_the_search_never_lowers_the_expected_lcs_and_is_deterministic(weights):
         assert medians.expected_lcs(codes) >= medians.expected_lcs(start_codes)
         assert step_tokens(Medians(references, weights).median(program(start))) == \
             step_tokens(median)
+
+
+def test_an_insertion_goes_where_the_references_have_the_step():
+    references = [program("abc")] * 3
+    medians = Medians(references, np.ones(3))
+    start = program("ac")
+    b = medians.symbol(program("b").steps[0])
+    inserted = medians.best_insertion(medians.encode(start), b)
+    assert step_tokens(medians.decode(start, inserted)) == step_tokens(program("abc"))

@@ -62,13 +62,32 @@ class Medians:
 
     def _encode(self, program: Program) -> list[int]:
         """The program's step tokens as symbols (new ones numbered in order of appearance)."""
-        out = []
-        for token, step in zip(step_tokens(program), program.steps, strict=True):
-            if token not in self.codes:
-                self.codes[token] = len(self.steps)
-                self.steps.append(step)
-            out.append(self.codes[token])
-        return out
+        return [self._code(token, step)
+                for token, step in zip(step_tokens(program), program.steps, strict=True)]
+
+    def _code(self, token: Hashable, step: Step) -> int:
+        if token not in self.codes:
+            self.codes[token] = len(self.steps)
+            self.steps.append(step)
+        return self.codes[token]
+
+    def encode(self, program: Program) -> list[int]:
+        """The program's steps as symbols."""
+        return self._encode(program)
+
+    def symbol(self, step: Step) -> int:
+        """One step as a symbol."""
+        return self._code(step_tokens(Program((step,)))[0], step)
+
+    def decode(self, program: Program, sequence: Sequence[int]) -> Program:
+        """`program` with the steps of `sequence` (symbols of this object)."""
+        return program.with_steps([self.steps[c] for c in sequence])
+
+    def best_insertion(self, sequence: list[int], symbol: int) -> list[int]:
+        """`sequence` with `symbol` inserted where `expected_lcs` is highest (ties:
+        earliest)."""
+        options = [[*sequence[:i], symbol, *sequence[i:]] for i in range(len(sequence) + 1)]
+        return options[int(np.argmax([self.expected_lcs(o) for o in options]))]
 
     def expected_lcs(self, sequence: Sequence[int]) -> float:
         """Weighted mean of the steps LCS (over the longer length) to the references."""
@@ -96,4 +115,4 @@ class Medians:
                 break
             k = int(np.argmax(scores))
             current, best = moves[k], scores[k]
-        return start.with_steps([self.steps[c] for c in current])
+        return self.decode(start, current)

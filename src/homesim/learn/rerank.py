@@ -24,6 +24,9 @@ For a description x:
    whether it was edited.
 4. **Choice.** The best-scoring candidate that executes in the example's home
    (`execution.executable`, checked best-first; the best one if none does).
+5. **Insertion.** The steps the text says that the choice lacks and that a classifier
+   finds likely, inserted where the neighbours have them (`insertion`), when the result
+   still executes there.
 
 The trees regress the candidates' steps LCS to the truth, centred within each description
 (only the order within a description matters), on each feature and on its deviation from
@@ -51,6 +54,7 @@ from homesim.program.model import Program
 if TYPE_CHECKING:
     from sklearn.ensemble import HistGradientBoostingRegressor
 
+    from homesim.learn.insertion import Inserter
     from homesim.learn.likelihood import CrossFitted
     from homesim.learn.text2prog import Text2Prog
 
@@ -344,18 +348,22 @@ class Reranker:
     likelihood: CrossFitted | None = None
     """With it, each candidate also gets `likelihood.FEATURES` (docs/learn.md: they gained on
     dev, not on test, so the table's reranker has none)."""
+    inserter: Inserter | None = None
+    """With it, the steps the text says that the choice lacks are inserted when the
+    result still executes (`insertion`)."""
 
     @classmethod
     def fit(cls, train: list[Example], holdout: str, likelihood: bool = False,
-            seed: int = 0) -> Reranker:
+            seed: int = 0, insert: bool = True) -> Reranker:
         """Trees fitted on `train` queried against itself, hiding `holdout` (one of
         `HOLDOUTS`); `likelihood`: with the likelihood features of cross-fitted MLE models
-        (trained with `seed`)."""
+        (trained with `seed`); `insert`: with the `insertion.Inserter` of the steps the text
+        says, fitted on the same queries."""
         from homesim.learn.likelihood import CrossFitted
 
         bank = Bank(train)
         fitted = CrossFitted.fit(train, holdout, seed) if likelihood else None
-        groups = []
+        groups, queries = [], []
         for i, example in enumerate(train):
             query = Query(bank, example, ~bank.hidden(example, holdout))
             if query.candidates:
@@ -363,7 +371,9 @@ class Reranker:
                 if fitted is not None:
                     features = _with_likelihoods(features, query, fitted.for_training_query(i))
                 groups.append((features, targets))
-        return cls(bank, fit_trees(groups), fitted)
+                queries.append((i, query))
+        inserter = fit_inserter(bank, holdout, queries, groups) if insert else None
+        return cls(bank, fit_trees(groups), fitted, inserter)
 
     def scores(self, query: Query) -> np.ndarray:
         """(candidates,) the trees' score of each of the query's candidates."""
@@ -376,20 +386,58 @@ class Reranker:
         """One program per example: the best-scoring candidate that executes in its home."""
         return [self.choose(e, partial(_executable_in, e)) for e in examples]
 
-    def ranked(self, example: Example,
-               vectors: tuple[np.ndarray, np.ndarray] | None = None) -> list[Program]:
-        """The candidates for an example's title and description, best-scoring first (its
-        program is not read); `vectors` as `Query` takes them."""
+    def ranked(self, example: Example, vectors: tuple[np.ndarray, np.ndarray] | None = None
+               ) -> tuple[Query, list[Program]]:
+        """The query for an example's title and description and its candidates,
+        best-scoring first (its program is not read); `vectors` as `Query` takes them."""
         query = Query(self.bank, example, np.ones(len(self.bank.train), bool), vectors)
         order = np.argsort(-self.scores(query), kind="stable")
-        return [query.candidates[int(i)].program for i in order]
+        return query, [query.candidates[int(i)].program for i in order]
 
     def choose(self, example: Example, runs: Callable[[Program], bool],
                vectors: tuple[np.ndarray, np.ndarray] | None = None) -> Program:
         """The best-scoring candidate that `runs` accepts among the first
-        `CHECK_EXECUTABLE`; the best one if none is."""
-        programs = self.ranked(example, vectors)
-        return next((p for p in programs[:CHECK_EXECUTABLE] if runs(p)), programs[0])
+        `CHECK_EXECUTABLE` (the best one if none is), with the inserter's steps added when
+        `runs` accepts the result."""
+        query, programs = self.ranked(example, vectors)
+        chosen = next((p for p in programs[:CHECK_EXECUTABLE] if runs(p)), programs[0])
+        if self.inserter is None:
+            return chosen
+        edited = self.inserter.insert(query, chosen)
+        return edited if edited.steps != chosen.steps and runs(edited) else chosen
+
+
+def cross_fitted_best(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[int],
+                      random_state: int | None = None) -> np.ndarray:
+    """(groups,) index of each group's best-scoring candidate under trees fitted on the
+    groups of the other folds (-1 where a fold has nothing to learn from)."""
+    from homesim.learn.likelihood import FOLDS
+
+    best = np.full(len(groups), -1)
+    for k in range(FOLDS):
+        held = [i for i, f in enumerate(folds) if f == k]
+        rest = [g for g, f in zip(groups, folds, strict=True) if f != k]
+        if held and rest:
+            trees = fit_trees(rest, random_state)
+            best[held] = [int(np.argmax(trees.predict(design(groups[i][0])))) for i in held]
+    return best
+
+
+def fit_inserter(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
+                 groups: list[tuple[np.ndarray, np.ndarray]]) -> Inserter | None:
+    """The `insertion.Inserter` learned from the training queries (`queries`: (index in
+    training, query), their `groups` in order), each with its cross-fitted choice and the
+    lexicon of the folds it is not in."""
+    from homesim.learn.insertion import Inserter
+    from homesim.learn.likelihood import FOLDS, folds
+
+    fold_of = folds(bank.train, holdout)
+    query_folds = [fold_of[i] for i, _ in queries]
+    best = cross_fitted_best(groups, query_folds)
+    lexicons = [ObjectLexicon.fit([e for e, f in zip(bank.train, fold_of, strict=True)
+                                   if f != k]) for k in range(FOLDS)]
+    return Inserter.fit([(q, lexicons[f], q.candidates[b].tokens) for (_, q), f, b
+                         in zip(queries, query_folds, best, strict=True) if b >= 0])
 
 
 def _executable_in(example: Example, program: Program) -> bool:

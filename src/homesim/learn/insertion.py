@@ -1,0 +1,173 @@
+"""Steps the description says, inserted into the reranker's choice.
+
+The reranker chooses a whole program; descriptions often spell out a step that program
+lacks ("look at the light switch", "put the book on the table"). Per clause of the text (split
+at punctuation, "and", "then"), a *proposal* is every step token seen in the programs the
+query may see whose action a word of the clause links to and whose objects the clause all
+names (`lexicon.ObjectLexicon`). A classifier (gradient-boosted trees, `CLASSIFIER`) predicts
+whether each proposal the choice lacks is in the true program, from its support among the
+query's neighbours and in its activity, how common it is, its clause, and how it relates
+to the choice (`PROPOSAL_FEATURES`). Those above `INSERT_THRESHOLD`, most likely first, are
+inserted one by one where they raise the expected steps LCS to the query's nearest
+neighbours most (`median.Medians`, weights at tau `POSITION_TAU`).
+
+The classifier learns from the training queries, each with the choice of trees fitted
+without its cross-validation fold and proposals from a lexicon fitted without that fold, so
+that both look as they will for a test description. Why: proposals the choice lacks are in
+the truth about one time in six, but the classifier finds those it can trust (docs/learn.md,
+"Steps the text says").
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from homesim.learn.lexicon import ObjectLexicon, words
+from homesim.learn.median import Medians
+from homesim.program.metrics import StepToken, step_tokens
+from homesim.program.model import Program, Step
+
+if TYPE_CHECKING:
+    from sklearn.ensemble import HistGradientBoostingClassifier
+
+    from homesim.learn.rerank import Query
+
+INSERT_THRESHOLD = 0.5
+"""Proposals the classifier gives at least this probability of being in the truth are
+inserted (chosen by cross-validation over the training queries, docs/learn.md)."""
+POSITION_TAU = 0.1
+"""The neighbour weights (`rerank.TAUS`) under which an inserted step is placed."""
+CLASSIFIER = {"max_iter": 150, "learning_rate": 0.05, "max_leaf_nodes": 15,
+              "min_samples_leaf": 40, "random_state": 0}
+"""`sklearn.ensemble.HistGradientBoostingClassifier` settings."""
+PROPOSAL_FEATURES = ("neighbour support", "activity support", "log programs with it",
+                     "objects", "action", "clause position", "proposals in its clause",
+                     "clause words", "clause classes", "clause actions", "proposals",
+                     "choice has its objects", "choice has its action", "choice length")
+CLAUSE_BREAK = re.compile(r"[.,;!?\n]|\band\b|\bthen\b")
+
+
+def clauses(text: str) -> list[str]:
+    """The lower-case clauses of a text: split at punctuation, "and" and "then"."""
+    return [c for c in CLAUSE_BREAK.split(text.lower()) if c.strip()]
+
+
+@dataclass(frozen=True)
+class Proposal:
+    """A step the text proposes, and what is known of it before looking at a choice."""
+
+    token: StepToken
+    step: Step
+    clause_features: tuple[float, ...]
+
+
+def proposals(query: Query, lexicon: ObjectLexicon) -> list[Proposal]:
+    """The steps the query's text proposes, clause by clause, in order (each once)."""
+    bank = query.bank
+    seen: dict[StepToken, Step] = {}
+    for k in np.flatnonzero(query.allowed):
+        for token, step in zip(bank.tokens[k], bank.train[k].program.steps, strict=True):
+            seen.setdefault(token, step)
+    out: dict[StepToken, Proposal] = {}
+    parts = clauses(query.example.text)
+    for i, clause in enumerate(parts):
+        acts, named = lexicon.actions(clause), lexicon.mentions(clause)
+        here = [t for t in seen if t[0] in acts and t[1] and all(o in named for o in t[1])]
+        shape = (i / max(len(parts) - 1, 1), len(here), len(words(clause)), len(named),
+                 len(acts))
+        for token in here:
+            out.setdefault(token, Proposal(token, seen[token], shape))
+    return list(out.values())
+
+
+def proposal_features(query: Query, found: list[Proposal], choice: tuple,
+                      action_codes: dict[str, int]) -> np.ndarray:
+    """(proposals, len(PROPOSAL_FEATURES)) rows for the proposals, against the choice's
+    step tokens `choice`; `action_codes` numbers action keys (new ones appended)."""
+    bank, near = query.bank, query.near
+    weights = query.weights[POSITION_TAU][near]
+    weights = weights / max(weights.sum(), 1e-12)
+    same = query.activity_programs()
+    allowed = np.flatnonzero(query.allowed)
+    used = {o for t in choice for o in t[1]}
+    acts = {t[0] for t in choice}
+    rows = []
+    for p in found:
+        has = [p.token in bank.tokens[k] for k in near]
+        rows.append([float(weights @ np.array(has, float)),
+                     float(np.mean([p.token in bank.tokens[k] for k in same])) if len(same)
+                     else 0.0,
+                     float(np.log1p(sum(p.token in bank.tokens[k] for k in allowed))),
+                     len(p.token[1]), action_codes.setdefault(p.token[0], len(action_codes)),
+                     *p.clause_features, len(found),
+                     float(all(o in used for o in p.token[1])), float(p.token[0] in acts),
+                     len(choice)])
+    return np.array(rows, dtype=float).reshape(len(found), len(PROPOSAL_FEATURES))
+
+
+def lacking(found: list[Proposal], choice: tuple) -> list[Proposal]:
+    """The proposals whose step the choice does not have."""
+    return [p for p in found if p.token not in choice]
+
+
+@dataclass
+class Inserter:
+    """The fitted classifier and the action numbering its features use."""
+
+    classifier: HistGradientBoostingClassifier
+    action_codes: dict[str, int]
+
+    @classmethod
+    def fit(cls, examples: list[tuple[Query, ObjectLexicon, tuple]]) -> Inserter | None:
+        """From (training query, lexicon fitted without its fold, cross-fitted choice's
+        step tokens) triples: label each proposal the choice lacks by whether the query's
+        own program has it. None when there is nothing (or only one kind) to learn from."""
+        from sklearn.ensemble import HistGradientBoostingClassifier
+
+        codes: dict[str, int] = {}
+        rows, labels = [], []
+        for query, lexicon, choice in examples:
+            found = lacking(proposals(query, lexicon), choice)
+            if found:
+                truth = set(step_tokens(query.example.program))
+                rows.append(proposal_features(query, found, choice, codes))
+                labels += [p.token in truth for p in found]
+        if len(set(labels)) < 2:
+            return None
+        classifier = HistGradientBoostingClassifier(**CLASSIFIER)
+        return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
+
+    def probabilities(self, query: Query, found: list[Proposal], choice: tuple) -> np.ndarray:
+        """(proposals,) the probability that each is in the truth."""
+        if not found:
+            return np.zeros(0)
+        rows = proposal_features(query, found, choice, dict(self.action_codes))
+        return np.asarray(self.classifier.predict_proba(rows)[:, 1])
+
+    def insert(self, query: Query, program: Program, lexicon: ObjectLexicon | None = None
+               ) -> Program:
+        """`program` (the choice for `query`) with the likely proposals it lacks inserted
+        (module docstring); `lexicon` defaults to the bank's."""
+        choice = tuple(step_tokens(program))
+        found = lacking(proposals(query, lexicon or query.bank.lexicon), choice)
+        chance = self.probabilities(query, found, choice)
+        likely = [found[int(i)] for i in np.argsort(-chance, kind="stable")
+                  if chance[int(i)] >= INSERT_THRESHOLD]
+        if not likely:
+            return program
+        return insert_steps(query, program, [p.step for p in likely])
+
+
+def insert_steps(query: Query, program: Program, steps: list[Step]) -> Program:
+    """`program` with each of `steps` inserted in turn where it raises the expected steps LCS
+    to the query's nearest neighbours (weights at `POSITION_TAU`) most (ties: earliest)."""
+    bank, near = query.bank, query.near
+    medians = Medians([bank.train[k].program for k in near], query.weights[POSITION_TAU][near])
+    current = medians.encode(program)
+    for step in steps:
+        current = medians.best_insertion(current, medians.symbol(step))
+    return medians.decode(program, current)
