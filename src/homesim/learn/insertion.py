@@ -66,22 +66,28 @@ class Proposal:
 
 
 def proposals(query: Query, lexicon: ObjectLexicon) -> list[Proposal]:
-    """The steps the query's text proposes, clause by clause, in order (each once)."""
+    """The steps the query's text proposes, clause by clause (within one, in order of first
+    appearance in the training programs the query may see), each once."""
     bank = query.bank
-    seen: dict[StepToken, Step] = {}
-    for k in np.flatnonzero(query.allowed):
-        for token, step in zip(bank.tokens[k], bank.train[k].program.steps, strict=True):
-            seen.setdefault(token, step)
     out: dict[StepToken, Proposal] = {}
     parts = clauses(query.example.text)
     for i, clause in enumerate(parts):
         acts, named = lexicon.actions(clause), lexicon.mentions(clause)
-        here = [t for t in seen if t[0] in acts and t[1] and all(o in named for o in t[1])]
+        here = sorted((_first_seen(query, t), t) for t, ks in bank.step_index.items()
+                      if t[0] in acts and t[1] and all(o in named for o in t[1])
+                      and query.allowed[ks].any())
         shape = (i / max(len(parts) - 1, 1), len(here), len(words(clause)), len(named),
                  len(acts))
-        for token in here:
-            out.setdefault(token, Proposal(token, seen[token], shape))
+        for (k, position), token in here:
+            out.setdefault(token, Proposal(token, bank.train[k].program.steps[position], shape))
     return list(out.values())
+
+
+def _first_seen(query: Query, token: StepToken) -> tuple[int, int]:
+    """(program, step) where `token` first occurs in the programs the query may see."""
+    ks = query.bank.step_index[token]
+    k = int(ks[query.allowed[ks]][0])
+    return k, query.bank.tokens[k].index(token)
 
 
 def proposal_features(query: Query, found: list[Proposal], choice: tuple,
@@ -92,16 +98,15 @@ def proposal_features(query: Query, found: list[Proposal], choice: tuple,
     weights = query.weights[POSITION_TAU][near]
     weights = weights / max(weights.sum(), 1e-12)
     same = query.activity_programs()
-    allowed = np.flatnonzero(query.allowed)
     used = {o for t in choice for o in t[1]}
     acts = {t[0] for t in choice}
     rows = []
     for p in found:
-        has = [p.token in bank.tokens[k] for k in near]
-        rows.append([float(weights @ np.array(has, float)),
-                     float(np.mean([p.token in bank.tokens[k] for k in same])) if len(same)
-                     else 0.0,
-                     float(np.log1p(sum(p.token in bank.tokens[k] for k in allowed))),
+        has = np.zeros(len(bank.train), bool)
+        has[bank.step_index[p.token]] = True
+        rows.append([float(weights @ has[near].astype(float)),
+                     float(np.mean(has[same])) if len(same) else 0.0,
+                     float(np.log1p(int(np.sum(has & query.allowed)))),
                      len(p.token[1]), action_codes.setdefault(p.token[0], len(action_codes)),
                      *p.clause_features, len(found),
                      float(all(o in used for o in p.token[1])), float(p.token[0] in acts),

@@ -41,7 +41,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cached_property, partial
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -111,6 +111,15 @@ class Bank:
         self.lengths = np.array([len(t) for t in self.tokens], dtype=float)
         self.lexicon = ObjectLexicon.fit(self.train)
         self.idf, self.bags = _bags([e.text for e in self.train])
+
+    @cached_property
+    def step_index(self) -> dict[tuple, np.ndarray]:
+        """Step token -> indices (ascending) of the training programs that have it."""
+        index: dict[tuple, list[int]] = {}
+        for k, tokens in enumerate(self.tokens):
+            for token in dict.fromkeys(tokens):
+                index.setdefault(token, []).append(k)
+        return {token: np.array(ks) for token, ks in index.items()}
 
     def medoid(self, indices: np.ndarray) -> int:
         """The one of `indices` (not empty) with the highest summed steps LCS to the others
