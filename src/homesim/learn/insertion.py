@@ -8,8 +8,8 @@ names (`lexicon.ObjectLexicon`). A classifier (gradient-boosted trees, `CLASSIFI
 whether each proposal the choice lacks is in the true program, from its support among the
 query's neighbours and in its activity, how common it is, its clause, and how it relates
 to the choice (`PROPOSAL_FEATURES`). Those above `INSERT_THRESHOLD`, most likely first, are
-inserted one by one where they raise the expected steps LCS to the query's nearest
-neighbours most (`median.Medians`, weights at tau `POSITION_TAU`).
+inserted one by one at the position of highest expected steps LCS to the query's nearest
+neighbours (`median.Medians`, weights at tau `POSITION_TAU`).
 
 The classifier learns from the training queries, each with the choice of trees fitted
 without its cross-validation fold and proposals from a lexicon fitted without that fold, so
@@ -168,8 +168,9 @@ class Inserter:
 
 
 def insert_steps(query: Query, program: Program, steps: list[Step]) -> Program:
-    """`program` with each of `steps` inserted in turn where it raises the expected steps LCS
-    to the query's nearest neighbours (weights at `POSITION_TAU`) most (ties: earliest)."""
+    """`program` with each of `steps` inserted in turn at the position of highest expected
+    steps LCS to the query's nearest neighbours (weights at `POSITION_TAU`; ties: the
+    earliest)."""
     bank, near = query.bank, query.near
     medians = Medians([bank.train[k].program for k in near], query.weights[POSITION_TAU][near])
     current = medians.encode(program)
