@@ -29,6 +29,7 @@ import numpy as np
 
 from homesim.learn import baselines
 from homesim.learn.data import Example
+from homesim.learn.deletion import Deleter
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.insertion import Inserter
 from homesim.learn.lexicon import ObjectLexicon
@@ -37,14 +38,16 @@ from homesim.learn.likelihood import folds as fold_of_each
 from homesim.learn.rerank import (
     Bank,
     Query,
+    Reranker,
     _labelled,
     cross_fitted_best,
     design,
-    fit_inserter,
+    fit_editors,
     fit_trees,
 )
 from homesim.learn.splits import SPLITS
 from homesim.program.metrics import normalized_lcs, step_tokens
+from homesim.program.model import Program
 
 Group = tuple[np.ndarray, np.ndarray]
 
@@ -61,27 +64,33 @@ def cross_validated_each(groups: list[Group], folds: list[int], random_state: in
     return np.array([float(t[b]) for (_, t), b in zip(groups, best, strict=True)])
 
 
-def inserted_cross_validated(queries: list[Query], groups: list[Group], folds: list[int],
-                             lexicons: list[ObjectLexicon]) -> np.ndarray:
+def edited_cross_validated(queries: list[Query], groups: list[Group], folds: list[int],
+                           lexicons: list[ObjectLexicon]) -> tuple[np.ndarray, np.ndarray]:
     """Each query's steps LCS after the inserter adds steps to its cross-validated choice
-    (the reranker's trees at `random_state` 0), the inserter of its fold fitted on the
-    queries of the other folds as `rerank.fit_inserter` fits it."""
+    (the reranker's trees at `random_state` 0), then after the deleter removes some, each
+    editor of a fold fitted on the queries of the other folds as `rerank.fit_editors` fits
+    them (the deleter on programs the inserters of their own folds wrote)."""
     best = cross_fitted_best(groups, folds)
-    out = np.zeros(len(queries))
+    written: list[Program] = [queries[i].candidates[b].program for i, b in enumerate(best)]
     for k in range(FOLDS):
         inserter = Inserter.fit([(q, lexicons[f], q.candidates[b].tokens) for q, f, b
                                  in zip(queries, folds, best, strict=True) if f != k])
         for i in (i for i, f in enumerate(folds) if f == k):
-            chosen = queries[i].candidates[best[i]].program
             if inserter is not None:
-                chosen = inserter.insert(queries[i], chosen, lexicons[k])
-            out[i] = normalized_lcs(step_tokens(chosen), step_tokens(queries[i].example.program))
-    return out
+                written[i] = inserter.insert(queries[i], written[i], lexicons[k])
+    deleted = list(written)
+    for k in range(FOLDS):
+        deleter = Deleter.fit([(q, lexicons[f], p) for q, f, p
+                               in zip(queries, folds, written, strict=True) if f != k])
+        for i in (i for i, f in enumerate(folds) if f == k):
+            if deleter is not None:
+                deleted[i] = deleter.delete(queries[i], written[i], lexicons[k])
 
+    def scored(programs: list[Program]) -> np.ndarray:
+        return np.array([normalized_lcs(step_tokens(p), step_tokens(q.example.program))
+                         for p, q in zip(programs, queries, strict=True)])
 
-def cross_validated(groups: list[Group], folds: list[int], random_state: int = 0) -> float:
-    """Mean top-candidate LCS with each fold scored by trees fitted on the others."""
-    return float(np.mean(cross_validated_each(groups, folds, random_state)))
+    return scored(written), scored(deleted)
 
 
 BASELINE = {"stratified": ("title-medoid", baselines.title_medoid),
@@ -143,6 +152,11 @@ class Measured:
     """`cv_alone` with the inserter's steps added (trees' random_state 0)."""
     inserted_dev: float
     """The dev score with them (same)."""
+    deleted_alone: float
+    """`inserted_alone` after the deleter's deletions (the reranker as the table scores it,
+    less the executability check)."""
+    deleted_dev: float
+    """The dev score with them."""
 
     @property
     def cv_gap_alone(self) -> list[float]:
@@ -182,15 +196,16 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     fold_of = fold_of_each(train, HOLDOUT[split])
     lexicons = [ObjectLexicon.fit([e for e, f in zip(train, fold_of, strict=True) if f != k])
                 for k in range(FOLDS)]
-    inserted = inserted_cross_validated(queries, groups, folds, lexicons)
-    inserter = fit_inserter(bank, HOLDOUT[split], indexed, groups)
-    trees = fit_trees(groups)
-    dev_inserted = []
+    inserted, deleted = edited_cross_validated(queries, groups, folds, lexicons)
+    model = Reranker(bank, fit_trees(groups), None, *fit_editors(bank, HOLDOUT[split],
+                                                                  indexed, groups))
+    dev_inserted, dev_deleted = [], []
     for q, (f, _) in zip(dev_queries, dev, strict=True):
-        chosen = q.candidates[int(np.argmax(trees.predict(design(f))))].program
-        if inserter is not None:
-            chosen = inserter.insert(q, chosen)
-        dev_inserted.append(normalized_lcs(step_tokens(chosen), step_tokens(q.example.program)))
+        chosen = q.candidates[int(np.argmax(model.trees.predict(design(f))))].program
+        edits = model.edits(q, chosen)
+        truth = step_tokens(q.example.program)
+        dev_deleted.append(normalized_lcs(step_tokens(edits[0]), truth))
+        dev_inserted.append(normalized_lcs(step_tokens(edits[-1]), truth))
     baseline = BASELINE[split][1](train, splits.dev)
     baseline_dev = np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
                             for p, e in zip(baseline, splits.dev, strict=True)])
@@ -203,7 +218,8 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
                     float(baseline_dev), [float(np.nanmean(e - base_lcs)) for e in each],
                     [float(e[scored_alone].mean()) for e in each],
                     float(base_lcs[scored_alone].mean()), float(inserted[scored_alone].mean()),
-                    float(np.mean(dev_inserted)))
+                    float(np.mean(dev_inserted)), float(deleted[scored_alone].mean()),
+                    float(np.mean(dev_deleted)))
 
 
 def main() -> None:
@@ -241,7 +257,7 @@ def mean_of(rows: list[Measured]) -> Measured:
 
     return Measured(lists("cv"), lists("dev"), floats("baseline_dev"), lists("cv_gap"),
                     lists("cv_alone"), floats("baseline_alone"), floats("inserted_alone"),
-                    floats("inserted_dev"))
+                    floats("inserted_dev"), floats("deleted_alone"), floats("deleted_dev"))
 
 
 def _line(m: Measured, split: str) -> str:
@@ -253,7 +269,9 @@ def _line(m: Measured, split: str) -> str:
             f"against {m.baseline_alone:.4f}), dev {np.mean(m.dev):.4f}"
             f"{spread} ({name} {m.baseline_dev:.4f}); with the inserted steps: without "
             f"copies {m.inserted_alone:.4f} (gap {m.inserted_alone - m.baseline_alone:+.4f}), "
-            f"dev {m.inserted_dev:.4f}")
+            f"dev {m.inserted_dev:.4f}; and then the deleted ones: without copies "
+            f"{m.deleted_alone:.4f} (gap {m.deleted_alone - m.baseline_alone:+.4f}), "
+            f"dev {m.deleted_dev:.4f}")
 
 
 if __name__ == "__main__":

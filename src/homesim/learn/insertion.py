@@ -102,8 +102,7 @@ def proposal_features(query: Query, found: list[Proposal], choice: tuple,
     acts = {t[0] for t in choice}
     rows = []
     for p in found:
-        has = np.zeros(len(bank.train), bool)
-        has[bank.step_index[p.token]] = True
+        has = bank.having(p.token)
         rows.append([float(weights @ has[near].astype(float)),
                      float(np.mean(has[same])) if len(same) else 0.0,
                      float(np.log1p(int(np.sum(has & query.allowed)))),

@@ -54,6 +54,7 @@ from homesim.program.model import Program
 if TYPE_CHECKING:
     from sklearn.ensemble import HistGradientBoostingRegressor
 
+    from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter
     from homesim.learn.likelihood import CrossFitted
     from homesim.learn.text2prog import Text2Prog
@@ -120,6 +121,13 @@ class Bank:
             for token in dict.fromkeys(tokens):
                 index.setdefault(token, []).append(k)
         return {token: np.array(ks) for token, ks in index.items()}
+
+    def having(self, token: tuple) -> np.ndarray:
+        """(train,) True where the training program has the step `token`."""
+        out = np.zeros(len(self.train), bool)
+        if token in self.step_index:
+            out[self.step_index[token]] = True
+        return out
 
     def medoid(self, indices: np.ndarray) -> int:
         """The one of `indices` (not empty) with the highest summed steps LCS to the others
@@ -358,16 +366,18 @@ class Reranker:
     """With it, each candidate also gets `likelihood.FEATURES` (docs/learn.md: they gained on
     dev, not on test, so the table's reranker has none)."""
     inserter: Inserter | None = None
-    """With it, the steps the text says that the choice lacks are inserted when the
-    result still executes (`insertion`)."""
+    """With it, the steps the text says that the choice lacks are inserted (`insertion`)."""
+    deleter: Deleter | None = None
+    """With it, the steps of the choice (after insertion) that neither the text nor the
+    neighbours support are deleted (`deletion`)."""
 
     @classmethod
     def fit(cls, train: list[Example], holdout: str, likelihood: bool = False,
-            seed: int = 0, insert: bool = True) -> Reranker:
+            seed: int = 0, edit: bool = True) -> Reranker:
         """Trees fitted on `train` queried against itself, hiding `holdout` (one of
         `HOLDOUTS`); `likelihood`: with the likelihood features of cross-fitted MLE models
-        (trained with `seed`); `insert`: with the `insertion.Inserter` of the steps the text
-        says, fitted on the same queries."""
+        (trained with `seed`); `edit`: with the `insertion.Inserter` of the steps the text
+        says and the `deletion.Deleter` of unsupported steps, fitted on the same queries."""
         from homesim.learn.likelihood import CrossFitted
 
         bank = Bank(train)
@@ -381,8 +391,8 @@ class Reranker:
                     features = _with_likelihoods(features, query, fitted.for_training_query(i))
                 groups.append((features, targets))
                 queries.append((i, query))
-        inserter = fit_inserter(bank, holdout, queries, groups) if insert else None
-        return cls(bank, fit_trees(groups), fitted, inserter)
+        editors = fit_editors(bank, holdout, queries, groups) if edit else (None, None)
+        return cls(bank, fit_trees(groups), fitted, *editors)
 
     def scores(self, query: Query) -> np.ndarray:
         """(candidates,) the trees' score of each of the query's candidates."""
@@ -406,14 +416,20 @@ class Reranker:
     def choose(self, example: Example, runs: Callable[[Program], bool],
                vectors: tuple[np.ndarray, np.ndarray] | None = None) -> Program:
         """The best-scoring candidate that `runs` accepts among the first
-        `CHECK_EXECUTABLE` (the best one if none is), with the inserter's steps added when
-        `runs` accepts the result."""
+        `CHECK_EXECUTABLE` (the best one if none is), edited (`edits`) when `runs` accepts
+        the result."""
         query, programs = self.ranked(example, vectors)
         chosen = next((p for p in programs[:CHECK_EXECUTABLE] if runs(p)), programs[0])
-        if self.inserter is None:
-            return chosen
-        edited = self.inserter.insert(query, chosen)
-        return edited if edited.steps != chosen.steps and runs(edited) else chosen
+        return next((p for p in self.edits(query, chosen)
+                     if p.steps != chosen.steps and runs(p)), chosen)
+
+    def edits(self, query: Query, chosen: Program) -> list[Program]:
+        """The edited choices to try, best first: with steps inserted and then deleted,
+        with steps inserted only."""
+        inserted = chosen if self.inserter is None else self.inserter.insert(query, chosen)
+        if self.deleter is None:
+            return [inserted]
+        return [self.deleter.delete(query, inserted), inserted]
 
 
 def cross_fitted_best(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[int],
@@ -432,11 +448,14 @@ def cross_fitted_best(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[i
     return best
 
 
-def fit_inserter(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
-                 groups: list[tuple[np.ndarray, np.ndarray]]) -> Inserter | None:
-    """The `insertion.Inserter` learned from the training queries (`queries`: (index in
-    training, query), their `groups` in order), each with its cross-fitted choice and the
-    lexicon of the folds it is not in."""
+def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
+                groups: list[tuple[np.ndarray, np.ndarray]]
+                ) -> tuple[Inserter | None, Deleter | None]:
+    """The `insertion.Inserter` and `deletion.Deleter` learned from the training queries
+    (`queries`: (index in training, query), their `groups` in order), each with its
+    cross-fitted choice, the lexicon of the folds it is not in, and for the deleter the
+    steps inserted by an inserter fitted on those folds."""
+    from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter
     from homesim.learn.likelihood import FOLDS, folds
 
@@ -445,8 +464,17 @@ def fit_inserter(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     best = cross_fitted_best(groups, query_folds)
     lexicons = [ObjectLexicon.fit([e for e, f in zip(bank.train, fold_of, strict=True)
                                    if f != k]) for k in range(FOLDS)]
-    return Inserter.fit([(q, lexicons[f], q.candidates[b].tokens) for (_, q), f, b
-                         in zip(queries, query_folds, best, strict=True) if b >= 0])
+    chosen = [(q, lexicons[f], q.candidates[b], f) for (_, q), f, b
+              in zip(queries, query_folds, best, strict=True) if b >= 0]
+    inserter = Inserter.fit([(q, lexicon, c.tokens) for q, lexicon, c, _ in chosen])
+    written = []
+    for k in range(FOLDS):
+        fold_inserter = Inserter.fit([(q, lexicon, c.tokens)
+                                      for q, lexicon, c, f in chosen if f != k])
+        for q, lexicon, c, _ in (t for t in chosen if t[3] == k):
+            written.append((q, lexicon, c.program if fold_inserter is None
+                            else fold_inserter.insert(q, c.program, lexicon)))
+    return inserter, Deleter.fit(written)
 
 
 def _executable_in(example: Example, program: Program) -> bool:

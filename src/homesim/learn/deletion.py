@@ -1,0 +1,108 @@
+"""Steps of the written program that neither the text nor the neighbours support, deleted.
+
+After the choice and its inserted steps (`insertion`), a classifier (gradient-boosted trees,
+`insertion.CLASSIFIER`'s settings) gives each step of the program a probability of being in
+the true program, from its support among the query's neighbours and in its activity, how
+common it is, whether the text names its objects or says its action, where it stands and how
+long the program is against the neighbours' (`STEP_FEATURES`). Steps below
+`DELETE_THRESHOLD` are deleted (never all of them). Under the steps LCS over the longer
+length a step the truth lacks costs only when the program is the longer one, which the
+length features let the classifier see.
+
+The classifier learns from the training queries, each with the cross-fitted choice, its
+steps inserted by an inserter fitted without the query's fold and a lexicon fitted without
+it, so that the programs look as they will for a test description (docs/learn.md, "Steps
+the text does not support").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from homesim.learn.insertion import CLASSIFIER, POSITION_TAU
+from homesim.learn.lexicon import ObjectLexicon, words
+from homesim.program.metrics import step_tokens
+from homesim.program.model import Program
+
+if TYPE_CHECKING:
+    from sklearn.ensemble import HistGradientBoostingClassifier
+
+    from homesim.learn.rerank import Query
+
+DELETE_THRESHOLD = 0.3
+"""Steps the classifier gives less than this probability of being in the truth are deleted
+(chosen by cross-validation over the training queries, docs/learn.md)."""
+STEP_FEATURES = ("neighbour support", "activity support", "log programs with it", "objects",
+                 "action", "objects named", "a room", "action said", "position", "length",
+                 "length against the neighbours'", "times in the program", "words")
+
+
+def step_features(query: Query, tokens: tuple, lexicon: ObjectLexicon,
+                  action_codes: dict[str, int]) -> np.ndarray:
+    """(steps, len(STEP_FEATURES)) rows for a program's step tokens `tokens` as the answer
+    to `query`; `action_codes` numbers action keys (new ones appended)."""
+    from homesim.ground.prepare import ROOM_NAMES
+
+    bank, near = query.bank, query.near
+    weights = query.weights[POSITION_TAU][near]
+    weights = weights / max(weights.sum(), 1e-12)
+    same = query.activity_programs()
+    named, said = lexicon.mentions(query.example.text), lexicon.actions(query.example.text)
+    usual_length = float(query.weights[POSITION_TAU] @ bank.lengths)
+    n_words = len(words(query.example.text))
+    rows = []
+    for position, token in enumerate(tokens):
+        has = bank.having(token)
+        rows.append([float(weights @ has[near].astype(float)),
+                     float(np.mean(has[same])) if len(same) else 0.0,
+                     float(np.log1p(int(np.sum(has & query.allowed)))), len(token[1]),
+                     action_codes.setdefault(token[0], len(action_codes)),
+                     float(all(o in named for o in token[1])) if token[1] else -1.0,
+                     float(any(o in ROOM_NAMES for o in token[1])), float(token[0] in said),
+                     position / max(len(tokens) - 1, 1), len(tokens),
+                     len(tokens) / max(usual_length, 1e-12), tokens.count(token), n_words])
+    return np.array(rows, dtype=float).reshape(len(tokens), len(STEP_FEATURES))
+
+
+@dataclass
+class Deleter:
+    """The fitted classifier and the action numbering its features use."""
+
+    classifier: HistGradientBoostingClassifier
+    action_codes: dict[str, int]
+
+    @classmethod
+    def fit(cls, examples: list[tuple[Query, ObjectLexicon, Program]]) -> Deleter | None:
+        """From (training query, lexicon fitted without its fold, its program as written
+        without its fold) triples: label each step by whether the query's own program has
+        it. None when there is only one kind to learn from."""
+        from sklearn.ensemble import HistGradientBoostingClassifier
+
+        codes: dict[str, int] = {}
+        rows, labels = [], []
+        for query, lexicon, program in examples:
+            tokens = tuple(step_tokens(program))
+            truth = set(step_tokens(query.example.program))
+            rows.append(step_features(query, tokens, lexicon, codes))
+            labels += [t in truth for t in tokens]
+        if len(set(labels)) < 2:
+            return None
+        classifier = HistGradientBoostingClassifier(**CLASSIFIER)
+        return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
+
+    def delete(self, query: Query, program: Program, lexicon: ObjectLexicon | None = None
+               ) -> Program:
+        """`program` without the steps of probability below `DELETE_THRESHOLD` (itself when
+        that would leave none); `lexicon` defaults to the bank's."""
+        tokens = tuple(step_tokens(program))
+        if not tokens:
+            return program
+        rows = step_features(query, tokens, lexicon or query.bank.lexicon,
+                             dict(self.action_codes))
+        keep = np.asarray(self.classifier.predict_proba(rows)[:, 1]) >= DELETE_THRESHOLD
+        if not keep.any() or keep.all():
+            return program
+        return program.with_steps([s for s, k in zip(program.steps, keep, strict=True) if k])

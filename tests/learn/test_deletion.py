@@ -1,0 +1,43 @@
+import numpy as np
+
+from homesim.learn.deletion import DELETE_THRESHOLD, STEP_FEATURES, Deleter, step_features
+from homesim.program.metrics import step_tokens
+from homesim.program.model import Program
+from tests.learn.test_insertion import TV, _bank, _query
+
+
+class _Fixed:
+    """A stand-in classifier: fixed probabilities, in step order."""
+
+    def __init__(self, chances: list[float]) -> None:
+        self.chances = chances
+
+    def predict_proba(self, rows: np.ndarray) -> np.ndarray:
+        assert rows.shape[1] == len(STEP_FEATURES)
+        p = np.array(self.chances[:len(rows)])
+        return np.stack([1 - p, p], axis=1)
+
+
+def test_unlikely_steps_are_deleted_but_never_all():
+    bank = _bank()
+    query = _query(bank, "watch tv")
+    program = Program.parse(TV)
+    low = DELETE_THRESHOLD - 0.01
+    edited = Deleter(_Fixed([0.9, low, 0.8]), {}).delete(query, program)  # type: ignore[arg-type]
+    assert step_tokens(edited) == [("WALK", ("home_office",)), ("WATCH", ("television",))]
+    assert Deleter(_Fixed([low] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]
+    assert Deleter(_Fixed([0.9] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]
+
+
+def test_step_features_see_the_text_and_the_neighbours():
+    bank = _bank()
+    query = _query(bank, "watch tv")
+    tokens = (*step_tokens(Program.parse(TV)), ("SWITCHON", ("light",)))
+    rows = step_features(query, tokens, bank.lexicon, {})
+    assert rows.shape == (4, len(STEP_FEATURES))
+    named = STEP_FEATURES.index("objects named")
+    assert list(rows[:, named]) == [1.0, 1.0, 1.0, 0.0]  # "watch" points to home_office
+    support = STEP_FEATURES.index("activity support")
+    assert rows[2, support] == 1.0 and rows[3, support] == 0.0
+    room = STEP_FEATURES.index("a room")
+    assert list(rows[:, room]) == [1.0, 0.0, 0.0, 0.0]
