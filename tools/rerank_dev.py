@@ -31,7 +31,7 @@ from homesim.learn import baselines
 from homesim.learn.data import Example
 from homesim.learn.deletion import Deleter
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
-from homesim.learn.insertion import Inserter
+from homesim.learn.insertion import Inserter, Known
 from homesim.learn.lexicon import ObjectLexicon
 from homesim.learn.likelihood import FOLDS
 from homesim.learn.likelihood import folds as fold_of_each
@@ -44,6 +44,7 @@ from homesim.learn.rerank import (
     design,
     fit_editors,
     fit_trees,
+    has_copy,
 )
 from homesim.learn.splits import SPLITS
 from homesim.program.metrics import normalized_lcs, step_tokens
@@ -65,26 +66,30 @@ def cross_validated_each(groups: list[Group], folds: list[int], random_state: in
 
 
 def edited_cross_validated(queries: list[Query], groups: list[Group], folds: list[int],
-                           lexicons: list[ObjectLexicon]) -> tuple[np.ndarray, np.ndarray]:
+                           known: list[Known]) -> tuple[np.ndarray, np.ndarray]:
     """Each query's steps LCS after the inserter adds steps to its cross-validated choice
     (the reranker's trees at `random_state` 0), then after the deleter removes some, each
-    editor of a fold fitted on the queries of the other folds as `rerank.fit_editors` fits
-    them (the deleter on programs the inserters of their own folds wrote)."""
+    editor of a fold fitted on the queries of the other folds without a copy in training,
+    as `rerank.fit_editors` fits them (the deleter on programs the inserters of their own
+    folds wrote)."""
     best = cross_fitted_best(groups, folds)
     written: list[Program] = [queries[i].candidates[b].program for i, b in enumerate(best)]
+    learns = [not has_copy(q.bank, q.example) for q in queries]
     for k in range(FOLDS):
-        inserter = Inserter.fit([(q, lexicons[f], q.candidates[b].tokens) for q, f, b
-                                 in zip(queries, folds, best, strict=True) if f != k])
+        inserter = Inserter.fit([(q, known[f], q.candidates[b].tokens) for q, f, b, ok
+                                 in zip(queries, folds, best, learns, strict=True)
+                                 if f != k and ok])
         for i in (i for i, f in enumerate(folds) if f == k):
             if inserter is not None:
-                written[i] = inserter.insert(queries[i], written[i], lexicons[k])
+                written[i] = inserter.insert(queries[i], written[i], known[k])
     deleted = list(written)
     for k in range(FOLDS):
-        deleter = Deleter.fit([(q, lexicons[f], p) for q, f, p
-                               in zip(queries, folds, written, strict=True) if f != k])
+        deleter = Deleter.fit([(q, known[f], p) for q, f, p, ok
+                               in zip(queries, folds, written, learns, strict=True)
+                               if f != k and ok])
         for i in (i for i, f in enumerate(folds) if f == k):
             if deleter is not None:
-                deleted[i] = deleter.delete(queries[i], written[i], lexicons[k])
+                deleted[i] = deleter.delete(queries[i], written[i], known[k])
 
     def scored(programs: list[Program]) -> np.ndarray:
         return np.array([normalized_lcs(step_tokens(p), step_tokens(q.example.program))
@@ -110,11 +115,6 @@ def training_queries(bank: Bank, split: str, without_copies: bool = False
     if without_copies:
         rows = [r for r in rows if not has_copy(bank, r[1])]
     return rows
-
-
-def has_copy(bank: Bank, example: Example) -> bool:
-    """Whether another training example has the same steps as `example` (a training one)."""
-    return int(bank.hidden(example, "program").sum()) > 1
 
 
 def baseline_on_query(query: Query, split: str) -> float:
@@ -193,10 +193,10 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     everything = np.ones(len(train), bool)
     dev_queries = [Query(bank, e, everything) for e in splits.dev]
     dev = [_labelled(q) for q in dev_queries]
-    fold_of = fold_of_each(train, HOLDOUT[split])
-    lexicons = [ObjectLexicon.fit([e for e, f in zip(train, fold_of, strict=True) if f != k])
-                for k in range(FOLDS)]
-    inserted, deleted = edited_cross_validated(queries, groups, folds, lexicons)
+    fold_of = np.array(fold_of_each(train, HOLDOUT[split]))
+    known = [Known(ObjectLexicon.fit([e for e, f in zip(train, fold_of, strict=True)
+                                      if f != k]), fold_of != k) for k in range(FOLDS)]
+    inserted, deleted = edited_cross_validated(queries, groups, folds, known)
     model = Reranker(bank, fit_trees(groups), None, *fit_editors(bank, HOLDOUT[split],
                                                                   indexed, groups))
     dev_inserted, dev_deleted = [], []

@@ -1,6 +1,7 @@
 import numpy as np
 
 from homesim.learn.deletion import DELETE_THRESHOLD, STEP_FEATURES, Deleter, step_features
+from homesim.learn.insertion import Known
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
 from tests.learn.test_insertion import TV, _bank, _query
@@ -33,7 +34,7 @@ def test_step_features_see_the_text_and_the_neighbours():
     bank = _bank()
     query = _query(bank, "watch tv")
     tokens = (*step_tokens(Program.parse(TV)), ("SWITCHON", ("light",)))
-    rows = step_features(query, tokens, bank.lexicon, {})
+    rows = step_features(query, tokens, Known.everything(query), {})
     assert rows.shape == (4, len(STEP_FEATURES))
     named = STEP_FEATURES.index("objects named")
     assert list(rows[:, named]) == [1.0, 1.0, 1.0, 0.0]  # "watch" points to home_office

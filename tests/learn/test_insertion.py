@@ -7,6 +7,7 @@ from homesim.learn.insertion import (
     INSERT_THRESHOLD,
     PROPOSAL_FEATURES,
     Inserter,
+    Known,
     clauses,
     proposal_features,
     proposals,
@@ -82,12 +83,19 @@ def test_proposal_features_see_the_choice_and_the_neighbours():
     bank = _bank()
     query = _query(bank, "watch tv, switch light")
     found = proposals(query, bank.lexicon)
-    rows = proposal_features(query, found, (("WATCH", ("television",)),), {})
+    rows = proposal_features(query, found, (("WATCH", ("television",)),),
+                             Known.everything(query), {})
     assert rows.shape == (len(found), len(PROPOSAL_FEATURES))
     has_objects = PROPOSAL_FEATURES.index("choice has its objects")
     assert list(rows[:, has_objects]) == [0.0, 1.0, 1.0, 0.0, 0.0, 0.0]
     support = PROPOSAL_FEATURES.index("activity support")
     assert rows[2, support] == 1.0 and rows[5, support] == 0.0  # a Watch TV query
+    share = PROPOSAL_FEATURES.index("share of programs with it")
+    assert rows[2, share] == 0.5
+    # a training query counts only the programs of the other folds
+    lamps = Known(bank.lexicon, np.array([False] * 3 + [True] * 3))
+    again = proposal_features(query, found, (), lamps, {})
+    assert again[2, support] == 0.0 and again[2, share] == 0.0 and again[5, share] == 1.0
 
 
 def test_the_reranker_inserts_only_what_still_executes(tiny_splits):

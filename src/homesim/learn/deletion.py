@@ -22,8 +22,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from homesim.learn.insertion import CLASSIFIER, POSITION_TAU
-from homesim.learn.lexicon import ObjectLexicon, words
+from homesim.learn.insertion import CLASSIFIER, POSITION_TAU, Known, support
+from homesim.learn.lexicon import words
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
 
@@ -35,35 +35,28 @@ if TYPE_CHECKING:
 DELETE_THRESHOLD = 0.3
 """Steps the classifier gives less than this probability of being in the truth are deleted
 (chosen by cross-validation over the training queries, docs/learn.md)."""
-STEP_FEATURES = ("neighbour support", "activity support", "log programs with it", "objects",
+STEP_FEATURES = ("neighbour support", "activity support", "share of programs with it", "objects",
                  "action", "objects named", "a room", "action said", "position", "length",
                  "length against the neighbours'", "times in the program", "words")
 
 
-def step_features(query: Query, tokens: tuple, lexicon: ObjectLexicon,
+def step_features(query: Query, tokens: tuple, known: Known,
                   action_codes: dict[str, int]) -> np.ndarray:
     """(steps, len(STEP_FEATURES)) rows for a program's step tokens `tokens` as the answer
     to `query`; `action_codes` numbers action keys (new ones appended)."""
     from homesim.ground.prepare import ROOM_NAMES
 
-    bank, near = query.bank, query.near
-    weights = query.weights[POSITION_TAU][near]
-    weights = weights / max(weights.sum(), 1e-12)
-    same = query.activity_programs()
-    named, said = lexicon.mentions(query.example.text), lexicon.actions(query.example.text)
-    usual_length = float(query.weights[POSITION_TAU] @ bank.lengths)
+    named = known.lexicon.mentions(query.example.text)
+    said = known.lexicon.actions(query.example.text)
+    usual_length = float(query.weights[POSITION_TAU] @ query.bank.lengths)
     n_words = len(words(query.example.text))
-    rows = []
-    for position, token in enumerate(tokens):
-        has = bank.having(token)
-        rows.append([float(weights @ has[near].astype(float)),
-                     float(np.mean(has[same])) if len(same) else 0.0,
-                     float(np.log1p(int(np.sum(has & query.allowed)))), len(token[1]),
-                     action_codes.setdefault(token[0], len(action_codes)),
-                     float(all(o in named for o in token[1])) if token[1] else -1.0,
-                     float(any(o in ROOM_NAMES for o in token[1])), float(token[0] in said),
-                     position / max(len(tokens) - 1, 1), len(tokens),
-                     len(tokens) / max(usual_length, 1e-12), tokens.count(token), n_words])
+    rows = [[*support(query, token, known), len(token[1]),
+             action_codes.setdefault(token[0], len(action_codes)),
+             float(all(o in named for o in token[1])) if token[1] else -1.0,
+             float(any(o in ROOM_NAMES for o in token[1])), float(token[0] in said),
+             position / max(len(tokens) - 1, 1), len(tokens),
+             len(tokens) / max(usual_length, 1e-12), tokens.count(token), n_words]
+            for position, token in enumerate(tokens)]
     return np.array(rows, dtype=float).reshape(len(tokens), len(STEP_FEATURES))
 
 
@@ -75,32 +68,31 @@ class Deleter:
     action_codes: dict[str, int]
 
     @classmethod
-    def fit(cls, examples: list[tuple[Query, ObjectLexicon, Program]]) -> Deleter | None:
-        """From (training query, lexicon fitted without its fold, its program as written
+    def fit(cls, examples: list[tuple[Query, Known, Program]]) -> Deleter | None:
+        """From (training query, what it may read without its fold, its program as written
         without its fold) triples: label each step by whether the query's own program has
         it. None when there is only one kind to learn from."""
         from sklearn.ensemble import HistGradientBoostingClassifier
 
         codes: dict[str, int] = {}
         rows, labels = [], []
-        for query, lexicon, program in examples:
+        for query, known, program in examples:
             tokens = tuple(step_tokens(program))
             truth = set(step_tokens(query.example.program))
-            rows.append(step_features(query, tokens, lexicon, codes))
+            rows.append(step_features(query, tokens, known, codes))
             labels += [t in truth for t in tokens]
         if len(set(labels)) < 2:
             return None
         classifier = HistGradientBoostingClassifier(**CLASSIFIER)
         return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
 
-    def delete(self, query: Query, program: Program, lexicon: ObjectLexicon | None = None
-               ) -> Program:
+    def delete(self, query: Query, program: Program, known: Known | None = None) -> Program:
         """`program` without the steps of probability below `DELETE_THRESHOLD` (itself when
-        that would leave none); `lexicon` defaults to the bank's."""
+        that would leave none); `known` defaults to `Known.everything`."""
         tokens = tuple(step_tokens(program))
         if not tokens:
             return program
-        rows = step_features(query, tokens, lexicon or query.bank.lexicon,
+        rows = step_features(query, tokens, known or Known.everything(query),
                              dict(self.action_codes))
         keep = np.asarray(self.classifier.predict_proba(rows)[:, 1]) >= DELETE_THRESHOLD
         if not keep.any() or keep.all():

@@ -44,11 +44,41 @@ POSITION_TAU = 0.1
 CLASSIFIER = {"max_iter": 150, "learning_rate": 0.05, "max_leaf_nodes": 15,
               "min_samples_leaf": 40, "random_state": 0}
 """`sklearn.ensemble.HistGradientBoostingClassifier` settings."""
-PROPOSAL_FEATURES = ("neighbour support", "activity support", "log programs with it",
+PROPOSAL_FEATURES = ("neighbour support", "activity support", "share of programs with it",
                      "objects", "action", "clause position", "proposals in its clause",
                      "clause words", "clause classes", "clause actions", "proposals",
                      "choice has its objects", "choice has its action", "choice length")
 CLAUSE_BREAK = re.compile(r"[.,;!?\n]|\band\b|\bthen\b")
+
+
+@dataclass(frozen=True)
+class Known:
+    """What an editor may read for a query besides the bank's neighbours: a lexicon, and the
+    training programs whose steps it counts. For a test query, the bank's lexicon and every
+    program; for a training query, those fitted on and made of the other cross-validation
+    folds, so that no count moves with whether its own (hidden) program has a step."""
+
+    lexicon: ObjectLexicon
+    counted: np.ndarray
+    """(train,) True for the programs counted."""
+
+    @classmethod
+    def everything(cls, query: Query) -> Known:
+        """What a test query may read."""
+        return cls(query.bank.lexicon, np.ones(len(query.bank.train), bool))
+
+
+def support(query: Query, token: StepToken, known: Known) -> tuple[float, float, float]:
+    """The step's weighted share among the query's nearest neighbours (weights at
+    `POSITION_TAU`), among the counted programs of its activity (0 when none) and among all
+    counted programs (those the query may see)."""
+    has = query.bank.having(token)
+    weights = query.weights[POSITION_TAU][query.near]
+    counted = known.counted & query.allowed
+    same = counted & query.bank.activity_mask(query.example.activity)
+    return (float(weights @ has[query.near].astype(float) / max(weights.sum(), 1e-12)),
+            float(has[same].mean()) if same.any() else 0.0,
+            float(has[counted].mean()) if counted.any() else 0.0)
 
 
 def clauses(text: str) -> list[str]:
@@ -90,26 +120,16 @@ def _first_seen(query: Query, token: StepToken) -> tuple[int, int]:
     return k, query.bank.tokens[k].index(token)
 
 
-def proposal_features(query: Query, found: list[Proposal], choice: tuple,
+def proposal_features(query: Query, found: list[Proposal], choice: tuple, known: Known,
                       action_codes: dict[str, int]) -> np.ndarray:
     """(proposals, len(PROPOSAL_FEATURES)) rows for the proposals, against the choice's
     step tokens `choice`; `action_codes` numbers action keys (new ones appended)."""
-    bank, near = query.bank, query.near
-    weights = query.weights[POSITION_TAU][near]
-    weights = weights / max(weights.sum(), 1e-12)
-    same = query.activity_programs()
     used = {o for t in choice for o in t[1]}
     acts = {t[0] for t in choice}
-    rows = []
-    for p in found:
-        has = bank.having(p.token)
-        rows.append([float(weights @ has[near].astype(float)),
-                     float(np.mean(has[same])) if len(same) else 0.0,
-                     float(np.log1p(int(np.sum(has & query.allowed)))),
-                     len(p.token[1]), action_codes.setdefault(p.token[0], len(action_codes)),
-                     *p.clause_features, len(found),
-                     float(all(o in used for o in p.token[1])), float(p.token[0] in acts),
-                     len(choice)])
+    rows = [[*support(query, p.token, known), len(p.token[1]),
+             action_codes.setdefault(p.token[0], len(action_codes)), *p.clause_features,
+             len(found), float(all(o in used for o in p.token[1])), float(p.token[0] in acts),
+             len(choice)] for p in found]
     return np.array(rows, dtype=float).reshape(len(found), len(PROPOSAL_FEATURES))
 
 
@@ -126,39 +146,40 @@ class Inserter:
     action_codes: dict[str, int]
 
     @classmethod
-    def fit(cls, examples: list[tuple[Query, ObjectLexicon, tuple]]) -> Inserter | None:
-        """From (training query, lexicon fitted without its fold, cross-fitted choice's
+    def fit(cls, examples: list[tuple[Query, Known, tuple]]) -> Inserter | None:
+        """From (training query, what it may read without its fold, cross-fitted choice's
         step tokens) triples: label each proposal the choice lacks by whether the query's
         own program has it. None when there is nothing (or only one kind) to learn from."""
         from sklearn.ensemble import HistGradientBoostingClassifier
 
         codes: dict[str, int] = {}
         rows, labels = [], []
-        for query, lexicon, choice in examples:
-            found = lacking(proposals(query, lexicon), choice)
+        for query, known, choice in examples:
+            found = lacking(proposals(query, known.lexicon), choice)
             if found:
                 truth = set(step_tokens(query.example.program))
-                rows.append(proposal_features(query, found, choice, codes))
+                rows.append(proposal_features(query, found, choice, known, codes))
                 labels += [p.token in truth for p in found]
         if len(set(labels)) < 2:
             return None
         classifier = HistGradientBoostingClassifier(**CLASSIFIER)
         return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
 
-    def probabilities(self, query: Query, found: list[Proposal], choice: tuple) -> np.ndarray:
+    def probabilities(self, query: Query, found: list[Proposal], choice: tuple, known: Known
+                      ) -> np.ndarray:
         """(proposals,) the probability that each is in the truth."""
         if not found:
             return np.zeros(0)
-        rows = proposal_features(query, found, choice, dict(self.action_codes))
+        rows = proposal_features(query, found, choice, known, dict(self.action_codes))
         return np.asarray(self.classifier.predict_proba(rows)[:, 1])
 
-    def insert(self, query: Query, program: Program, lexicon: ObjectLexicon | None = None
-               ) -> Program:
+    def insert(self, query: Query, program: Program, known: Known | None = None) -> Program:
         """`program` (the choice for `query`) with the likely proposals it lacks inserted
-        (module docstring); `lexicon` defaults to the bank's."""
+        (module docstring); `known` defaults to `Known.everything`."""
+        known = known or Known.everything(query)
         choice = tuple(step_tokens(program))
-        found = lacking(proposals(query, lexicon or query.bank.lexicon), choice)
-        chance = self.probabilities(query, found, choice)
+        found = lacking(proposals(query, known.lexicon), choice)
+        chance = self.probabilities(query, found, choice, known)
         likely = [found[int(i)] for i in np.argsort(-chance, kind="stable")
                   if chance[int(i)] >= INSERT_THRESHOLD]
         if not likely:

@@ -129,6 +129,15 @@ class Bank:
             out[self.step_index[token]] = True
         return out
 
+    @cached_property
+    def activities(self) -> np.ndarray:
+        """(train,) each training program's activity."""
+        return np.array([e.activity for e in self.train])
+
+    def activity_mask(self, activity: str) -> np.ndarray:
+        """(train,) True for the training programs of `activity`."""
+        return self.activities == activity
+
     def medoid(self, indices: np.ndarray) -> int:
         """The one of `indices` (not empty) with the highest summed steps LCS to the others
         (ties: the first)."""
@@ -452,29 +461,37 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
                 groups: list[tuple[np.ndarray, np.ndarray]]
                 ) -> tuple[Inserter | None, Deleter | None]:
     """The `insertion.Inserter` and `deletion.Deleter` learned from the training queries
-    (`queries`: (index in training, query), their `groups` in order), each with its
-    cross-fitted choice, the lexicon of the folds it is not in, and for the deleter the
-    steps inserted by an inserter fitted on those folds."""
+    (`queries`: (index in training, query), their `groups` in order) without a copy in
+    training, each with its cross-fitted choice, what it may read of the folds it is not in
+    (`insertion.Known`), and for the deleter the steps inserted by an inserter fitted on
+    those folds."""
     from homesim.learn.deletion import Deleter
-    from homesim.learn.insertion import Inserter
+    from homesim.learn.insertion import Inserter, Known
     from homesim.learn.likelihood import FOLDS, folds
 
-    fold_of = folds(bank.train, holdout)
-    query_folds = [fold_of[i] for i, _ in queries]
+    fold_of = np.array(folds(bank.train, holdout))
+    query_folds = [int(fold_of[i]) for i, _ in queries]
     best = cross_fitted_best(groups, query_folds)
-    lexicons = [ObjectLexicon.fit([e for e, f in zip(bank.train, fold_of, strict=True)
-                                   if f != k]) for k in range(FOLDS)]
-    chosen = [(q, lexicons[f], q.candidates[b], f) for (_, q), f, b
-              in zip(queries, query_folds, best, strict=True) if b >= 0]
-    inserter = Inserter.fit([(q, lexicon, c.tokens) for q, lexicon, c, _ in chosen])
+    known = [Known(ObjectLexicon.fit([e for e, f in zip(bank.train, fold_of, strict=True)
+                                      if f != k]), fold_of != k) for k in range(FOLDS)]
+    chosen = [(q, known[f], q.candidates[b], f) for (_, q), f, b
+              in zip(queries, query_folds, best, strict=True)
+              if b >= 0 and not has_copy(bank, q.example)]
+    inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, _ in chosen])
     written = []
-    for k in range(FOLDS):
-        fold_inserter = Inserter.fit([(q, lexicon, c.tokens)
-                                      for q, lexicon, c, f in chosen if f != k])
-        for q, lexicon, c, _ in (t for t in chosen if t[3] == k):
-            written.append((q, lexicon, c.program if fold_inserter is None
-                            else fold_inserter.insert(q, c.program, lexicon)))
+    for fold in range(FOLDS):
+        fold_inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, f in chosen if f != fold])
+        for q, k, c, _ in (t for t in chosen if t[3] == fold):
+            written.append((q, k, c.program if fold_inserter is None
+                            else fold_inserter.insert(q, c.program, k)))
     return inserter, Deleter.fit(written)
+
+
+def has_copy(bank: Bank, example: Example) -> bool:
+    """Whether another training example has the same steps as `example` (a training one).
+    The editors learn only from training queries without one: a copy the query may not see
+    would make a count move with whether its program has a step."""
+    return int(bank.hidden(example, "program").sum()) > 1
 
 
 def _executable_in(example: Example, program: Program) -> bool:
