@@ -198,7 +198,7 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
                                       if f != k]), fold_of != k) for k in range(FOLDS)]
     inserted, deleted = edited_cross_validated(queries, groups, folds, known)
     model = Reranker(bank, fit_trees(groups), None, *fit_editors(bank, HOLDOUT[split],
-                                                                  indexed, groups))
+                                                                  indexed, groups, True))
     dev_inserted, dev_deleted = [], []
     for q, (f, _) in zip(dev_queries, dev, strict=True):
         chosen = q.candidates[int(np.argmax(model.trees.predict(design(f))))].program

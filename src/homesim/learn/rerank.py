@@ -382,11 +382,12 @@ class Reranker:
 
     @classmethod
     def fit(cls, train: list[Example], holdout: str, likelihood: bool = False,
-            seed: int = 0, edit: bool = True) -> Reranker:
+            seed: int = 0, insert: bool = True, delete: bool = False) -> Reranker:
         """Trees fitted on `train` queried against itself, hiding `holdout` (one of
         `HOLDOUTS`); `likelihood`: with the likelihood features of cross-fitted MLE models
-        (trained with `seed`); `edit`: with the `insertion.Inserter` of the steps the text
-        says and the `deletion.Deleter` of unsupported steps, fitted on the same queries."""
+        (trained with `seed`); `insert`: with the `insertion.Inserter` of the steps the text
+        says, `delete`: also the `deletion.Deleter` of unsupported steps (docs/learn.md: it
+        did not gain, so the table's reranker has none), fitted on the same queries."""
         from homesim.learn.likelihood import CrossFitted
 
         bank = Bank(train)
@@ -400,7 +401,8 @@ class Reranker:
                     features = _with_likelihoods(features, query, fitted.for_training_query(i))
                 groups.append((features, targets))
                 queries.append((i, query))
-        editors = fit_editors(bank, holdout, queries, groups) if edit else (None, None)
+        editors = (fit_editors(bank, holdout, queries, groups, delete) if insert
+                   else (None, None))
         return cls(bank, fit_trees(groups), fitted, *editors)
 
     def scores(self, query: Query) -> np.ndarray:
@@ -458,13 +460,13 @@ def cross_fitted_best(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[i
 
 
 def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
-                groups: list[tuple[np.ndarray, np.ndarray]]
+                groups: list[tuple[np.ndarray, np.ndarray]], delete: bool = False
                 ) -> tuple[Inserter | None, Deleter | None]:
     """The `insertion.Inserter` and `deletion.Deleter` learned from the training queries
     (`queries`: (index in training, query), their `groups` in order) without a copy in
     training, each with its cross-fitted choice, what it may read of the folds it is not in
     (`insertion.Known`), and for the deleter the steps inserted by an inserter fitted on
-    those folds."""
+    those folds (`delete`; else None)."""
     from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter, Known
     from homesim.learn.likelihood import FOLDS, folds
@@ -478,6 +480,8 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
               in zip(queries, query_folds, best, strict=True)
               if b >= 0 and not has_copy(bank, q.example)]
     inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, _ in chosen])
+    if not delete:
+        return inserter, None
     written = []
     for fold in range(FOLDS):
         fold_inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, f in chosen if f != fold])
