@@ -9,10 +9,10 @@ long the program is against the neighbours' (`STEP_FEATURES`). Steps below
 length a step the truth lacks costs only when the program is the longer one, which the
 length features let the classifier see.
 
-The classifier learns from the training queries, each with the cross-fitted choice, its
-steps inserted by an inserter fitted without the query's fold and a lexicon fitted without
-it, so that the programs look as they will for a test description (docs/learn.md, "Steps
-the text does not support").
+The classifier learns as the inserter's does (`insertion.Known`), each training query with
+its cross-fitted choice and the steps an inserter fitted without its fold inserted. It did
+not gain (docs/learn.md, "Steps the text says"), so `Reranker.fit` leaves it out unless
+asked (`delete=True`).
 """
 
 from __future__ import annotations

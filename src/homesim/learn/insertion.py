@@ -11,11 +11,13 @@ to the choice (`PROPOSAL_FEATURES`). Those above `INSERT_THRESHOLD`, most likely
 inserted one by one at the position of highest expected steps LCS to the query's nearest
 neighbours (`median.Medians`, weights at tau `POSITION_TAU`).
 
-The classifier learns from the training queries, each with the choice of trees fitted
-without its cross-validation fold and proposals from a lexicon fitted without that fold, so
-that both look as they will for a test description. Why: proposals the choice lacks are in
-the truth about one time in six, but the classifier finds those it can trust (docs/learn.md,
-"Steps the text says").
+The classifier learns from the training queries without a copy in training, each with the
+choice of trees fitted without its cross-validation fold, proposals from a lexicon fitted
+without that fold and counts over the programs of the other folds only (`Known`), so that
+they look as they will for a test description: counted over the programs the query may see,
+a count moved with whether its own hidden program had the step, and the classifier learned
+that. Why insert at all: proposals the choice lacks are in the truth about one time in six,
+but the classifier finds those it can trust (docs/learn.md, "Steps the text says").
 """
 
 from __future__ import annotations
