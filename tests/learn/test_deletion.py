@@ -1,22 +1,13 @@
-import numpy as np
 
 from homesim.learn.deletion import DELETE_THRESHOLD, STEP_FEATURES, Deleter, step_features
 from homesim.learn.insertion import Known
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
-from tests.learn.test_insertion import TV, _bank, _query
+from tests.learn.test_insertion import TV, Fixed, _bank, _query
 
 
-class _Fixed:
-    """A stand-in classifier: fixed probabilities, in step order."""
-
-    def __init__(self, chances: list[float]) -> None:
-        self.chances = chances
-
-    def predict_proba(self, rows: np.ndarray) -> np.ndarray:
-        assert rows.shape[1] == len(STEP_FEATURES)
-        p = np.array(self.chances[:len(rows)])
-        return np.stack([1 - p, p], axis=1)
+def _fixed(chances: list[float]) -> Fixed:
+    return Fixed(chances, len(STEP_FEATURES))
 
 
 def test_unlikely_steps_are_deleted_but_never_all():
@@ -24,10 +15,10 @@ def test_unlikely_steps_are_deleted_but_never_all():
     query = _query(bank, "watch tv")
     program = Program.parse(TV)
     low = DELETE_THRESHOLD - 0.01
-    edited = Deleter(_Fixed([0.9, low, 0.8]), {}).delete(query, program)  # type: ignore[arg-type]
+    edited = Deleter(_fixed([0.9, low, 0.8]), {}).delete(query, program)  # type: ignore[arg-type]
     assert step_tokens(edited) == [("WALK", ("home_office",)), ("WATCH", ("television",))]
-    assert Deleter(_Fixed([low] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]
-    assert Deleter(_Fixed([0.9] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]
+    assert Deleter(_fixed([low] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]
+    assert Deleter(_fixed([0.9] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]
 
 
 def test_step_features_see_the_text_and_the_neighbours():

@@ -54,14 +54,14 @@ def test_a_clause_proposes_its_actions_with_the_objects_it_names():
     assert proposals(_query(bank, "sit back", "Relax"), bank.lexicon) == []
 
 
-class _Fixed:
-    """A stand-in classifier: fixed probabilities, in proposal order."""
+class Fixed:
+    """A stand-in classifier: fixed probabilities, in row order, for rows of `width`."""
 
-    def __init__(self, chances: list[float]) -> None:
-        self.chances = chances
+    def __init__(self, chances: list[float], width: int = len(PROPOSAL_FEATURES)) -> None:
+        self.chances, self.width = chances, width
 
     def predict_proba(self, rows: np.ndarray) -> np.ndarray:
-        assert rows.shape[1] == len(PROPOSAL_FEATURES)
+        assert rows.shape[1] == self.width
         p = np.array(self.chances[:len(rows)])
         return np.stack([1 - p, p], axis=1)
 
@@ -71,11 +71,11 @@ def test_only_likely_proposals_are_inserted_where_the_neighbours_have_them():
     query = _query(bank, "watch tv, switch light")
     choice = Program.parse("[Walk] <home_office> (1)\n[Watch] <television> (1)")
     # lacking: WALK tv, WALK bedroom, WALK light, SWITCHON light (in that order)
-    inserter = Inserter(_Fixed([0.9, INSERT_THRESHOLD - 0.01, 0.2, 0.2]), {})  # type: ignore[arg-type]
+    inserter = Inserter(Fixed([0.9, INSERT_THRESHOLD - 0.01, 0.2, 0.2]), {})  # type: ignore[arg-type]
     edited = inserter.insert(query, choice)
     assert step_tokens(edited) == [("WALK", ("home_office",)), ("WALK", ("television",)),
                                    ("WATCH", ("television",))]
-    nothing = Inserter(_Fixed([0.1] * 4), {})  # type: ignore[arg-type]
+    nothing = Inserter(Fixed([0.1] * 4), {})  # type: ignore[arg-type]
     assert nothing.insert(query, choice) is choice
 
 
