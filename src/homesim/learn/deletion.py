@@ -1,7 +1,7 @@
 """Steps of the written program that neither the text nor the neighbours support, deleted.
 
 After the choice and its inserted steps (`insertion`), a classifier (gradient-boosted trees,
-`insertion.CLASSIFIER`'s settings) gives each step of the program a probability of being in
+`insertion.CLASSIFIER`) gives each step of the program a probability of being in
 the true program, from its support among the query's neighbours and in its activity, how
 common it is, whether the text names its objects or says its action, where it stands and how
 long the program is against the neighbours' (`STEP_FEATURES`). Steps below
@@ -22,14 +22,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from homesim.learn.insertion import CLASSIFIER, POSITION_TAU, Known, support
+from homesim.learn.insertion import POSITION_TAU, Known, StepClassifier, support
 from homesim.learn.lexicon import words
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
 
 if TYPE_CHECKING:
-    from sklearn.ensemble import HistGradientBoostingClassifier
-
     from homesim.learn.rerank import Query
 
 DELETE_THRESHOLD = 0.3
@@ -61,19 +59,14 @@ def step_features(query: Query, tokens: tuple, known: Known,
 
 
 @dataclass
-class Deleter:
-    """The fitted classifier and the action numbering its features use."""
-
-    classifier: HistGradientBoostingClassifier
-    action_codes: dict[str, int]
+class Deleter(StepClassifier):
+    """Steps' classifier (module docstring)."""
 
     @classmethod
     def fit(cls, examples: list[tuple[Query, Known, Program]]) -> Deleter | None:
         """From (training query, what it may read without its fold, its program as written
         without its fold) triples: label each step by whether the query's own program has
         it. None when there is only one kind to learn from."""
-        from sklearn.ensemble import HistGradientBoostingClassifier
-
         codes: dict[str, int] = {}
         rows, labels = [], []
         for query, known, program in examples:
@@ -81,10 +74,7 @@ class Deleter:
             truth = set(step_tokens(query.example.program))
             rows.append(step_features(query, tokens, known, codes))
             labels += [t in truth for t in tokens]
-        if len(set(labels)) < 2:
-            return None
-        classifier = HistGradientBoostingClassifier(**CLASSIFIER)
-        return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
+        return cls.fitted(rows, labels, codes)
 
     def delete(self, query: Query, program: Program, known: Known | None = None) -> Program:
         """`program` without the steps of probability below `DELETE_THRESHOLD` (itself when
@@ -94,7 +84,7 @@ class Deleter:
             return program
         rows = step_features(query, tokens, known or Known.everything(query),
                              dict(self.action_codes))
-        keep = np.asarray(self.classifier.predict_proba(rows)[:, 1]) >= DELETE_THRESHOLD
+        keep = self.chances(rows) >= DELETE_THRESHOLD
         if not keep.any() or keep.all():
             return program
         return program.with_steps([s for s, k in zip(program.steps, keep, strict=True) if k])

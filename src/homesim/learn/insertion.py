@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 
@@ -141,19 +141,42 @@ def lacking(found: list[Proposal], choice: tuple) -> list[Proposal]:
 
 
 @dataclass
-class Inserter:
-    """The fitted classifier and the action numbering its features use."""
+class StepClassifier:
+    """A fitted classifier of steps (in the true program or not) and the action numbering
+    its features use."""
 
     classifier: HistGradientBoostingClassifier
     action_codes: dict[str, int]
+
+    @classmethod
+    def fitted(cls: type[C], rows: list[np.ndarray], labels: list[bool],
+               codes: dict[str, int]) -> C | None:
+        """Trees (`CLASSIFIER`) fitted on feature `rows` and `labels`; None when the labels
+        are all of one kind (or there are none)."""
+        from sklearn.ensemble import HistGradientBoostingClassifier
+
+        if len(set(labels)) < 2:
+            return None
+        classifier = HistGradientBoostingClassifier(**CLASSIFIER)
+        return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
+
+    def chances(self, rows: np.ndarray) -> np.ndarray:
+        """(rows,) the probability that each step is in the truth."""
+        return np.asarray(self.classifier.predict_proba(rows)[:, 1])
+
+
+C = TypeVar("C", bound=StepClassifier)
+
+
+@dataclass
+class Inserter(StepClassifier):
+    """Proposals' classifier (module docstring)."""
 
     @classmethod
     def fit(cls, examples: list[tuple[Query, Known, tuple]]) -> Inserter | None:
         """From (training query, what it may read without its fold, cross-fitted choice's
         step tokens) triples: label each proposal the choice lacks by whether the query's
         own program has it. None when there is nothing (or only one kind) to learn from."""
-        from sklearn.ensemble import HistGradientBoostingClassifier
-
         codes: dict[str, int] = {}
         rows, labels = [], []
         for query, known, choice in examples:
@@ -162,18 +185,15 @@ class Inserter:
                 truth = set(step_tokens(query.example.program))
                 rows.append(proposal_features(query, found, choice, known, codes))
                 labels += [p.token in truth for p in found]
-        if len(set(labels)) < 2:
-            return None
-        classifier = HistGradientBoostingClassifier(**CLASSIFIER)
-        return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
+        return cls.fitted(rows, labels, codes)
 
     def probabilities(self, query: Query, found: list[Proposal], choice: tuple, known: Known
                       ) -> np.ndarray:
         """(proposals,) the probability that each is in the truth."""
         if not found:
             return np.zeros(0)
-        rows = proposal_features(query, found, choice, known, dict(self.action_codes))
-        return np.asarray(self.classifier.predict_proba(rows)[:, 1])
+        return self.chances(proposal_features(query, found, choice, known,
+                                              dict(self.action_codes)))
 
     def insert(self, query: Query, program: Program, known: Known | None = None) -> Program:
         """`program` (the choice for `query`) with the likely proposals it lacks inserted
