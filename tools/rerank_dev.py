@@ -32,7 +32,6 @@ from homesim.learn.data import Example
 from homesim.learn.deletion import Deleter
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.insertion import Inserter, Known
-from homesim.learn.lexicon import ObjectLexicon
 from homesim.learn.likelihood import FOLDS
 from homesim.learn.likelihood import folds as fold_of_each
 from homesim.learn.rerank import (
@@ -44,6 +43,7 @@ from homesim.learn.rerank import (
     design,
     fit_editors,
     fit_trees,
+    fold_knowledge,
     has_copy,
 )
 from homesim.learn.splits import SPLITS
@@ -193,9 +193,7 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     everything = np.ones(len(train), bool)
     dev_queries = [Query(bank, e, everything) for e in splits.dev]
     dev = [_labelled(q) for q in dev_queries]
-    fold_of = np.array(fold_of_each(train, HOLDOUT[split]))
-    known = [Known(ObjectLexicon.fit([e for e, f in zip(train, fold_of, strict=True)
-                                      if f != k]), fold_of != k) for k in range(FOLDS)]
+    known = fold_knowledge(train, HOLDOUT[split])[1]
     inserted, deleted = edited_cross_validated(queries, groups, folds, known)
     model = Reranker(bank, fit_trees(groups), None, *fit_editors(bank, HOLDOUT[split],
                                                                   indexed, groups, True))

@@ -50,7 +50,7 @@ class Medians:
     def __init__(self, references: Sequence[Program], weights: np.ndarray) -> None:
         self.codes: dict[Hashable, int] = {}
         self.steps: list[Step] = []
-        refs = [self._encode(p) for p in references]
+        refs = [self.encode(p) for p in references]
         self.refs = [(position_masks(r), len(r)) for r in refs]
         total = float(np.sum(weights))
         self.weights = [float(w) / total for w in weights] if total > 0 else []
@@ -60,7 +60,7 @@ class Medians:
         order = np.argsort(-support, kind="stable")
         self.vocab = [int(c) for c in order[:MEDIAN_VOCAB] if support[c] > 0]
 
-    def _encode(self, program: Program) -> list[int]:
+    def encode(self, program: Program) -> list[int]:
         """The program's step tokens as symbols (new ones numbered in order of appearance)."""
         return [self._code(token, step)
                 for token, step in zip(step_tokens(program), program.steps, strict=True)]
@@ -70,10 +70,6 @@ class Medians:
             self.codes[token] = len(self.steps)
             self.steps.append(step)
         return self.codes[token]
-
-    def encode(self, program: Program) -> list[int]:
-        """The program's steps as symbols."""
-        return self._encode(program)
 
     def symbol(self, step: Step) -> int:
         """One step as a symbol."""
@@ -103,7 +99,7 @@ class Medians:
         `expected_lcs` most; stops when none does. Ties go to the first move tried."""
         if not self.weights:
             return start
-        current = self._encode(start)
+        current = self.encode(start)
         best = self.expected_lcs(current)
         for _ in range(MEDIAN_ITERS):
             moves = [current[:i] + current[i + 1:] for i in range(len(current))

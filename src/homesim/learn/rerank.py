@@ -55,7 +55,7 @@ if TYPE_CHECKING:
     from sklearn.ensemble import HistGradientBoostingRegressor
 
     from homesim.learn.deletion import Deleter
-    from homesim.learn.insertion import Inserter
+    from homesim.learn.insertion import Inserter, Known
     from homesim.learn.likelihood import CrossFitted
     from homesim.learn.text2prog import Text2Prog
 
@@ -146,7 +146,7 @@ class Bank:
     def hidden(self, example: Example, holdout: str) -> np.ndarray:
         """(train,) True where a training query `example` may not see the example."""
         if holdout == "activity":
-            return np.array([e.activity == example.activity for e in self.train])
+            return self.activity_mask(example.activity)
         own = tuple(step_tokens(example.program))
         return np.array([t == own for t in self.tokens])
 
@@ -181,8 +181,7 @@ class Query:
 
     def activity_programs(self) -> np.ndarray:
         """Indices of the training programs of the query's activity that it may see."""
-        return np.flatnonzero(self.allowed & np.array(
-            [e.activity == self.example.activity for e in self.bank.train]))
+        return np.flatnonzero(self.allowed & self.bank.activity_mask(self.example.activity))
 
     def _candidates(self, sims: np.ndarray) -> list[Candidate]:
         sources: list[int] = []
@@ -468,14 +467,12 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     (`insertion.Known`), and for the deleter the steps inserted by an inserter fitted on
     those folds (`delete`; else None)."""
     from homesim.learn.deletion import Deleter
-    from homesim.learn.insertion import Inserter, Known
-    from homesim.learn.likelihood import FOLDS, folds
+    from homesim.learn.insertion import Inserter
+    from homesim.learn.likelihood import FOLDS
 
-    fold_of = np.array(folds(bank.train, holdout))
+    fold_of, known = fold_knowledge(bank.train, holdout)
     query_folds = [int(fold_of[i]) for i, _ in queries]
     best = cross_fitted_best(groups, query_folds)
-    known = [Known(ObjectLexicon.fit([e for e, f in zip(bank.train, fold_of, strict=True)
-                                      if f != k]), fold_of != k) for k in range(FOLDS)]
     chosen = [(q, known[f], q.candidates[b], f) for (_, q), f, b
               in zip(queries, query_folds, best, strict=True)
               if b >= 0 and not has_copy(bank, q.example)]
@@ -489,6 +486,19 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
             written.append((q, k, c.program if fold_inserter is None
                             else fold_inserter.insert(q, c.program, k)))
     return inserter, Deleter.fit(written)
+
+
+def fold_knowledge(train: list[Example], holdout: str) -> tuple[np.ndarray, list[Known]]:
+    """Each training example's cross-validation fold (`likelihood.folds`), and for each fold
+    what its training queries' editors may read: the lexicon fitted on, and the programs of,
+    the other folds."""
+    from homesim.learn.insertion import Known
+    from homesim.learn.likelihood import FOLDS, folds
+
+    fold_of = np.array(folds(train, holdout))
+    return fold_of, [Known(ObjectLexicon.fit([e for e, f in zip(train, fold_of, strict=True)
+                                               if f != k]), fold_of != k)
+                     for k in range(FOLDS)]
 
 
 def has_copy(bank: Bank, example: Example) -> bool:
