@@ -31,7 +31,7 @@ from homesim.learn import baselines
 from homesim.learn.data import Example
 from homesim.learn.deletion import Deleter
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
-from homesim.learn.insertion import Inserter, Known
+from homesim.learn.insertion import Known
 from homesim.learn.likelihood import FOLDS
 from homesim.learn.likelihood import folds as fold_of_each
 from homesim.learn.rerank import (
@@ -40,6 +40,7 @@ from homesim.learn.rerank import (
     Reranker,
     _labelled,
     cross_fitted_best,
+    cross_inserted,
     design,
     fit_editors,
     fit_trees,
@@ -73,15 +74,9 @@ def edited_cross_validated(queries: list[Query], groups: list[Group], folds: lis
     as `rerank.fit_editors` fits them (the deleter on programs the inserters of their own
     folds wrote)."""
     best = cross_fitted_best(groups, folds)
-    written: list[Program] = [queries[i].candidates[b].program for i, b in enumerate(best)]
     learns = [not has_copy(q.bank, q.example) for q in queries]
-    for k in range(FOLDS):
-        inserter = Inserter.fit([(q, known[f], q.candidates[b].tokens) for q, f, b, ok
-                                 in zip(queries, folds, best, learns, strict=True)
-                                 if f != k and ok])
-        for i in (i for i, f in enumerate(folds) if f == k):
-            if inserter is not None:
-                written[i] = inserter.insert(queries[i], written[i], known[k])
+    written = cross_inserted([(q, known[f], q.candidates[b], f, ok) for q, f, b, ok
+                              in zip(queries, folds, best, learns, strict=True)])
     deleted = list(written)
     for k in range(FOLDS):
         deleter = Deleter.fit([(q, known[f], p) for q, f, p, ok

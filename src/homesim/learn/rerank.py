@@ -468,7 +468,6 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     those folds (`delete`; else None)."""
     from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter
-    from homesim.learn.likelihood import FOLDS
 
     fold_of, known = fold_knowledge(bank.train, holdout)
     query_folds = [int(fold_of[i]) for i, _ in queries]
@@ -479,13 +478,28 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, _ in chosen])
     if not delete:
         return inserter, None
-    written = []
+    written = cross_inserted([(q, k, c, f, True) for q, k, c, f in chosen])
+    by_fold = sorted(range(len(chosen)), key=lambda i: chosen[i][3])
+    return inserter, Deleter.fit([(chosen[i][0], chosen[i][1], written[i]) for i in by_fold])
+
+
+def cross_inserted(chosen: list[tuple[Query, Known, Candidate, int, bool]]) -> list[Program]:
+    """Each (training query, what it may read, its cross-fitted choice, its fold, whether
+    editors learn from it)'s choice with the steps inserted by an `insertion.Inserter`
+    fitted on the queries of the other folds that editors learn from (the choice unchanged
+    where there are none)."""
+    from homesim.learn.insertion import Inserter
+    from homesim.learn.likelihood import FOLDS
+
+    written = [c.program for _, _, c, _, _ in chosen]
     for fold in range(FOLDS):
-        fold_inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, f in chosen if f != fold])
-        for q, k, c, _ in (t for t in chosen if t[3] == fold):
-            written.append((q, k, c.program if fold_inserter is None
-                            else fold_inserter.insert(q, c.program, k)))
-    return inserter, Deleter.fit(written)
+        inserter = Inserter.fit([(q, k, c.tokens) for q, k, c, f, learns in chosen
+                                 if f != fold and learns])
+        if inserter is not None:
+            for i, (q, k, c, f, _) in enumerate(chosen):
+                if f == fold:
+                    written[i] = inserter.insert(q, c.program, k)
+    return written
 
 
 def fold_knowledge(train: list[Example], holdout: str) -> tuple[np.ndarray, list[Known]]:
