@@ -9,8 +9,10 @@ from homesim.learn.insertion import (
     Inserter,
     Known,
     clauses,
+    closeness,
     proposal_features,
     proposals,
+    step_phrase,
 )
 from homesim.learn.rerank import Bank, Query, Reranker
 from homesim.program.metrics import step_tokens
@@ -110,3 +112,16 @@ def test_the_reranker_inserts_only_what_still_executes(tiny_splits):
     for e in edited:  # ... and none when the longer program would not run
         first = plain.choose(e, lambda p: True)
         assert model.choose(e, lambda p, f=first: p.steps == f.steps).steps == first.steps
+
+
+def test_a_proposal_is_compared_with_the_clauses_that_propose_it():
+    bank = _bank()
+    found = proposals(_query(bank, "watch tv, switch light"), bank.lexicon)
+    # the text is the title, then the description: "watch tv" twice
+    assert [p.clauses for p in found] == [(0, 1)] * 3 + [(2,)] * 3
+    assert step_phrase(found[5].step) == "switch on light"
+    close = closeness(_query(bank, "watch tv, switch light"), found)
+    assert close.shape == (6, 2) and np.all(np.abs(close) <= 1 + 1e-6)
+    assert close[2, 1] == 0.0 and close[5, 1] == 0.0  # each clause's closest step
+    assert np.all(close[[0, 1, 3, 4], 1] < 0)  # the walks say the clauses less well
+    assert closeness(_query(bank, "watch tv"), []).shape == (0, 2)

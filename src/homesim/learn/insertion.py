@@ -49,7 +49,8 @@ CLASSIFIER = {"max_iter": 150, "learning_rate": 0.05, "max_leaf_nodes": 15,
 PROPOSAL_FEATURES = ("neighbour support", "activity support", "share of programs with it",
                      "objects", "action", "clause position", "proposals in its clause",
                      "clause words", "clause classes", "clause actions", "proposals",
-                     "choice has its objects", "choice has its action", "choice length")
+                     "choice has its objects", "choice has its action", "choice length",
+                     "phrase cosine to its clause", "against its clause's closest")
 CLAUSE_BREAK = re.compile(r"[.,;!?\n]|\band\b|\bthen\b")
 
 
@@ -95,13 +96,17 @@ class Proposal:
     token: StepToken
     step: Step
     clause_features: tuple[float, ...]
+    """Of the first clause proposing it: its position, proposals, words, classes, actions."""
+    clauses: tuple[int, ...]
+    """The indices of the clauses proposing it."""
 
 
 def proposals(query: Query, lexicon: ObjectLexicon) -> list[Proposal]:
     """The steps the query's text proposes, clause by clause (within one, in order of first
     appearance in the training programs the query may see), each once."""
     bank = query.bank
-    out: dict[StepToken, Proposal] = {}
+    first: dict[StepToken, tuple[Step, tuple[float, ...]]] = {}
+    where: dict[StepToken, list[int]] = {}
     parts = clauses(query.example.text)
     for i, clause in enumerate(parts):
         acts, named = lexicon.actions(clause), lexicon.mentions(clause)
@@ -111,8 +116,34 @@ def proposals(query: Query, lexicon: ObjectLexicon) -> list[Proposal]:
         shape = (i / max(len(parts) - 1, 1), len(here), len(words(clause)), len(named),
                  len(acts))
         for (k, position), token in here:
-            out.setdefault(token, Proposal(token, bank.train[k].program.steps[position], shape))
-    return list(out.values())
+            first.setdefault(token, (bank.train[k].program.steps[position], shape))
+            where.setdefault(token, []).append(i)
+    return [Proposal(t, step, shape, tuple(where[t])) for t, (step, shape) in first.items()]
+
+
+def step_phrase(step: Step) -> str:
+    """A step in words: "[SwitchOn] <television>" -> "switch on television"."""
+    verb = re.sub(r"(?<!^)([A-Z])", r" \1", step.action.name).lower()
+    return " ".join([verb, *(ref.name.replace("_", " ") for ref in step.args)])
+
+
+def closeness(query: Query, found: list[Proposal]) -> np.ndarray:
+    """(proposals, 2): the MiniLM cosine of each proposal's `step_phrase` to the closest
+    clause proposing it, and the most by which it exceeds (<= 0: falls short of) the
+    highest cosine of any of `found` to one of those clauses."""
+    from homesim.learn.embeddings import cached_sentence_vectors
+
+    if not found:
+        return np.zeros((0, 2))
+    parts = cached_sentence_vectors(clauses(query.example.text))
+    cosine = cached_sentence_vectors([step_phrase(p.step) for p in found]) @ parts.T
+    closest: dict[int, float] = {}
+    for j, p in enumerate(found):
+        for i in p.clauses:
+            closest[i] = max(closest.get(i, -1.0), float(cosine[j, i]))
+    return np.array([[max(float(cosine[j, i]) for i in p.clauses),
+                      max(float(cosine[j, i]) - closest[i] for i in p.clauses)]
+                     for j, p in enumerate(found)])
 
 
 def _first_seen(query: Query, token: StepToken) -> tuple[int, int]:
@@ -131,7 +162,7 @@ def proposal_features(query: Query, found: list[Proposal], choice: tuple, known:
     rows = [[*support(query, p.token, known), len(p.token[1]),
              action_codes.setdefault(p.token[0], len(action_codes)), *p.clause_features,
              len(found), float(all(o in used for o in p.token[1])), float(p.token[0] in acts),
-             len(choice)] for p in found]
+             len(choice), *close] for p, close in zip(found, closeness(query, found), strict=True)]
     return np.array(rows, dtype=float).reshape(len(found), len(PROPOSAL_FEATURES))
 
 
