@@ -4,6 +4,7 @@ import pytest
 from homesim.errors import HomesimError, LimitError
 from homesim.learn import embeddings
 from homesim.learn.data import real_examples
+from homesim.learn.insertion import clauses
 from homesim.learn.writer import ProgramWriter, check_text, load_writer, model_path
 from homesim.limits import MAX_DESCRIPTION_CHARS
 from homesim.world.homes import load_home
@@ -41,7 +42,9 @@ def test_answer_does_not_depend_on_what_was_embedded_before(small_writer, monkey
     before = str(small_writer.write(TV, home, title="Watch TV").program)
     rng = np.random.default_rng(0)
     noise = {t: v / np.linalg.norm(v) for t, v in
-             ((t, rng.normal(size=embeddings.WORD_DIM)) for t in (TV, "Watch TV"))}
+             ((t, rng.normal(size=embeddings.WORD_DIM))
+              for t in (TV, "Watch TV", *clauses(f"Watch TV. {TV}"), "watch television",
+                        "switch on television", "walk television"))}
     monkeypatch.setattr(embeddings, "_VECTORS", {**embeddings._VECTORS, **noise})
     assert str(small_writer.write(TV, home, title="Watch TV").program) == before
 

@@ -98,6 +98,19 @@ def cached_sentence_vectors(texts: list[str]) -> np.ndarray:
     return np.stack([_VECTORS[t] for t in texts]) if texts else np.zeros((0, WORD_DIM))
 
 
+_ALONE: dict[str, np.ndarray] = {}
+
+
+def lone_sentence_vectors(texts: list[str]) -> np.ndarray:
+    """`sentence_vectors` of each text embedded on its own (a batch of one, cached per
+    process): a text's floats depend on the batch it is embedded in, these on the text
+    alone, so what they decide is the same in every process and run order."""
+    for t in dict.fromkeys(texts):
+        if t not in _ALONE:
+            _ALONE[t] = sentence_vectors([t])[0]
+    return np.stack([_ALONE[t] for t in texts]) if texts else np.zeros((0, WORD_DIM))
+
+
 def preload_sentence_vectors(texts: list[str], cache: Path | None = None) -> None:
     """Embed all `texts` at once (sorted: the batches, so the floats, do not depend on what
     ran before), reading and writing them from `cache` (an ``.npz``) when given."""

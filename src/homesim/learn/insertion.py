@@ -131,12 +131,12 @@ def closeness(query: Query, found: list[Proposal]) -> np.ndarray:
     """(proposals, 2): the MiniLM cosine of each proposal's `step_phrase` to the closest
     clause proposing it, and the most by which it exceeds (<= 0: falls short of) the
     highest cosine of any of `found` to one of those clauses."""
-    from homesim.learn.embeddings import cached_sentence_vectors
+    from homesim.learn.embeddings import lone_sentence_vectors
 
     if not found:
         return np.zeros((0, 2))
-    parts = cached_sentence_vectors(clauses(query.example.text))
-    cosine = cached_sentence_vectors([step_phrase(p.step) for p in found]) @ parts.T
+    parts = lone_sentence_vectors(clauses(query.example.text))
+    cosine = lone_sentence_vectors([step_phrase(p.step) for p in found]) @ parts.T
     closest: dict[int, float] = {}
     for j, p in enumerate(found):
         for i in p.clauses:
