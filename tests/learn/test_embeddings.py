@@ -41,3 +41,15 @@ def test_preload_reuses_a_cache_only_for_the_same_set_of_texts(tmp_path, monkeyp
     embeddings.preload_sentence_vectors(["a", "b"], cache)  # other batches: embedded afresh
     assert batches == [["a", "b", "c"], ["a", "b"]]
     assert embeddings.cached_sentence_vectors(["a"])[0, 0] == 2.0
+
+
+def test_a_lone_vector_is_the_texts_own_whatever_was_batched_before(monkeypatch):
+    from homesim.learn import embeddings
+
+    monkeypatch.setattr(embeddings, "_ALONE", {})
+    text = "switch on light"
+    batched = embeddings.sentence_vectors([text, "walk to the kitchen and open the fridge"])[0]
+    alone = embeddings.lone_sentence_vectors([text, text])
+    assert np.array_equal(alone[0], embeddings.sentence_vectors([text])[0])
+    assert np.array_equal(alone[0], alone[1]) and np.allclose(alone[0], batched, atol=1e-4)
+    assert embeddings.lone_sentence_vectors([]).shape == (0, embeddings.WORD_DIM)
