@@ -6,10 +6,13 @@ at punctuation, "and", "then"), a *proposal* is every step token seen in the pro
 query may see whose action a word of the clause links to and whose objects the clause all
 names (`lexicon.ObjectLexicon`). A classifier (gradient-boosted trees, `CLASSIFIER`) predicts
 whether each proposal the choice lacks is in the true program, from its support among the
-query's neighbours and in its activity, how common it is, its clause, and how it relates
-to the choice (`PROPOSAL_FEATURES`). Those above `INSERT_THRESHOLD`, most likely first, are
-inserted one by one at the position of highest expected steps LCS to the query's nearest
-neighbours (`median.Medians`, weights at tau `POSITION_TAU`).
+query's neighbours and in its activity, how common it is, its clause, how it relates to
+the choice, and how close the step in words is to the clauses proposing it in MiniLM's
+sentence space (`closeness`: the lexicon links "grab" to both GRAB and FIND; the encoder
+tells which one "grab the remote" says) (`PROPOSAL_FEATURES`). Those above
+`INSERT_THRESHOLD`, most likely first, are inserted one by one at the position of
+highest expected steps LCS to the query's nearest neighbours (`median.Medians`, weights
+at tau `POSITION_TAU`).
 
 The classifier learns from the training queries without a copy in training, each with the
 choice of trees fitted without its cross-validation fold, proposals from a lexicon fitted
