@@ -84,11 +84,11 @@ def title_median(train: list[Example], test: list[Example]) -> list[Program]:
     activity's training programs, searched from their medoid; an activity not in training
     is mapped as `title_medoid` maps it. Like the medoid it reads only the title, but it
     may insert the steps most of the activity's programs share and drop the ones few do."""
-    from homesim.learn.median import Medians
+    from homesim.learn.median import uniform_median
 
     starts = medoids(train)
-    centres = {activity: Medians([e.program for e in group], np.ones(len(group))).median(
-        starts[activity].program) for activity, group in by_activity(train).items()}
+    centres = {activity: uniform_median([e.program for e in group], starts[activity].program)
+               for activity, group in by_activity(train).items()}
     nearest = _nearest_activity(sorted(centres), test)
     return [Program(centres[nearest.get(e.activity, e.activity)].steps) for e in test]
 

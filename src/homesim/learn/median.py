@@ -44,6 +44,12 @@ def lcs_length(sequence: Sequence[int], masks: dict[int, int], length: int) -> i
     return length - row.bit_count()
 
 
+def uniform_median(programs: Sequence[Program], start: Program) -> Program:
+    """The median of `programs` weighted alike (a title's activity), searched from `start`
+    (their medoid)."""
+    return Medians(programs, np.ones(len(programs))).median(start)
+
+
 class Medians:
     """Reference programs, weighted, against which sequences are scored and searched."""
 

@@ -219,7 +219,7 @@ class Query:
         """(start, median) pairs: the median of the `NEAR` nearest neighbours under each tau's
         weights, started from that tau's best expected-LCS program (`best`), and the median
         of the programs of the query's activity (uniform weights) started from their medoid."""
-        from homesim.learn.median import Medians
+        from homesim.learn.median import Medians, uniform_median
 
         bank, out = self.bank, []
         references = [bank.train[k].program for k in self.near]
@@ -229,8 +229,8 @@ class Query:
         same = self.activity_programs()
         if len(same):
             start = bank.medoid(same)
-            medians = Medians([bank.train[k].program for k in same], np.ones(len(same)))
-            out.append((start, medians.median(bank.train[start].program)))
+            out.append((start, uniform_median([bank.train[k].program for k in same],
+                                              bank.train[start].program)))
         return out
 
     def features(self) -> np.ndarray:
