@@ -1,4 +1,3 @@
-
 from homesim.learn.deletion import DELETE_THRESHOLD, STEP_FEATURES, Deleter, step_features
 from homesim.learn.insertion import Known
 from homesim.program.metrics import step_tokens

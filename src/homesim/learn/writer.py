@@ -90,11 +90,11 @@ class ProgramWriter:
               seed: int = SEED) -> Written:
         """The program for `description` (and `title`; without one, or a blank one,
         `guess_title`) that runs in `graph`, if one of the best candidates does."""
-        from homesim.learn.embeddings import sentence_vectors
+        from homesim.learn.embeddings import lone_sentence_vectors
 
         description, asked = check_text("description", description), check_title(title)
         # embedded on its own, so the floats (and the choice) are the same in every process
-        desc_vector = sentence_vectors([description])[0]
+        desc_vector = lone_sentence_vectors([description])[0]
         title = asked if asked is not None else self.guess_title(desc_vector)
         given = asked is not None
         query = ActivityProgram("query", Program((), title=title, description=description))
@@ -111,11 +111,11 @@ class ProgramWriter:
         """A title's sentence vector, the same in every process: a training title's is the
         one the model was fitted with, another is embedded on its own (a text's floats
         depend on the batch it is embedded in, and the choice can follow)."""
-        from homesim.learn.embeddings import sentence_vectors
+        from homesim.learn.embeddings import lone_sentence_vectors
 
         bank = self.reranker.bank
         known = next((i for i, e in enumerate(bank.train) if e.title == title), None)
-        return bank.title[known] if known is not None else sentence_vectors([title])[0]
+        return bank.title[known] if known is not None else lone_sentence_vectors([title])[0]
 
     def guess_title(self, desc_vector: np.ndarray) -> str:
         """The activity whose training descriptions are nearest to a description's
