@@ -53,3 +53,15 @@ def test_a_lone_vector_is_the_texts_own_whatever_was_batched_before(monkeypatch)
     assert np.array_equal(alone[0], embeddings.sentence_vectors([text])[0])
     assert np.array_equal(alone[0], alone[1]) and np.allclose(alone[0], batched, atol=1e-4)
     assert embeddings.lone_sentence_vectors([]).shape == (0, embeddings.WORD_DIM)
+
+
+def test_lone_vectors_forget_the_oldest_beyond_the_bound_and_come_back_the_same(monkeypatch):
+    from homesim.learn import embeddings
+
+    monkeypatch.setattr(embeddings, "_ALONE", {})
+    monkeypatch.setattr(embeddings, "ALONE_KEPT", 2)
+    first = embeddings.lone_sentence_vectors(["open fridge", "grab milk", "close fridge"])
+    assert list(embeddings._ALONE) == ["grab milk", "close fridge"]
+    again = embeddings.lone_sentence_vectors(["open fridge"])[0]
+    assert np.array_equal(again, first[0])
+    assert list(embeddings._ALONE) == ["close fridge", "open fridge"]

@@ -11,11 +11,15 @@ from __future__ import annotations
 
 from functools import cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import torch
 
 from homesim.errors import HomesimError
+
+if TYPE_CHECKING:
+    from homesim.learn.data import Example
 
 WORD_DIM = 384
 EMBEDDINGS = ("minilm", "word2vec", "none")
@@ -99,16 +103,24 @@ def cached_sentence_vectors(texts: list[str]) -> np.ndarray:
 
 
 _ALONE: dict[str, np.ndarray] = {}
+ALONE_KEPT = 50_000
+"""Lone vectors kept per process (about 1.5 KB each), oldest forgotten first: a long-running
+server meets ever new texts; a forgotten one is embedded again to the same floats."""
 
 
 def lone_sentence_vectors(texts: list[str]) -> np.ndarray:
     """`sentence_vectors` of each text embedded on its own (a batch of one, cached per
     process): a text's floats depend on the batch it is embedded in, these on the text
     alone, so what they decide is the same in every process and run order."""
+    wanted: dict[str, np.ndarray] = {}
     for t in dict.fromkeys(texts):
-        if t not in _ALONE:
-            _ALONE[t] = sentence_vectors([t])[0]
-    return np.stack([_ALONE[t] for t in texts]) if texts else np.zeros((0, WORD_DIM))
+        vector = _ALONE.get(t)
+        if vector is None:
+            vector = _ALONE[t] = sentence_vectors([t])[0]
+            while len(_ALONE) > ALONE_KEPT:
+                del _ALONE[next(iter(_ALONE))]
+        wanted[t] = vector
+    return np.stack([wanted[t] for t in texts]) if texts else np.zeros((0, WORD_DIM))
 
 
 def preload_sentence_vectors(texts: list[str], cache: Path | None = None) -> None:
@@ -126,3 +138,9 @@ def preload_sentence_vectors(texts: list[str], cache: Path | None = None) -> Non
     if cache is not None:
         cache.parent.mkdir(parents=True, exist_ok=True)
         np.savez(cache, texts=np.array(wanted), vectors=vectors)
+
+
+def example_vectors(examples: list[Example]) -> tuple[np.ndarray, np.ndarray]:
+    """(`cached_sentence_vectors` of the examples' descriptions, of their titles)."""
+    return (cached_sentence_vectors([e.description for e in examples]),
+            cached_sentence_vectors([e.title for e in examples]))

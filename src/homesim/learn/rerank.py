@@ -108,7 +108,9 @@ class Bank:
         for i in range(n):
             for j in range(i + 1, n):
                 self.lcs[i, j] = self.lcs[j, i] = normalized_lcs(self.tokens[i], self.tokens[j])
-        self.desc, self.title = _vectors(self.train)
+        from homesim.learn.embeddings import example_vectors
+
+        self.desc, self.title = example_vectors(self.train)
         self.lengths = np.array([len(t) for t in self.tokens], dtype=float)
         self.lexicon = ObjectLexicon.fit(self.train)
         self.idf, self.bags = _bags([e.text for e in self.train])
@@ -163,7 +165,9 @@ class Query:
 
     def __post_init__(self) -> None:
         if self.vectors is None:
-            desc, title = _vectors([self.example])
+            from homesim.learn.embeddings import example_vectors
+
+            desc, title = example_vectors([self.example])
             self.vectors = (desc[0], title[0])
         self.desc, self.title = self.vectors
         self.sims = 0.5 * (self.bank.desc @ self.desc) + 0.5 * (self.bank.title @ self.title)
@@ -562,9 +566,3 @@ def _bag(text: str, idf: dict[str, tuple[int, float]]) -> np.ndarray:
     norm = np.linalg.norm(out)
     return out / norm if norm else out
 
-
-def _vectors(examples: list[Example]) -> tuple[np.ndarray, np.ndarray]:
-    from homesim.learn.embeddings import cached_sentence_vectors
-
-    return (cached_sentence_vectors([e.description for e in examples]),
-            cached_sentence_vectors([e.title for e in examples]))

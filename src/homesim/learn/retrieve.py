@@ -44,7 +44,9 @@ class RetrieveEdit:
         self._lcs = np.eye(n)
         for i, j in itertools.combinations(range(n), 2):
             self._lcs[i, j] = self._lcs[j, i] = normalized_lcs(self._tokens[i], self._tokens[j])
-        self._desc, self._title = _vectors(self.train)
+        from homesim.learn.embeddings import example_vectors
+
+        self._desc, self._title = example_vectors(self.train)
         self._presence: dict[tuple, np.ndarray] = {}
 
     @classmethod
@@ -62,7 +64,9 @@ class RetrieveEdit:
 
     def weights(self, examples: list[Example]) -> np.ndarray:
         """(examples, train) neighbour weights."""
-        desc, title = _vectors(examples)
+        from homesim.learn.embeddings import example_vectors
+
+        desc, title = example_vectors(examples)
         sims = self.mix * (desc @ self._desc.T) + (1 - self.mix) * (title @ self._title.T)
         w = np.exp((sims - sims.max(1, keepdims=True)) / self.tau)
         return w / w.sum(1, keepdims=True)
@@ -96,9 +100,3 @@ class RetrieveEdit:
             self._presence[token] = np.array([token in t for t in self._tokens], dtype=float)
         return self._presence[token]
 
-
-def _vectors(examples: list[Example]) -> tuple[np.ndarray, np.ndarray]:
-    from homesim.learn.embeddings import cached_sentence_vectors
-
-    return (cached_sentence_vectors([e.description for e in examples]),
-            cached_sentence_vectors([e.title for e in examples]))
