@@ -46,6 +46,7 @@ bench: setup
 	$(BIN)/python benchmarks/interactions.py
 	$(BIN)/python benchmarks/serve.py
 	$(BIN)/python benchmarks/learn.py
+	$(BIN)/python benchmarks/median.py
 	$(BIN)/python benchmarks/repair.py
 	$(BIN)/python benchmarks/home_load.py
 	$(BIN)/python benchmarks/descriptions.py

@@ -62,3 +62,27 @@ def test_an_insertion_goes_where_the_references_have_the_step():
     b = medians.symbol(program("b").steps[0])
     inserted = medians.best_insertion(medians.encode(start), b)
     assert step_tokens(medians.decode(start, inserted)) == step_tokens(program("abc"))
+
+
+def _random_program(rng: random.Random, longest: int):
+    return program("".join(rng.choice("abcdef") for _ in range(rng.randrange(1, longest))))
+
+
+@pytest.mark.parametrize("longest", [12, 70])  # 70: references too long for 64-bit rows
+def test_all_moves_at_once_score_the_same_floats_as_one_by_one(longest):
+    rng = random.Random(longest)
+    for _ in range(40):
+        references = [_random_program(rng, longest) for _ in range(rng.randrange(1, 9))]
+        medians = Medians(references, np.array([rng.random() for _ in references]))
+        assert (medians._tables is None) == any(len(p.steps) >= 64 for p in references)
+        current = medians.encode(_random_program(rng, 15))
+        one_by_one = [medians.expected_lcs(m) for m in medians.moves(current)]
+        assert medians.move_scores(current).tolist() == one_by_one
+
+
+def test_a_single_step_has_only_insertions_to_try():
+    medians = Medians([program("ab"), program("ba")], np.ones(2))
+    current = medians.encode(program("a"))
+    moves = medians.moves(current)
+    assert all(len(m) == 2 for m in moves) and len(moves) == 2 * len(medians.vocab)
+    assert medians.move_scores(current).tolist() == [medians.expected_lcs(m) for m in moves]

@@ -65,6 +65,8 @@ class Medians:
             support[sorted(set(r))] += w
         order = np.argsort(-support, kind="stable")
         self.vocab = [int(c) for c in order[:MEDIAN_VOCAB] if support[c] > 0]
+        fits = all(len(r) < 64 for r in refs)
+        self._tables = _Tables(refs) if fits and refs else None
 
     def encode(self, program: Program) -> list[int]:
         """The program's step tokens as symbols (new ones numbered in order of appearance)."""
@@ -108,13 +110,95 @@ class Medians:
         current = self.encode(start)
         best = self.expected_lcs(current)
         for _ in range(MEDIAN_ITERS):
-            moves = [current[:i] + current[i + 1:] for i in range(len(current))
-                     ] if len(current) > 1 else []
-            moves += [[*current[:i], s, *current[i:]] for s in self.vocab
-                      for i in range(len(current) + 1)]
-            scores = [self.expected_lcs(m) for m in moves]
-            if not scores or max(scores) <= best + 1e-12:
+            moves = self.moves(current)
+            scores = self.move_scores(current)
+            if not len(scores) or float(np.max(scores)) <= best + 1e-12:
                 break
             k = int(np.argmax(scores))
-            current, best = moves[k], scores[k]
+            current, best = moves[k], float(scores[k])
         return self.decode(start, current)
+
+    def moves(self, current: list[int]) -> list[list[int]]:
+        """The search's moves from `current`, in order: each single-step deletion (when more
+        than one step is left), then each `vocab` symbol inserted at each position."""
+        moves = [current[:i] + current[i + 1:] for i in range(len(current))
+                 ] if len(current) > 1 else []
+        return moves + [[*current[:i], s, *current[i:]] for s in self.vocab
+                        for i in range(len(current) + 1)]
+
+    def move_scores(self, current: list[int]) -> np.ndarray:
+        """`expected_lcs` of each of `moves(current)`, the same floats: all at once from
+        prefix and suffix LCS tables (`_Tables`) when every reference fits a 64-bit row,
+        else one by one."""
+        if self._tables is None:
+            return np.array([self.expected_lcs(m) for m in self.moves(current)])
+        n = len(current)
+        lengths, per_move = self._tables.move_lcs(current, self.vocab, deletions=n > 1)
+        total = np.zeros(len(lengths))
+        for r, weight in enumerate(self.weights):  # the order expected_lcs adds them in
+            longer = np.maximum(lengths, self._tables.lengths[r])
+            total += weight * (per_move[:, r] / longer)
+        return total
+
+
+class _Tables:
+    """The references as 64-bit bit-parallel LCS rows, scoring every single-step move of a
+    sequence at once: with P[i, r, j] = LCS(sequence[:i], ref_r[:j]) and S[i, r, j] =
+    LCS(sequence[i:], ref_r[j:]) (the zero bits of the rows after each prefix, forwards and
+    backwards), deleting step i gives max_j P[i, r, j] + S[i + 1, r, j], and inserting
+    symbol s at i gives the larger of the whole LCS and 1 + P[i, r, k] + S[i, r, k + 1] over
+    the positions k where ref_r holds s."""
+
+    def __init__(self, refs: list[list[int]]) -> None:
+        self.lengths = np.array([len(r) for r in refs], dtype=np.int64)
+        width = int(self.lengths.max(initial=0))
+        self.symbols = np.full((len(refs), max(width, 1)), -1, dtype=np.int64)
+        for r, ref in enumerate(refs):
+            self.symbols[r, :len(ref)] = ref
+        self.full = np.array([(1 << len(r)) - 1 for r in refs], dtype=np.uint64)
+        self.forward = [position_masks(r) for r in refs]
+        self.backward = [position_masks(r[::-1]) for r in refs]
+        self.bits = np.arange(self.symbols.shape[1], dtype=np.uint64)
+        self._valid = np.arange(self.symbols.shape[1] + 1) <= self.lengths[:, None]
+
+    def _masks(self, masks: list[dict[int, int]], symbol: int) -> np.ndarray:
+        return np.array([m.get(symbol, 0) for m in masks], dtype=np.uint64)
+
+    def _zeros(self, sequence: list[int], masks: list[dict[int, int]]) -> np.ndarray:
+        """(len(sequence) + 1, refs, width + 1): zero bits among the lowest j of each
+        reference's row after each prefix of `sequence`."""
+        row = self.full.copy()
+        rows = [row]
+        for symbol in sequence:
+            matched = row & self._masks(masks, symbol)
+            row = ((row + matched) | (row - matched)) & self.full
+            rows.append(row)
+        ones = (np.stack(rows)[:, :, None] >> self.bits) & np.uint64(1)
+        zeros = np.cumsum(1 - ones.astype(np.int64), axis=2)
+        return np.concatenate([np.zeros((*zeros.shape[:2], 1), np.int64), zeros], axis=2)
+
+    def move_lcs(self, sequence: list[int], vocab: list[int], deletions: bool
+                 ) -> tuple[np.ndarray, np.ndarray]:
+        """(moves,) lengths and (moves, refs) LCS lengths of `Medians.moves`, in its order."""
+        n, width = len(sequence), self.symbols.shape[1]
+        prefix = self._zeros(sequence, self.forward)
+        back = self._zeros(sequence[::-1], self.backward)
+        # suffix[i, r, j] = back[n - i, r, length_r - j] (j beyond length_r: masked below)
+        flip = np.clip(self.lengths[:, None] - np.arange(width + 1), 0, None)
+        suffix = np.take_along_axis(back[::-1], np.broadcast_to(flip, (n + 1, *flip.shape)),
+                                    axis=2)
+        lost = np.iinfo(np.int64).min // 4
+        whole = prefix[n, np.arange(len(self.lengths)), self.lengths]
+        out, lengths = [], []
+        if deletions:
+            split = np.where(self._valid, prefix[:-1] + suffix[1:], lost)
+            out.append(split.max(axis=2))
+            lengths += [n - 1] * n
+        matched = prefix[:, :, :width] + suffix[:, :, 1:]
+        for symbol in vocab:
+            here = np.where(self.symbols == symbol, matched, lost).max(axis=2)
+            out.append(np.maximum(whole, 1 + here))
+            lengths += [n + 1] * (n + 1)
+        if not out:
+            return np.zeros(0, np.int64), np.zeros((0, len(self.lengths)), np.int64)
+        return np.array(lengths, dtype=np.int64), np.concatenate(out)
