@@ -29,16 +29,15 @@ import numpy as np
 
 from homesim.learn import baselines
 from homesim.learn.data import Example
-from homesim.learn.deletion import Deleter
 from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
 from homesim.learn.insertion import Known
-from homesim.learn.likelihood import FOLDS
 from homesim.learn.likelihood import folds as fold_of_each
 from homesim.learn.rerank import (
     Bank,
     Query,
     Reranker,
     _labelled,
+    cross_deleted,
     cross_fitted_best,
     cross_inserted,
     design,
@@ -77,14 +76,8 @@ def edited_cross_validated(queries: list[Query], groups: list[Group], folds: lis
     learns = [not has_copy(q.bank, q.example) for q in queries]
     written = cross_inserted([(q, known[f], q.candidates[b], f, ok) for q, f, b, ok
                               in zip(queries, folds, best, learns, strict=True)])
-    deleted = list(written)
-    for k in range(FOLDS):
-        deleter = Deleter.fit([(q, known[f], p) for q, f, p, ok
-                               in zip(queries, folds, written, learns, strict=True)
-                               if f != k and ok])
-        for i in (i for i, f in enumerate(folds) if f == k):
-            if deleter is not None:
-                deleted[i] = deleter.delete(queries[i], written[i], known[k])
+    deleted = cross_deleted([(q, known[f], f, ok) for q, f, ok
+                             in zip(queries, folds, learns, strict=True)], written)
 
     def scored(programs: list[Program]) -> np.ndarray:
         return np.array([normalized_lcs(step_tokens(p), step_tokens(q.example.program))
@@ -151,7 +144,11 @@ class Measured:
     """`inserted_alone` after the deleter's deletions (the reranker as the table scores it,
     less the executability check)."""
     deleted_dev: float
-    """The dev score with them."""
+    """The dev score of the reranker as fitted: with them where `fit_editors` kept its
+    deleter (the cross-validated deletions raised the training queries' LCS), else the
+    inserted steps' score."""
+    deleter_kept: float
+    """1 when `fit_editors` kept the deleter, else 0 (over seeds: the share)."""
 
     @property
     def cv_gap_alone(self) -> list[float]:
@@ -212,7 +209,7 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
                     [float(e[scored_alone].mean()) for e in each],
                     float(base_lcs[scored_alone].mean()), float(inserted[scored_alone].mean()),
                     float(np.mean(dev_inserted)), float(deleted[scored_alone].mean()),
-                    float(np.mean(dev_deleted)))
+                    float(np.mean(dev_deleted)), float(model.deleter is not None))
 
 
 def main() -> None:
@@ -250,7 +247,8 @@ def mean_of(rows: list[Measured]) -> Measured:
 
     return Measured(lists("cv"), lists("dev"), floats("baseline_dev"), lists("cv_gap"),
                     lists("cv_alone"), floats("baseline_alone"), floats("inserted_alone"),
-                    floats("inserted_dev"), floats("deleted_alone"), floats("deleted_dev"))
+                    floats("inserted_dev"), floats("deleted_alone"), floats("deleted_dev"),
+                    floats("deleter_kept"))
 
 
 def _line(m: Measured, split: str) -> str:
@@ -264,7 +262,7 @@ def _line(m: Measured, split: str) -> str:
             f"copies {m.inserted_alone:.4f} (gap {m.inserted_alone - m.baseline_alone:+.4f}), "
             f"dev {m.inserted_dev:.4f}; and then the deleted ones: without copies "
             f"{m.deleted_alone:.4f} (gap {m.deleted_alone - m.baseline_alone:+.4f}), "
-            f"dev {m.deleted_dev:.4f}")
+            f"dev {m.deleted_dev:.4f} (deleter kept in {m.deleter_kept:.0%} of the fits)")
 
 
 if __name__ == "__main__":

@@ -385,12 +385,13 @@ class Reranker:
 
     @classmethod
     def fit(cls, train: list[Example], holdout: str, likelihood: bool = False,
-            seed: int = 0, insert: bool = True, delete: bool = False) -> Reranker:
+            seed: int = 0, insert: bool = True, delete: bool = True) -> Reranker:
         """Trees fitted on `train` queried against itself, hiding `holdout` (one of
         `HOLDOUTS`); `likelihood`: with the likelihood features of cross-fitted MLE models
         (trained with `seed`); `insert`: with the `insertion.Inserter` of the steps the text
-        says, `delete`: also the `deletion.Deleter` of unsupported steps (docs/learn.md: it
-        did not gain, so the table's reranker has none), fitted on the same queries."""
+        says, `delete`: also the `deletion.Deleter` of unsupported steps, fitted on the same
+        queries and kept only when, cross-fitted, it raises their mean steps LCS
+        (`fit_editors`)."""
         from homesim.learn.likelihood import CrossFitted
 
         bank = Bank(train)
@@ -469,7 +470,9 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     (`queries`: (index in training, query), their `groups` in order) without a copy in
     training, each with its cross-fitted choice, what it may read of the folds it is not in
     (`insertion.Known`), and for the deleter the steps inserted by an inserter fitted on
-    those folds (`delete`; else None)."""
+    those folds (`delete`; else None). The deleter is None too unless its deletions,
+    cross-fitted (`cross_deleted`), raise those queries' mean steps LCS: on the stratified
+    split they did at four seeds of five, without their activity never (docs/learn.md)."""
     from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter
 
@@ -483,8 +486,40 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     if not delete:
         return inserter, None
     written = cross_inserted([(q, k, c, f, True) for q, k, c, f in chosen])
+    deleted = cross_deleted([(q, k, f, True) for q, k, _, f in chosen], written)
+    if not _raises_lcs([q for q, *_ in chosen], written, deleted):
+        return inserter, None
     by_fold = sorted(range(len(chosen)), key=lambda i: chosen[i][3])
     return inserter, Deleter.fit([(chosen[i][0], chosen[i][1], written[i]) for i in by_fold])
+
+
+def cross_deleted(chosen: list[tuple[Query, Known, int, bool]], written: list[Program]
+                  ) -> list[Program]:
+    """Each (training query, what it may read, its fold, whether editors learn from it)'s
+    `written` program without the steps a `deletion.Deleter` deletes that was fitted on the
+    written programs of the other folds' queries editors learn from (unchanged where there
+    are none)."""
+    from homesim.learn.deletion import Deleter
+    from homesim.learn.likelihood import FOLDS
+
+    deleted = list(written)
+    for fold in range(FOLDS):
+        deleter = Deleter.fit([(q, k, p) for (q, k, f, learns), p
+                               in zip(chosen, written, strict=True) if f != fold and learns])
+        if deleter is not None:
+            for i, (q, k, f, _) in enumerate(chosen):
+                if f == fold:
+                    deleted[i] = deleter.delete(q, written[i], k)
+    return deleted
+
+
+def _raises_lcs(queries: list[Query], before: list[Program], after: list[Program]) -> bool:
+    """Whether `after` has a higher mean steps LCS to the queries' own programs."""
+    def mean(programs: list[Program]) -> float:
+        return float(np.mean([normalized_lcs(step_tokens(p), step_tokens(q.example.program))
+                              for p, q in zip(programs, queries, strict=True)]))
+
+    return bool(queries) and mean(after) > mean(before)
 
 
 def cross_inserted(chosen: list[tuple[Query, Known, Candidate, int, bool]]) -> list[Program]:

@@ -32,7 +32,7 @@ from homesim.program.model import Program
 from homesim.program.parse import step_lines
 from homesim.world.graph import EnvironmentGraph
 
-FORMAT = 4
+FORMAT = 5
 """Bumped when what a stored model holds, or the candidates its trees were fitted on,
 change (a stored model of another format is fitted again); 2: the reranker's medians; 3:
 its inserter of the steps the text says; 4: the inserter's phrase-to-clause cosines."""
