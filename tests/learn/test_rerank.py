@@ -1,6 +1,7 @@
 from dataclasses import replace
 
 import numpy as np
+import pytest
 
 from homesim.knowledge.datasets import ActivityProgram
 from homesim.learn.lexicon import ObjectLexicon
@@ -137,3 +138,20 @@ def test_candidates_include_the_median_of_the_querys_activity():
     best = {tau: int(np.argmax(query.weights[tau] @ bank.lcs)) for tau in TAUS}
     assert median in {tuple(step_tokens(p)) for _, p in query._medians(best)}
     assert median in {c.tokens for c in query.candidates if c.edited}
+
+
+@pytest.mark.parametrize("deletions_help", [True, False])
+def test_the_deleter_is_kept_only_where_its_cross_fitted_deletions_raise_the_lcs(
+        tiny_splits, monkeypatch, deletions_help):
+    from homesim.learn import rerank
+
+    def cross_deleted(chosen, written):
+        if deletions_help:  # the truth itself: nothing scores higher
+            return [q.example.program for q, *_ in chosen]
+        return [p.with_steps(p.steps[:1]) for p in written]
+
+    monkeypatch.setattr(rerank, "cross_deleted", cross_deleted)
+    model = Reranker.fit(tiny_splits.train, "program")
+    assert model.inserter is not None
+    assert (model.deleter is not None) == deletions_help
+    assert Reranker.fit(tiny_splits.train, "program", delete=False).deleter is None
