@@ -78,6 +78,8 @@ def test_all_moves_at_once_score_the_same_floats_as_one_by_one(longest):
         current = medians.encode(_random_program(rng, 15))
         one_by_one = [medians.expected_lcs(m) for m in medians.moves(current)]
         assert medians.move_scores(current).tolist() == one_by_one
+        moves = medians.moves(current)
+        assert [medians.move(current, k) for k in range(len(moves))] == moves
 
 
 def test_a_single_step_has_only_insertions_to_try():

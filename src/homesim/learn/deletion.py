@@ -12,8 +12,9 @@ length features let the classifier see.
 The classifier learns as the inserter's does (`insertion.Known`), each training query with
 its cross-fitted choice and the steps an inserter fitted without its fold inserted.
 `Reranker.fit` keeps it only where its deletions, cross-fitted, raise the training queries'
-mean steps LCS (`rerank.fit_editors`): on the stratified split at four seeds of five, on
-leave-activities-out at none (docs/learn.md, "Steps the text says").
+mean steps LCS (`rerank.fit_editors`): on the stratified split at all five seeds, on
+leave-activities-out at none of those checked (docs/learn.md, "The deleter, by its own
+cross-validation").
 """
 
 from __future__ import annotations

@@ -110,13 +110,20 @@ class Medians:
         current = self.encode(start)
         best = self.expected_lcs(current)
         for _ in range(MEDIAN_ITERS):
-            moves = self.moves(current)
             scores = self.move_scores(current)
             if not len(scores) or float(np.max(scores)) <= best + 1e-12:
                 break
             k = int(np.argmax(scores))
-            current, best = moves[k], float(scores[k])
+            current, best = self.move(current, k), float(scores[k])
         return self.decode(start, current)
+
+    def move(self, current: list[int], k: int) -> list[int]:
+        """`moves(current)[k]`, built alone."""
+        deletions = len(current) if len(current) > 1 else 0
+        if k < deletions:
+            return current[:k] + current[k + 1:]
+        symbol, i = divmod(k - deletions, len(current) + 1)
+        return [*current[:i], self.vocab[symbol], *current[i:]]
 
     def moves(self, current: list[int]) -> list[list[int]]:
         """The search's moves from `current`, in order: each single-step deletion (when more

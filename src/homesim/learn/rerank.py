@@ -48,7 +48,7 @@ import numpy as np
 
 from homesim.learn.data import Example
 from homesim.learn.lexicon import ObjectLexicon, actions, classes, words
-from homesim.program.metrics import normalized_lcs, step_tokens
+from homesim.program.metrics import lcs_steps, normalized_lcs, step_tokens
 from homesim.program.model import Program
 
 if TYPE_CHECKING:
@@ -472,7 +472,7 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     (`insertion.Known`), and for the deleter the steps inserted by an inserter fitted on
     those folds (`delete`; else None). The deleter is None too unless its deletions,
     cross-fitted (`cross_deleted`), raise those queries' mean steps LCS: on the stratified
-    split they did at four seeds of five, without their activity never (docs/learn.md)."""
+    split they did at all five seeds, without their activity at none (docs/learn.md)."""
     from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter
 
@@ -516,7 +516,7 @@ def cross_deleted(chosen: list[tuple[Query, Known, int, bool]], written: list[Pr
 def _raises_lcs(queries: list[Query], before: list[Program], after: list[Program]) -> bool:
     """Whether `after` has a higher mean steps LCS to the queries' own programs."""
     def mean(programs: list[Program]) -> float:
-        return float(np.mean([normalized_lcs(step_tokens(p), step_tokens(q.example.program))
+        return float(np.mean([lcs_steps(p, q.example.program)
                               for p, q in zip(programs, queries, strict=True)]))
 
     return bool(queries) and mean(after) > mean(before)

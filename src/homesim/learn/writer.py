@@ -35,7 +35,8 @@ from homesim.world.graph import EnvironmentGraph
 FORMAT = 5
 """Bumped when what a stored model holds, or the candidates its trees were fitted on,
 change (a stored model of another format is fitted again); 2: the reranker's medians; 3:
-its inserter of the steps the text says; 4: the inserter's phrase-to-clause cosines."""
+its inserter of the steps the text says; 4: the inserter's phrase-to-clause cosines; 5: its
+deleter, kept where its own cross-validation finds it pays."""
 SEED = 0
 """Seed of preparation and grounding when a written program is run."""
 TITLE_TAU = 0.05
