@@ -1,5 +1,13 @@
-from homesim.learn.deletion import DELETE_THRESHOLD, STEP_FEATURES, Deleter, step_features
-from homesim.learn.insertion import Known
+import numpy as np
+
+from homesim.learn.deletion import (
+    DELETE_THRESHOLD,
+    STEP_FEATURES,
+    Deleter,
+    step_features,
+    text_closeness,
+)
+from homesim.learn.insertion import Known, token_phrase
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
 from tests.learn.test_insertion import TV, Fixed, _bank, _query
@@ -32,3 +40,20 @@ def test_step_features_see_the_text_and_the_neighbours():
     assert rows[2, support] == 1.0 and rows[3, support] == 0.0
     room = STEP_FEATURES.index("a room")
     assert list(rows[:, room]) == [1.0, 0.0, 0.0, 0.0]
+    said = STEP_FEATURES.index("phrase cosine to its closest clause")
+    assert rows[2, said] > rows[3, said]  # "watch tv" says the watching, not the light
+
+
+def test_steps_are_compared_with_the_text_in_words():
+    text = "Watch TV. Sit on the couch, then switch on the light."
+    tokens = (("WALK", ("home_office",)), ("SWITCHON", ("light",)), ("SIT", ("couch",)),
+              ("WATCH", ("television",)))
+    assert token_phrase(tokens[1]) == "switch on light"
+    close = text_closeness(text, tokens)
+    assert close.shape == (4, 3) and np.all(np.abs(close) <= 1 + 1e-6)
+    cosine, short, whole = close.T
+    assert cosine[1] > cosine[0] and cosine[2] > cosine[0]  # said, against a walk unsaid
+    assert short[1] == short[2] == short[3] == 0.0  # each the closest step to its clause
+    assert short[0] < 0.0 and whole[0] < whole[3]
+    assert text_closeness(text, ()).shape == (0, 3)
+    assert text_closeness("", tokens[:2]).shape == (2, 3)

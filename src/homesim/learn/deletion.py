@@ -3,7 +3,8 @@
 After the choice and its inserted steps (`insertion`), a classifier (gradient-boosted trees,
 `insertion.CLASSIFIER`) gives each step of the program a probability of being in
 the true program, from its support among the query's neighbours and in its activity, how
-common it is, whether the text names its objects or says its action, where it stands and how
+common it is, whether the text names its objects or says its action, how close the step in
+words is to the text in MiniLM's sentence space (`text_closeness`), where it stands and how
 long the program is against the neighbours' (`STEP_FEATURES`). Steps below
 `DELETE_THRESHOLD` are deleted (never all of them). Under the steps LCS over the longer
 length a step the truth lacks costs only when the program is the longer one, which the
@@ -24,7 +25,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from homesim.learn.insertion import POSITION_TAU, Known, StepClassifier, support
+from homesim.learn.insertion import (
+    POSITION_TAU,
+    Known,
+    StepClassifier,
+    clauses,
+    support,
+    token_phrase,
+)
 from homesim.learn.lexicon import words
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
@@ -32,12 +40,14 @@ from homesim.program.model import Program
 if TYPE_CHECKING:
     from homesim.learn.rerank import Query
 
-DELETE_THRESHOLD = 0.3
+DELETE_THRESHOLD = 0.2
 """Steps the classifier gives less than this probability of being in the truth are deleted
 (chosen by cross-validation over the training queries, docs/learn.md)."""
 STEP_FEATURES = ("neighbour support", "activity support", "share of programs with it", "objects",
                  "action", "objects named", "a room", "action said", "position", "length",
-                 "length against the neighbours'", "times in the program", "words")
+                 "length against the neighbours'", "times in the program", "words",
+                 "phrase cosine to its closest clause", "against that clause's closest step",
+                 "phrase cosine to the text")
 
 
 def step_features(query: Query, tokens: tuple, known: Known,
@@ -55,9 +65,29 @@ def step_features(query: Query, tokens: tuple, known: Known,
              float(all(o in named for o in token[1])) if token[1] else -1.0,
              float(any(o in ROOM_NAMES for o in token[1])), float(token[0] in said),
              position / max(len(tokens) - 1, 1), len(tokens),
-             len(tokens) / max(usual_length, 1e-12), tokens.count(token), n_words]
-            for position, token in enumerate(tokens)]
+             len(tokens) / max(usual_length, 1e-12), tokens.count(token), n_words, *close]
+            for (position, token), close in zip(enumerate(tokens),
+                                                text_closeness(query.example.text, tokens),
+                                                strict=True)]
     return np.array(rows, dtype=float).reshape(len(tokens), len(STEP_FEATURES))
+
+
+def text_closeness(text: str, tokens: tuple) -> np.ndarray:
+    """(steps, 3): the MiniLM cosine of each step token's `insertion.token_phrase` to the
+    closest clause of `text` (`insertion.clauses`), the most by which it falls short of the
+    program step closest to that clause (0 for that step), and its cosine to the whole text.
+    Each text is embedded on its own (`embeddings.lone_sentence_vectors`)."""
+    from homesim.learn.embeddings import lone_sentence_vectors
+
+    parts = clauses(text)
+    if not tokens or not parts:
+        return np.zeros((len(tokens), 3))
+    phrases = lone_sentence_vectors([token_phrase(t) for t in tokens])
+    cosine = phrases @ lone_sentence_vectors(parts).T
+    nearest = cosine.argmax(axis=1)
+    best = cosine.max(axis=1)
+    whole = phrases @ lone_sentence_vectors([text])[0]
+    return np.stack([best, best - cosine.max(axis=0)[nearest], whole], axis=1)
 
 
 @dataclass

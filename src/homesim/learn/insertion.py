@@ -33,6 +33,7 @@ import numpy as np
 
 from homesim.learn.lexicon import ObjectLexicon, words
 from homesim.learn.median import Medians
+from homesim.program.actions import ACTIONS
 from homesim.program.metrics import StepToken, step_tokens
 from homesim.program.model import Program, Step
 
@@ -126,8 +127,13 @@ def proposals(query: Query, lexicon: ObjectLexicon) -> list[Proposal]:
 
 def step_phrase(step: Step) -> str:
     """A step in words: "[SwitchOn] <television>" -> "switch on television"."""
-    verb = re.sub(r"(?<!^)([A-Z])", r" \1", step.action.name).lower()
-    return " ".join([verb, *(ref.name.replace("_", " ") for ref in step.args)])
+    return token_phrase((step.action.key, tuple(ref.name for ref in step.args)))
+
+
+def token_phrase(token: StepToken) -> str:
+    """A step token in words: ("SWITCHON", ("television",)) -> "switch on television"."""
+    verb = re.sub(r"(?<!^)([A-Z])", r" \1", ACTIONS[token[0]].name).lower()
+    return " ".join([verb, *(name.replace("_", " ") for name in token[1])])
 
 
 def closeness(query: Query, found: list[Proposal]) -> np.ndarray:

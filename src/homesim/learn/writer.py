@@ -32,11 +32,12 @@ from homesim.program.model import Program
 from homesim.program.parse import step_lines
 from homesim.world.graph import EnvironmentGraph
 
-FORMAT = 5
+FORMAT = 6
 """Bumped when what a stored model holds, or the candidates its trees were fitted on,
 change (a stored model of another format is fitted again); 2: the reranker's medians; 3:
 its inserter of the steps the text says; 4: the inserter's phrase-to-clause cosines; 5: its
-deleter, kept where its own cross-validation finds it pays."""
+deleter, kept where its own cross-validation finds it pays; 6: the deleter's
+phrase-to-text cosines."""
 SEED = 0
 """Seed of preparation and grounding when a written program is run."""
 TITLE_TAU = 0.05
