@@ -14,8 +14,7 @@ The classifier learns as the inserter's does (`insertion.Known`), each training 
 its cross-fitted choice and the steps an inserter fitted without its fold inserted.
 `Reranker.fit` keeps it only where its deletions, cross-fitted, raise the training queries'
 mean steps LCS (`rerank.fit_editors`): on the stratified split at all five seeds, on
-leave-activities-out at none of those checked (docs/learn.md, "The deleter, by its own
-cross-validation").
+leave-activities-out at seeds 0-2 of 0-4 (docs/learn.md, "The deleter reads the text").
 """
 
 from __future__ import annotations

@@ -472,7 +472,8 @@ def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
     (`insertion.Known`), and for the deleter the steps inserted by an inserter fitted on
     those folds (`delete`; else None). The deleter is None too unless its deletions,
     cross-fitted (`cross_deleted`), raise those queries' mean steps LCS: on the stratified
-    split they did at all five seeds, without their activity at none (docs/learn.md)."""
+    split they did at all five seeds, without their activity at three of five
+    (docs/learn.md)."""
     from homesim.learn.deletion import Deleter
     from homesim.learn.insertion import Inserter
 
