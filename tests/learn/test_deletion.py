@@ -55,5 +55,8 @@ def test_steps_are_compared_with_the_text_in_words():
     assert cosine[1] > cosine[0] and cosine[2] > cosine[0]  # said, against a walk unsaid
     assert short[1] == short[2] == short[3] == 0.0  # each the closest step to its clause
     assert short[0] < 0.0 and whole[0] < whole[3]
+    assert not np.allclose(whole, cosine)  # the whole text is not its closest clause ...
+    alone = text_closeness("watch tv", tokens)
+    assert np.allclose(alone[:, 2], alone[:, 0])  # ... unless it is one clause
     assert text_closeness(text, ()).shape == (0, 3)
     assert text_closeness("", tokens[:2]).shape == (2, 3)
