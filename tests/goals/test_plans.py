@@ -138,3 +138,20 @@ def test_every_action_of_eai_table_is_known(context, name):
     s = score_plan("1_1", plan(WALK_TV, '"TURNTO": ["tv", "14"]', f'"{name}": ["tv", "14"]'),
                    context)
     assert s.error != "hallucination" and s.steps[0] == "[WALK] <tv> (1.14)"
+
+
+@pytest.mark.parametrize(("kind", "expected"), [
+    ("ALREADY", "additional_step"), ("AFFORDANCE", "affordance"),
+    ("UNREACHABLE", "missing_step"), ("STATE", "missing_step")])
+def test_error_kinds_come_from_the_failure_kind_not_its_words(context, monkeypatch, kind,
+                                                              expected):
+    """The EAI kind is read from the simulator's `FailureKind`: the same words with
+    another kind give another EAI kind (no pattern over sentences)."""
+    from homesim.sim import effects
+    from homesim.sim.failure import Failure, FailureKind
+
+    monkeypatch.setitem(effects.EFFECTS, "SWITCHON",
+                        lambda st, n: Failure(FailureKind[kind], "the same words"))
+    s = score_plan("1_1", plan(WALK_TV, ON_TV), context)
+    assert s.error == expected
+    assert s.additional == ([2] if expected == "additional_step" else [])

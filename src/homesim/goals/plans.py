@@ -27,7 +27,6 @@ Task success: every goal of the program (`homesim.goals.eai`) holds on the run's
 from __future__ import annotations
 
 import json
-import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -37,6 +36,7 @@ from homesim.goals.check import GoalReport, Trajectory, check_goals
 from homesim.goals.contexts import TaskContext, load_contexts
 from homesim.program.actions import lookup_action
 from homesim.program.parse import parse_program
+from homesim.sim.failure import FailureKind
 from homesim.world.graph import EnvironmentGraph
 
 __all__ = ["PlanReport", "PlanScore", "TaskContext", "load_contexts", "parse_plan",
@@ -45,14 +45,9 @@ __all__ = ["PlanReport", "PlanScore", "TaskContext", "load_contexts", "parse_pla
 GRAMMAR_KINDS = ("format", "hallucination", "arity")
 RUNTIME_KINDS = ("wrong_order", "missing_step", "affordance", "additional_step")
 
-# (action key, reason pattern) of a step that would redo what is done: additional_step.
-_ALREADY = {
-    "OPEN": "is not closed", "CLOSE": "is not open", "SWITCHON": "is not off",
-    "SWITCHOFF": "is not on", "PLUGIN": "is not unplugged", "PLUGOUT": "is not plugged in",
-    "SIT": "already sitting", "LIE": "already lying", "STANDUP": "is not sitting or lying",
-}
-_AFFORDANCE = re.compile(r"cannot be |cannot receive|has no switch|has no plug|is not a person|"
-                         r"is not clothes|is not food|cannot put .* on or in itself")
+# EAI's run-time kind of each simulator failure kind; any other is a missing step (or a
+# wrong order, when the step could run earlier).
+_EAI_KIND = {FailureKind.ALREADY: "additional_step", FailureKind.AFFORDANCE: "affordance"}
 
 
 @dataclass
@@ -192,9 +187,7 @@ def _execute(score: PlanScore, context: TaskContext) -> None:
         if run.executable or run.failed_step is None:
             break
         at = run.failed_step - 1
-        step = program.steps[kept[at]]
-        reason = run.message.split(": ", 1)[-1]
-        kind = _kind(step.action.key, reason)
+        kind = _EAI_KIND.get(run.kind, "missing_step") if run.kind else "missing_step"
         if kind == "missing_step" and _repeats(run, at):
             kind = "additional_step"  # the same step already ran: doing it again fails
         if kind == "additional_step":
@@ -246,15 +239,6 @@ def _regrab(run: Any) -> int | None:
             if a == char and relation in ("HOLDS_RH", "HOLDS_LH"):
                 held.discard(b)
     return None
-
-
-def _kind(action: str, reason: str) -> str:
-    """EAI's error kind of a step that failed with homesim's `reason`."""
-    if action in _ALREADY and reason.endswith(_ALREADY[action]):
-        return "additional_step"
-    if _AFFORDANCE.search(reason):
-        return "affordance"
-    return "missing_step"
 
 
 def _ran_earlier(program: Any, kept: list[int], at: int, home: EnvironmentGraph) -> bool:

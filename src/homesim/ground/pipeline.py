@@ -46,6 +46,7 @@ from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.sim.execute import ExecutionResult, execute
+from homesim.sim.failure import FailureKind
 from homesim.world.graph import EnvironmentGraph
 
 Stage = Literal["grounding", "execution"]
@@ -68,6 +69,8 @@ class Run:
         grounding: the grounded program, its bindings and standing spots (for a program
             that came grounded: itself, its bindings, no spots); None when it failed.
         graph: the home the program ran in (the prepared one when prepared).
+        kind: what kind of precondition failed (`FailureKind`; ``missing`` for objects
+            the home lacks); None when executable.
     """
 
     program: Program
@@ -79,6 +82,7 @@ class Run:
     prepared: Prepared | None
     grounding: Grounding | None
     graph: EnvironmentGraph
+    kind: FailureKind | None = None
 
     @property
     def bindings(self) -> Bindings | None:
@@ -102,6 +106,7 @@ class Run:
                 "failed_step": self.failed_step,
                 "failed_line": None if lines is None or index is None else lines[index],
                 "reason": self.message,
+                "kind": None if self.kind is None else self.kind.value,
                 "message": self.message,
                 "steps": [],
                 "not_run": [{"index": i, "line": None if lines is None else lines[i],
@@ -186,10 +191,14 @@ def _grounded(program: Program) -> bool:
 def _finished(program: Program, result: ExecutionResult, prepared: Prepared | None,
               grounding: Grounding | None, graph: EnvironmentGraph) -> Run:
     return Run(program, result.executable, result.message, result.failed_step,
-               None if result.executable else "execution", result, prepared, grounding, graph)
+               None if result.executable else "execution", result, prepared, grounding, graph,
+               result.kind)
 
 
-def _failed(program: Program, error: Exception, step: int | None,
+def _failed(program: Program, error: GroundingError | BindingError, step: int | None,
             graph: EnvironmentGraph) -> Run:
     message = " ".join(str(error).split())  # one line, whatever the error held
-    return Run(program, False, message, step, "grounding", None, None, None, graph)
+    kind = FailureKind.MISSING
+    if isinstance(error, GroundingError) and error.kind is not None:
+        kind = FailureKind(error.kind)
+    return Run(program, False, message, step, "grounding", None, None, None, graph, kind)

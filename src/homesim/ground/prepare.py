@@ -42,6 +42,7 @@ from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.placement import place_box
 from homesim.ground.standing import FloorPlan, has_geometry, note_prepared
 from homesim.program.model import ObjectRef, Program, Step
+from homesim.sim.failure import FailureKind
 from homesim.sim.state import SimState
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.vocab import (
@@ -544,7 +545,7 @@ class _Adder:
         raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and there is no "
                              f"free space for one on or in {tried or 'any destination'} or "
                              "on the floor of any room", first_use(self.program, ref.key)[0],
-                             str(ref), tried)
+                             str(ref), tried, FailureKind.MISSING)
 
     def _where(self, ref: ObjectRef) -> str:
         step_no, step_text = first_use(self.program, ref.key)
@@ -562,11 +563,12 @@ class _Adder:
         if (ref.name == CHARACTER_CLASS or ROOM_NAMES.intersection(names)
                 or any(n.is_room for c in names for n in graph.nodes_of_class(c))):
             raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}; rooms and "
-                                 "characters cannot be added", step_no, str(ref), "rooms")
+                                 "characters cannot be added", step_no, str(ref), "rooms",
+                                 FailureKind.MISSING)
         if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c) for c in names):
             raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and the "
                                  f"knowledge base does not know {ref.name!r}, so none can be "
-                                 "added", step_no, str(ref), "")
+                                 "added", step_no, str(ref), "", FailureKind.MISSING)
 
     def _add_worn(self, ref: ObjectRef, names: list[str], rank: _RoomRank,
                   char: int) -> Addition:
