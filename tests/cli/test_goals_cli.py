@@ -38,3 +38,19 @@ def test_goals_check_task_and_eval_plans(real_data, tmp_path, capsys):
     data = json.loads(report.read_text())
     assert [p["error"] for p in data["plans"]] == ["missing_step", "format"]
     assert data["summary"]["trajectory_evaluation"]["grammar_error"]["parsing"] == 50.0
+
+
+def test_goals_check_hostile_formulas_give_json_errors(tmp_path, capsys):
+    """Issue 40 D8: deep nesting and huge ids were a RecursionError / ValueError (exit 70,
+    no JSON); now one line, as JSON with --json."""
+    p = tmp_path / "p.txt"
+    p.write_text(STEPS)
+    for formula, words in (("(" * 200 + "ON(tv.410)" + ")" * 200, "nested deeper"),
+                           ("ON(tv." + "9" * 4400 + ")", "digits, over the limit"),
+                           ("forn " + "9" * 4400 + ". x. (GRAB(x))", "digits, over the limit"),
+                           (" and ".join(["ON(tv.410)"] * 100_000), "MAX_FORMULA_CHARS")):
+        code = main(["goals", "check", str(p), "--home", "scene1", "--json",
+                     "--formula", formula])
+        assert code not in (0, 70)
+        out = json.loads(capsys.readouterr().out)
+        assert words in out["error"] and "\n" not in out["error"]
