@@ -108,3 +108,23 @@ def test_a_long_then_chain_is_checked_without_recursion(tiny_home):
     assert not holds(parse_formula(" then ".join(["OFF(tv.14)", "ON(tv.14)"] * 3)), tr)
     assert holds(parse_formula(" then ".join(["ON(tv.14)"] * 200)), tr)
     assert not holds(parse_formula(" then ".join(["OFF(tv.14)"] * 200)), tr)
+
+
+@pytest.mark.parametrize(("text", "refused"), [
+    ("ON(a.1) and (OFF(b.2) then ON(b.2))", True),
+    ("exists x. (GRAB(x)) and (OFF(b.2) then ON(b.2))", True),
+    ("not ON(a.1) and forall x. (OFF(x) then ON(x))", True),
+    ("(ON(a.1) then OFF(a.1)) and (OFF(b.2) then ON(b.2))", False),
+    ("ON(a.1) or (OFF(b.2) then ON(b.2))", False),  # EAI allows it in 'or'
+    ("ON(a.1) and OFF(b.2) then ON(b.2)", False),  # 'then' binds loosest
+])
+def test_strict_eai_refuses_and_of_state_and_temporal_goals(text, refused):
+    from homesim.goals.formula import temporal
+
+    f = parse_formula(text)  # homesim judges them all
+    assert temporal(f) == ("then" in str(f))
+    if refused:
+        with pytest.raises(GoalError, match="joins state and temporal goals"):
+            parse_formula(text, strict_eai=True)
+    else:
+        assert parse_formula(text, strict_eai=True) == f

@@ -125,8 +125,12 @@ _BLANK = re.compile(r"\s*\Z")
 _KEYWORDS = {"and", "or", "then", "not", "exists", "forall", "forn"}
 
 
-def parse_formula(text: str) -> Formula:
+def parse_formula(text: str, strict_eai: bool = False) -> Formula:
     """Parse an EAI goal formula; `GoalError` names the column and what was expected.
+
+    `strict_eai` also refuses what EAI's parser refuses: an ``and`` joining a state goal
+    and a temporal one (a ``then`` inside; see `temporal`), e.g. ``ON(a.1) and (OFF(b.2)
+    then ON(b.2))``; homesim judges those (all parts must hold on the segment).
 
     Limits (`homesim.limits`): `MAX_FORMULA_CHARS` characters (`LimitError`), nesting
     `MAX_FORMULA_DEPTH` levels deep, `MAX_FORMULA_ATOMS` atoms, `MAX_FORMULA_QUANTIFIERS`
@@ -137,7 +141,31 @@ def parse_formula(text: str) -> Formula:
     if len(text) > MAX_FORMULA_CHARS:
         raise LimitError(f"formula: {len(text)} characters, over the limit of "
                          f"{MAX_FORMULA_CHARS} (MAX_FORMULA_CHARS)", "MAX_FORMULA_CHARS")
-    return _Parser(text).parse()
+    formula = _Parser(text).parse()
+    if strict_eai:
+        temporal(formula, strict_eai=True)
+    return formula
+
+
+def temporal(formula: Formula, strict_eai: bool = False) -> bool:
+    """Whether `formula` is a temporal goal in EAI's sense: it has a ``then`` (outside
+    which ``not``, quantifiers and ``or`` pass it on). With `strict_eai`, an ``and`` of
+    state and temporal parts is a `GoalError`, as EAI's ``SimpleTLAnd`` asserts."""
+    if isinstance(formula, Atom):
+        return False
+    if isinstance(formula, Not | Quantified):
+        return temporal(formula.body, strict_eai)
+    kinds = [temporal(p, strict_eai) for p in formula.parts]
+    if formula.op == "then":
+        return True
+    if strict_eai and formula.op == "and" and len(set(kinds)) > 1:
+        raise GoalError(f"formula: {_clip(str(formula))} joins state and temporal goals with "
+                        "'and', which EAI refuses (--strict-eai)")
+    return any(kinds)
+
+
+def _clip(text: str, most: int = 80) -> str:
+    return text if len(text) <= most else text[:most] + "..."
 
 
 class _Parser:
