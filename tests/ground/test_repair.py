@@ -99,28 +99,31 @@ def test_homesim_run_repair_lists_insertions_and_runs_the_repaired_program(tmp_p
 
     p = tmp_path / "p.txt"
     p.write_text("[Grab] <wine_glass> (1)\n")
-    assert main(["run", str(p), "--home", "scene1_trimmed"]) == 1
-    capsys.readouterr()
-    assert main(["run", str(p), "--home", "scene1_trimmed", "--repair"]) == 0
+    assert main(["run", str(p), "--home", "scene1_trimmed", "--no-repair"]) == 1
+    assert "inserted" not in capsys.readouterr().out
+    assert main(["run", str(p), "--home", "scene1_trimmed"]) == 0  # repair by default
     out = capsys.readouterr().out
     assert ("inserted step 1 [Walk] <wine_glass> (1): walk to <wine_glass> (1) before "
             "[Grab]") in out
+    assert "as written: step 1 [Grab] <wine_glass> (1): cannot be grounded" in out
     assert "executable: all 2 steps ran" in out
-    assert main(["run", str(p), "--home", "scene1_trimmed", "--repair", "--json"]) == 0
+    assert main(["run", str(p), "--home", "scene1_trimmed", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["executable"] and len(data["steps"]) == 2
+    assert [s["line"] for s in data["steps"]] == [None, None]  # no lines without a file
     assert data["repair"]["executable_before"] is False
     assert [i["step"] for i in data["repair"]["insertions"]] == ["[Walk] <wine_glass> (1)"]
+    assert data["message"] == "executable: all 2 steps ran, 1 of them inserted by repair"
 
 
-def test_repair_and_no_ground_do_not_mix(tmp_path, capsys):
+def test_no_ground_reads_node_ids_and_never_repairs(tmp_path, capsys):
     from homesim.cli.main import main
 
     p = tmp_path / "p.txt"
     p.write_text("[Grab] <wine_glass> (1)\n")
-    assert main(["run", str(p), "--repair", "--no-ground"]) != 0
-    captured = capsys.readouterr()
-    assert "drop --no-ground" in captured.out + captured.err
+    assert main(["run", str(p), "--no-ground", "--json"]) != 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["repair"] is None and data["steps"][0]["step"] == "[Grab] <wine_glass> (1)"
 
 
 @pytest.mark.parametrize(("text", "walk"), [

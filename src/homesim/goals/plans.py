@@ -349,7 +349,7 @@ def _ran_earlier(program: Any, kept: list[int], at: int, home: EnvironmentGraph)
 
 def _run(program: Program, home: EnvironmentGraph, trace: bool = False) -> Run:
     """A plan runs as written in the task's initial graph: not prepared, not repaired."""
-    return run_program(program, home, prepare=False, trace=trace)
+    return run_program(program, home, prepare=False, repair=False, trace=trace)
 
 
 @dataclass

@@ -1,9 +1,9 @@
-"""The one way to run a program in a home: prepare, ground, execute.
+"""The strict run of a program in a home: prepare, ground, execute; nothing inserted.
 
-Every entry point runs programs through `run_program`: ``homesim run`` and ``homesim
-render``, the web API (``/api/execute``, ``/api/render``), the learning reward and the
-Simulator % column, constrained decoding (step by step, see
-`homesim.learn.execution.StepRunner`), so they all give the same verdict and message.
+`homesim.run_program` (`homesim.ground.pipeline`) starts with this run and repairs the
+program when a step cannot run; repair's own trials (`homesim.ground.repair`) and
+whoever needs the program's verdict as written (plan scoring, the learning reward) run
+it strictly (`run_program(..., repair=False)`).
 
 - An ungrounded program (``<cup> (1)``) is prepared for the home (objects it lacks are
   added, presupposed states set; `homesim.ground.prepare`) and grounded (each object bound
@@ -18,23 +18,24 @@ Simulator % column, constrained decoding (step by step, see
 Contract: a program that cannot run in the home is an answer, not an error. Grounding
 failures and refused bindings give a `Run` with ``executable`` False, ``stage``
 ``"grounding"`` and the grounding's one-line message; a step whose preconditions fail
-gives ``stage`` ``"execution"``. `run_program` raises only on a broken home (e.g. one
-without a character: `ExecutionError`).
+gives ``stage`` ``"execution"``. It raises only on a broken home (e.g. one without a
+character: `ExecutionError`).
 
 >>> from homesim.program import parse_program
 >>> from homesim.world import load_home
 >>> p = parse_program("[Walk] <dining_room> (1)\\n[Find] <wine_glass> (1)\\n"
 ...                   "[Grab] <wine_glass> (1)")
->>> run = run_program(p, load_home("scene1_trimmed"))
+>>> run = run_strict(p, load_home("scene1_trimmed"))
 >>> run.executable, run.message, [a.class_name for a in run.prepared.added]
 (True, 'executable: all 3 steps ran', ['wine_glass'])
->>> run = run_program(p, load_home("scene1_trimmed"), prepare=False)
->>> run.executable, run.stage, run.failed_step
-(False, 'grounding', 2)
+>>> run = run_strict(p, load_home("scene1_trimmed"), prepare=False)
+>>> run.executable, run.stage, run.failed_step, run.kind.value
+(False, 'grounding', 2, 'missing')
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -43,13 +44,34 @@ from homesim.ground.kbtypes import ObjectKnowledge, default_kb
 from homesim.ground.prepare import Prepared
 from homesim.ground.search import Grounding, ground, prepare_and_ground
 from homesim.program.bindings import Bindings
-from homesim.program.model import Program
+from homesim.program.model import Program, Step
 from homesim.program.parse import parse_program
 from homesim.sim.execute import ExecutionResult, execute
 from homesim.sim.failure import FailureKind
 from homesim.world.graph import EnvironmentGraph
 
 Stage = Literal["grounding", "execution"]
+
+
+@dataclass(frozen=True, slots=True)
+class Insertion:
+    """One step repair inserted.
+
+    Attributes:
+        index: 0-based position of the step in the repaired program.
+        step: the inserted step.
+        reason: why it is needed, in words.
+        before: 0-based index of the original step it precedes.
+    """
+
+    index: int
+    step: Step
+    reason: str
+    before: int
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"index": self.index, "step": str(self.step), "reason": self.reason,
+                "before": self.before}
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +93,9 @@ class Run:
         graph: the home the program ran in (the prepared one when prepared).
         kind: what kind of precondition failed (`FailureKind`; ``missing`` for objects
             the home lacks); None when executable.
+        insertions: the steps repair inserted, each with its reason (empty when the
+            program ran as written, or when repair found no fix).
+        strict: the run of the program as written, when repair changed it; else None.
     """
 
     program: Program
@@ -83,19 +108,30 @@ class Run:
     grounding: Grounding | None
     graph: EnvironmentGraph
     kind: FailureKind | None = None
+    insertions: tuple[Insertion, ...] = ()
+    strict: Run | None = None
 
     @property
     def bindings(self) -> Bindings | None:
         """Program objects -> node ids of `graph`, when grounded."""
         return None if self.grounding is None else self.grounding.bindings
 
-    def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
+    @property
+    def repaired(self) -> Program | None:
+        """The program that ran, with the inserted steps (ungrounded as given), or None."""
+        return insert_steps(self.program, self.insertions) if self.insertions else None
+
+    def to_dict(self, lines: Sequence[int | None] | None = None) -> dict[str, Any]:
         """JSON view, the one shape of ``homesim run --json`` and ``/api/execute``.
 
         The keys of `ExecutionResult.to_dict` (with no steps run when grounding failed),
-        plus ``stage``, ``preparation`` (`Prepared.to_dict`) and ``grounding``
-        (`Grounding.to_dict`). `lines`: the text line of each step, for ``line`` fields.
+        plus ``stage``, ``kind``, ``preparation`` (`Prepared.to_dict`), ``grounding``
+        (`Grounding.to_dict`) and ``repair`` (None, or the repaired program, each
+        inserted step with its reason and the verdict as written). `lines`: the text line
+        of each step of `program`, for ``line`` fields (None for inserted steps).
         """
+        if lines is not None and self.insertions:
+            lines = _with_inserted(lines, self.insertions)
         if self.result is not None:
             data = self.result.to_dict(lines)
         else:
@@ -112,16 +148,41 @@ class Run:
                 "not_run": [{"index": i, "line": None if lines is None else lines[i],
                              "step": str(s)} for i, s in enumerate(self.program.steps)],
             }
+        data["message"] = self.message
         data["stage"] = self.stage
         data["preparation"] = None if self.prepared is None else self.prepared.to_dict()
         data["grounding"] = None if self.grounding is None else self.grounding.to_dict()
+        data["repair"] = None
+        if self.strict is not None:
+            data["repair"] = {
+                "program": str(self.repaired), "insertions": [i.to_dict() for i in self.insertions],
+                "executable_before": self.strict.executable,
+                "message_before": self.strict.message}
         return data
 
 
-def run_program(program: Program | str, home: EnvironmentGraph | str, *,
-                prepare: bool = True, seed: int = 0, trace: bool = False,
-                kb: ObjectKnowledge | None = None, reference: bool = False) -> Run:
-    """Run `program` in `home`: prepare and ground it when it is not grounded, execute it.
+def insert_steps(program: Program, insertions: Sequence[Insertion]) -> Program:
+    """`program` with the inserted steps at their places."""
+    steps = list(program.steps)
+    for ins in insertions:
+        steps.insert(ins.index, ins.step)
+    return program.with_steps(steps)
+
+
+def _with_inserted(lines: Sequence[int | None], insertions: Sequence[Insertion]
+                   ) -> list[int | None]:
+    """The line of each step of the repaired program: None for inserted steps."""
+    out: list[int | None] = list(lines)
+    for ins in insertions:
+        out.insert(ins.index, None)
+    return out
+
+
+def run_strict(program: Program | str, home: EnvironmentGraph | str, *,
+               prepare: bool = True, seed: int = 0, trace: bool = False,
+               kb: ObjectKnowledge | None = None, reference: bool = False) -> Run:
+    """Run `program` in `home` as written: prepare and ground it when it is not grounded,
+    execute it.
 
     Args:
         program: a `Program` or program text.
@@ -161,11 +222,11 @@ def run_program(program: Program | str, home: EnvironmentGraph | str, *,
 
 def runs(program: Program, home: EnvironmentGraph, *, prepare: bool = True, seed: int = 0,
          kb: ObjectKnowledge | None = None) -> bool:
-    """``run_program(program, home, ...).executable``, for a program that is not grounded,
+    """``run_strict(program, home, ...).executable``, for a program that is not grounded,
     without the final execution (grounding's search has run every step already): the
     check constrained decoding makes for each candidate step."""
     if _grounded(program):
-        return run_program(program, home, prepare=prepare, seed=seed, kb=kb).executable
+        return run_strict(program, home, prepare=prepare, seed=seed, kb=kb).executable
     try:
         _ground(program, home, prepare, seed, kb or default_kb())
     except GroundingError:

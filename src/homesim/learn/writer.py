@@ -102,12 +102,13 @@ class ProgramWriter:
         query = ActivityProgram("query", Program((), title=title, description=description))
 
         def runs(p: Program) -> bool:
-            return run_program(p, graph, seed=seed).executable
+            return run_program(p, graph, seed=seed, repair=False).executable
 
         vectors = (desc_vector, self.title_vector(title))
         chosen = self.reranker.choose(query, runs, vectors)
         program = Program(chosen.steps, title=title, description=description)
-        return Written(program, given, run_program(program, graph, seed=seed, trace=True))
+        return Written(program, given, run_program(program, graph, seed=seed, trace=True,
+                                                   repair=False))
 
     def title_vector(self, title: str) -> np.ndarray:
         """A title's sentence vector, the same in every process: a training title's is the

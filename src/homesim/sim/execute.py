@@ -29,7 +29,7 @@ prepares the home and grounds the program first.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
@@ -130,7 +130,7 @@ class ExecutionResult:
         """Net changes of the whole run against the input graph."""
         return self.state.changes_since(0)
 
-    def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
+    def to_dict(self, lines: Sequence[int | None] | None = None) -> dict[str, Any]:
         """JSON view: verdict, message, each attempted step and the steps not run.
 
         `lines` gives the text line of each step (``line`` fields are None without it).
