@@ -28,7 +28,9 @@ def test_a_closed_container_is_opened_before_taking_from_it(tiny_home):
     # Grounded: the cup in the fridge (ungrounded, preparation may add another cup).
     r = repair("[Grab] <cup> (1.12)", tiny_home)
     assert r.executable
-    assert [str(i.step) for i in r.insertions] == ["[Walk] <cup> (1.12)",
+    # The grab fails with kind `enclosed`: opening the fridge comes first, and walking
+    # to it first repairs that in turn.
+    assert [str(i.step) for i in r.insertions] == ["[Walk] <fridge> (1.11)",
                                                    "[Open] <fridge> (1.11)"]
     assert "may be inside it" in r.insertions[1].reason
 
@@ -162,3 +164,14 @@ def test_a_walk_before_the_first_step_on_an_object_lets_grounding_pick_another(t
     assert [(i.index, str(i.step), i.before) for i in r.insertions] == [(0, walk, 0)]
     assert "first acts on it" in r.insertions[0].reason
     assert _own_steps(r) == text.split("\n")
+
+
+def test_repair_reads_the_failure_kind(tiny_home):
+    """An affordance failure (a table cannot be grabbed) is not tried with walks, grabs
+    and turns before it: two runs (the program, then nothing to try), not dozens."""
+    r = repair("[Grab] <table> (1.13)", tiny_home)
+    assert not r.executable and r.before.kind.value == "affordance"
+    assert r.runs <= 2 and r.insertions == ()
+    # Facing: the turn comes before the walk (kind not_facing).
+    r = repair("[Walk] <tv> (1.14)\n[LookAt] <tv> (1.14)", tiny_home)
+    assert [str(i.step) for i in r.insertions] == ["[TurnTo] <tv> (1.14)"]

@@ -48,6 +48,7 @@ from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.strict import Insertion, Run, run_strict
 from homesim.program.actions import ACTIONS, ActionSpec
 from homesim.program.model import ObjectRef, Program, Step
+from homesim.sim.failure import FailureKind
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, INSIDE
 
@@ -205,13 +206,44 @@ def _improve(items: list[_Item], run: Run, depth: int, search: _Search,
     return None
 
 
+# The inserted actions that answer each kind of failure, tried first, in this order; the
+# other candidates of the catalog row follow (a grounding failure's kind is that of the
+# deepest step the search could not pass, which need not be the one repair looks at).
+_FIRST: dict[FailureKind, tuple[str, ...]] = {
+    FailureKind.UNREACHABLE: ("WALK",),
+    FailureKind.NOT_FACING: ("TURNTO", "WALK"),
+    FailureKind.NOT_HELD: ("GRAB", "WALK"),
+    FailureKind.ENCLOSED: ("OPEN",),
+    FailureKind.POSTURE: ("STANDUP",),
+    FailureKind.STATE: ("PLUGIN", "OPEN", "SWITCHOFF"),
+    FailureKind.ALREADY: ("SWITCHOFF", "CLOSE", "PLUGOUT"),
+}
+# Kinds no step inserted just before the failing one can mend: the home lacks the object,
+# or the object cannot take the action. Only a walk before an earlier step, which lets
+# grounding bind another instance, is tried.
+_ONLY_EARLIER = frozenset({FailureKind.MISSING, FailureKind.AFFORDANCE})
+
+
+def _by_kind(fixes: Iterator[tuple[Step, str]], kind: FailureKind | None
+             ) -> Iterator[tuple[Step, str]]:
+    """`fixes` in the order the failure's kind suggests (see `_FIRST`)."""
+    if kind in _ONLY_EARLIER:
+        return iter(())
+    first = _FIRST.get(kind, ()) if kind is not None else ()
+    if not first:
+        return fixes
+    return iter(sorted(fixes, key=lambda f: first.index(f[0].action.key)
+                       if f[0].action.key in first else len(first)))
+
+
 def _candidates(items: list[_Item], k: int, run: Run, search: _Search
                 ) -> Iterator[list[_Item]]:
-    """Programs with one step inserted before step `k`, most likely fix first."""
+    """Programs with one step inserted before step `k`, most likely fix first (by the
+    failure's kind, `run.kind`)."""
     step = items[k][0]
     previous = items[k - 1][0] if k > 0 else None
     seen: set[Step] = set()
-    for new, reason in _fixes(step, k, items, search):
+    for new, reason in _by_kind(_fixes(step, k, items, search), run.kind):
         if new == previous or new in seen:
             continue  # the same step twice in a row fixes nothing
         seen.add(new)

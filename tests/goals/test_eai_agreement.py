@@ -1,0 +1,77 @@
+"""homesim's plan verdicts against those of EAI's own evaluator (eai-eval 1.0.5).
+
+`benchmarks/eai_agreement.py` runs EAI's evaluator in a side environment on seeded plans
+(the gold program of every annotated task, and for 60 tasks a perturbation of each kind,
+the plans of issue 41 among them), and writes each plan with EAI's verdict and the
+documented EAI fault (docs/goals.md) that explains a plan EAI gets wrong, if any:
+``data/eai_verdicts.json.gz``. EAI itself is not needed here (it takes ~1 GB and an hour
+on this machine), so CI checks every plan against the recorded verdicts:
+
+- with ``strict_eai``, homesim agrees on task success and on the error kind on every plan
+  no fault touches;
+- in the default mode it disagrees only on the plan kinds docs/goals.md lists as
+  homesim's deliberate differences.
+"""
+
+from __future__ import annotations
+
+import gzip
+import json
+from pathlib import Path
+
+import pytest
+
+from homesim.goals.contexts import load_contexts
+from homesim.goals.plans import score_plans
+
+GOLDEN = Path(__file__).parent / "data" / "eai_verdicts.json.gz"
+DEFAULT_DIFFERENCES = {
+    "trailing_comma": "U2: EAI reads a plan that is not JSON",
+    "missing_brace": "U2: EAI reads a plan that is not JSON",
+    "spaced_key": "U4: EAI drops a key with a space; homesim reads WA LK as WALK",
+    "put_alias": "U5: homesim knows PUT as PUTBACK",
+    "repeated_putback": "U7: homesim skips a repeated step that now fails",
+}
+
+
+@pytest.fixture(scope="module")
+def golden(real_data):
+    data = json.loads(gzip.decompress(GOLDEN.read_bytes()))
+    plans = data["plans"]
+    contexts = load_contexts({p["identifier"] for p in plans})
+    return plans, contexts
+
+
+def _verdicts(plans, contexts, strict):
+    scores = score_plans(plans, contexts, strict_eai=strict).scores
+    return [(s.error, s.success) for s in scores]
+
+
+def _wrong(plans, ours):
+    return [(p["identifier"], p["kind"], o, (p["eai"]["error"], p["eai"]["success"]))
+            for p, o in zip(plans, ours, strict=True)
+            if o != (p["eai"]["error"], p["eai"]["success"])]
+
+
+def test_the_golden_plans_cover_every_kind(golden):
+    plans, _ = golden
+    kinds = {p["kind"] for p in plans}
+    assert {"gold", "unknown_after_arity", "trailing_comma", "missing_brace", "put_alias",
+            "repeated_putback", "wash_room", "type_object", "mixed_case", "spaced_key",
+            "watch_elsewhere", "drop", "swap", "duplicate"} <= kinds
+    assert len(plans) > 900
+
+
+def test_strict_mode_agrees_with_eai_outside_its_documented_faults(golden):
+    plans, contexts = golden
+    untouched = [p for p in plans if p["eai_fault"] is None]
+    assert len(untouched) > 0.6 * len(plans)
+    assert _wrong(untouched, _verdicts(untouched, contexts, strict=True)) == []
+
+
+def test_default_mode_differs_only_where_documented(golden):
+    plans, contexts = golden
+    untouched = [p for p in plans if p["eai_fault"] is None]
+    wrong = _wrong(untouched, _verdicts(untouched, contexts, strict=False))
+    assert [w for w in wrong if w[1] not in DEFAULT_DIFFERENCES] == []
+    assert {w[1] for w in wrong} <= set(DEFAULT_DIFFERENCES)
