@@ -175,3 +175,16 @@ def test_repair_reads_the_failure_kind(tiny_home):
     # Facing: the turn comes before the walk (kind not_facing).
     r = repair("[Walk] <tv> (1.14)\n[LookAt] <tv> (1.14)", tiny_home)
     assert [str(i.step) for i in r.insertions] == ["[TurnTo] <tv> (1.14)"]
+
+
+def test_run_program_switches_off_what_is_on_only_when_nothing_else_helps(tiny_home):
+    """Issue 41: a device already on blocked real programs ([SwitchOn] <light>); the
+    pipeline's repair then undoes the state, and says so."""
+    from homesim.ground.pipeline import run_program
+
+    text = "[Walk] <tv> (1.14)\n[SwitchOn] <tv> (1.14)\n[SwitchOn] <tv> (1.14)"
+    assert not repair(text, tiny_home).executable  # repair alone does not change meaning
+    run = run_program(text, tiny_home)
+    assert run.executable and run.strict.kind.value == "already"
+    assert [str(i.step) for i in run.insertions] == ["[SwitchOff] <tv> (1.14)"]
+    assert "it must be OFF" in run.insertions[0].reason

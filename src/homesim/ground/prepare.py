@@ -31,6 +31,7 @@ Two things are prepared, on a copy of the home (the input graph is never changed
 
 from __future__ import annotations
 
+import difflib
 import random
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
@@ -565,10 +566,12 @@ class _Adder:
             raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}; rooms and "
                                  "characters cannot be added", step_no, str(ref), "rooms",
                                  FailureKind.MISSING)
-        if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c) for c in names):
+        if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c)
+                   or kb.default_states(c) for c in names):
             raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and the "
                                  f"knowledge base does not know {ref.name!r}, so none can be "
-                                 "added", step_no, str(ref), "", FailureKind.MISSING)
+                                 f"added{_suggest(ref.name, kb)}", step_no, str(ref), "",
+                                 FailureKind.MISSING)
 
     def _add_worn(self, ref: ObjectRef, names: list[str], rank: _RoomRank,
                   char: int) -> Addition:
@@ -735,6 +738,12 @@ class _RoomRank:
         if self.graph.nodes[room].class_name in self.walked_into:
             return 0
         return 1 if room in self.rooms else 2
+
+
+def _suggest(name: str, kb: ObjectKnowledge) -> str:
+    """``" (did you mean television?)"``: known classes spelled like `name`, if any."""
+    close = difflib.get_close_matches(name, kb.classes(), n=3, cutoff=0.75)
+    return f" (did you mean {' or '.join(close)}?)" if close else ""
 
 
 def _placements(names: list[str], kb: ObjectKnowledge) -> list[Any]:

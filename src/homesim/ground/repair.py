@@ -111,8 +111,15 @@ def repair_steps(program: Program, home: EnvironmentGraph, before: Run, *, seed:
                  kb: ObjectKnowledge | None = None, prepare: bool = True
                  ) -> tuple[Insertion, ...]:
     """The steps to insert so that `program` runs in `home` (`before`: its strict run,
-    which failed); () when repair finds none. What `homesim.run_program` calls."""
+    which failed); () when repair finds none. What `homesim.run_program` calls.
+
+    When what stops it is a state the program's step would bring about already (it
+    switches on a device that is on), a second search also undoes such states
+    (``undo_states``: switch the device off first), each insertion saying so."""
     found = repair(program, home, seed=seed, kb=kb, prepare=prepare, before=before)
+    if not found.executable and found.run.kind is FailureKind.ALREADY:
+        found = repair(program, home, seed=seed, kb=kb, prepare=prepare, before=before,
+                       undo_states=True)
     return found.insertions if found.executable else ()
 
 
