@@ -48,9 +48,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from homesim.ground.kbtypes import ObjectKnowledge, default_kb
 from homesim.ground.repair import repair_steps
 from homesim.ground.strict import Insertion, Run, insert_steps, run_strict, runs
+from homesim.knowledge.kbtypes import ObjectKnowledge, default_kb
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
