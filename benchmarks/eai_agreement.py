@@ -157,6 +157,49 @@ def _systematic(pairs: list[tuple[str, list[str]]], how: str, context: TaskConte
     return out
 
 
+ISSUE_PLANS = [
+    # U1: an arity error (step 1) before an unknown object (step 2): hallucination first.
+    ("60_1", "U1", '{"WALK": ["home_office", "319", "home_office", "319"], '
+                   '"GRAB": ["unicorn", "99999"]}'),
+    # U9: typing on a table, far from it and next to it.
+    ("84_1", "U9", '{"TYPE": ["table", "355"]}'),
+    ("84_1", "U9", '{"WALK": ["table", "355"], "TYPE": ["table", "355"]}'),
+    # U8: washing the bedroom after walking there.
+    ("1003_2", "U8", '{"WALK": ["bedroom", "67"], "WASH": ["bedroom", "67"]}'),
+    # U6: watching the TV from another room.
+    ("1049_1", "U6", '{"WATCH": ["television", "410"]}'),
+    # U2, U3, U4, U5, U7 on 27_2 (wash clothes): see `_issue_variants`.
+]
+
+
+def _issue_variants(gold_text: str) -> list[tuple[str, str]]:
+    """U2 (trailing comma, missing brace), U3 (mixed-case key), U4 (a key with a space),
+    U5 (PUT), U7 (a repeated PUTBACK) made from 27_2's gold plan."""
+    put = '"PUTBACK": ["clothes_jacket", "1003", "washing_machine", "1001"]'
+    first = gold_text.split('"', 2)[1]
+    out = [("U2", gold_text[:-1] + ",}"), ("U2", gold_text[:-1]),
+           ("U3", gold_text.replace(f'"{first}"', f'"{first.capitalize()}"', 1)),
+           ("U4", gold_text.replace(f'"{first}"', f'"{first[:2]} {first[2:]}"', 1))]
+    if put in gold_text:
+        out += [("U5", gold_text.replace('"PUTBACK"', '"PUT"', 1)),
+                ("U7", gold_text.replace(put, f"{put}, {put}", 1))]
+    return out
+
+
+def issue_plans(contexts: dict[str, TaskContext]) -> list[dict]:
+    """The plans of issue 41's differences (U1-U9), on the tasks it names where it names
+    one."""
+    from homesim.knowledge.datasets import real_programs
+
+    gold = to_text(gold_pairs(contexts["27_2"], next(
+        p.program for p in real_programs() if p.id == "file27_2")))
+    plans = [{"identifier": pid, "kind": f"issue {u}", "llm_output": text}
+             for pid, u, text in ISSUE_PLANS if pid in contexts]
+    plans += [{"identifier": "27_2", "kind": f"issue {u}", "llm_output": text}
+              for u, text in _issue_variants(gold)]
+    return plans
+
+
 def build_plans(contexts: dict[str, TaskContext], sample: int, seed: int) -> list[dict]:
     """Gold plans for all, perturbed plans for `sample` programs (seeded)."""
     from homesim.knowledge.datasets import real_programs
@@ -218,7 +261,7 @@ def eai_bug(plan: dict, context: TaskContext, eai: dict) -> str | None:
         return "failure without an error kind"
     if eai["error"] is not None and eai["error"].startswith("crash"):
         return "mixed-case key: EAI's arity check raises"
-    if plan["kind"] == "watch_elsewhere" and eai["error"] == "affordance":
+    if plan["kind"] in ("watch_elsewhere", "issue U6") and eai["error"] == "affordance":
         return "watching from another room counted as affordance"
     return _eai_runtime_bug(context, eai)
 
@@ -285,6 +328,8 @@ def main() -> None:
     plans = build_plans(contexts, args.sample, args.seed)
     gold = [p for p in plans if p["kind"] == "gold"]
     rest = plans[len(gold):]
+    issue = issue_plans(contexts)
+    plans += issue
     t0 = time.perf_counter()
     score_plans(gold, contexts)
     gold_s = time.perf_counter() - t0
@@ -303,14 +348,21 @@ def main() -> None:
         eai_gold = eai("gold", gold)
         eai_shipped = eai("gold", gold, "--as-shipped")
         eai_rest = eai("plans", rest)
-    theirs = eai_gold["plans"] + eai_rest["plans"]
+        eai_issue = eai("issue", issue)
+    theirs = eai_gold["plans"] + eai_rest["plans"] + eai_issue["plans"]
     bugs = [eai_bug(p, contexts[p["identifier"]], e) for p, e in zip(plans, theirs, strict=True)]
 
     print(f"plans: {len(plans)} ({len(gold)} gold, {len(rest)} perturbed on {args.sample} "
-          f"programs, seed {args.seed}; kinds: {dict(Counter(p['kind'] for p in rest))})")
+          f"programs, seed {args.seed}, {len(issue)} of issue 41; kinds: "
+          f"{dict(Counter(p['kind'] for p in rest))})")
     print("plans touched by EAI's faults:", dict(Counter(b for b in bugs if b)))
     for mode in ("default", "strict"):
         _agreement(mode, plans, ours[mode], theirs, bugs)
+    for p, e, o, st in zip(plans[-len(issue):], eai_issue["plans"], ours["default"][-len(issue):],
+                           ours["strict"][-len(issue):], strict=True):
+        print(f"  {p['kind']} {p['identifier']}: EAI {e['error']} {e['success']}, homesim "
+              f"{o.error} {o.success}, --strict-eai {st.error} {st.success}: "
+              f"{p['llm_output'][:90]}")
     _speed(len(gold), len(rest), load_s, cold_s, gold_s, rest_s, eai_gold, eai_shipped, eai_rest)
     if args.report:
         rows = [{"plan": p, "eai_fault": b, "homesim": o.to_dict(),

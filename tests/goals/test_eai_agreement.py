@@ -32,6 +32,9 @@ DEFAULT_DIFFERENCES = {
     "put_alias": "U5: homesim knows PUT as PUTBACK",
     "repeated_putback": "U7: homesim skips a repeated step that now fails",
 }
+DEFAULT_DIFFERENCES.update({f"issue {u}": DEFAULT_DIFFERENCES[k] for u, k in (
+    ("U2", "trailing_comma"), ("U4", "spaced_key"), ("U5", "put_alias"),
+    ("U7", "repeated_putback"))})
 
 
 @pytest.fixture(scope="module")
@@ -59,6 +62,7 @@ def test_the_golden_plans_cover_every_kind(golden):
     assert {"gold", "unknown_after_arity", "trailing_comma", "missing_brace", "put_alias",
             "repeated_putback", "wash_room", "type_object", "mixed_case", "spaced_key",
             "watch_elsewhere", "drop", "swap", "duplicate"} <= kinds
+    assert {f"issue U{k}" for k in range(1, 10)} <= kinds  # the plans of issue 41
     assert len(plans) > 900
 
 
