@@ -168,22 +168,23 @@ ISSUE_PLANS = [
     ("1003_2", "U8", '{"WALK": ["bedroom", "67"], "WASH": ["bedroom", "67"]}'),
     # U6: watching the TV from another room.
     ("1049_1", "U6", '{"WATCH": ["television", "410"]}'),
-    # U2, U3, U4, U5, U7 on 27_2 (wash clothes): see `_issue_variants`.
+    # U2, U3, U4, U5, U7 on 156_1 (drink; its goals touch none of EAI's faults): see
+    # `_issue_variants`.
 ]
+VARIANTS_TASK = "156_1"
 
 
-def _issue_variants(gold_text: str) -> list[tuple[str, str]]:
+def _issue_variants(pairs: list[tuple[str, list[str]]]) -> list[tuple[str, str]]:
     """U2 (trailing comma, missing brace), U3 (mixed-case key), U4 (a key with a space),
-    U5 (PUT), U7 (a repeated PUTBACK) made from 27_2's gold plan."""
-    put = '"PUTBACK": ["clothes_jacket", "1003", "washing_machine", "1001"]'
-    first = gold_text.split('"', 2)[1]
-    out = [("U2", gold_text[:-1] + ",}"), ("U2", gold_text[:-1]),
-           ("U3", gold_text.replace(f'"{first}"', f'"{first.capitalize()}"', 1)),
-           ("U4", gold_text.replace(f'"{first}"', f'"{first[:2]} {first[2:]}"', 1))]
-    if put in gold_text:
-        out += [("U5", gold_text.replace('"PUTBACK"', '"PUT"', 1)),
-                ("U7", gold_text.replace(put, f"{put}, {put}", 1))]
-    return out
+    U5 (PUT), U7 (a repeated PUTBACK), made from a gold plan."""
+    text = to_text(pairs)
+    first = pairs[0][0]
+    put = next(i for i, (a, _) in enumerate(pairs) if a == "PUTBACK")
+    return [("U2", text[:-1] + ",}"), ("U2", text[:-1]),
+            ("U3", to_text([(first.capitalize(), pairs[0][1]), *pairs[1:]])),
+            ("U4", to_text([(f"{first[:2]} {first[2:]}", pairs[0][1]), *pairs[1:]])),
+            ("U5", to_text([*pairs[:put], ("PUT", pairs[put][1]), *pairs[put + 1:]])),
+            ("U7", to_text([*pairs[:put + 1], pairs[put], *pairs[put + 1:]]))]
 
 
 def issue_plans(contexts: dict[str, TaskContext]) -> list[dict]:
@@ -191,11 +192,11 @@ def issue_plans(contexts: dict[str, TaskContext]) -> list[dict]:
     one."""
     from homesim.knowledge.datasets import real_programs
 
-    gold = to_text(gold_pairs(contexts["27_2"], next(
-        p.program for p in real_programs() if p.id == "file27_2")))
+    gold = gold_pairs(contexts[VARIANTS_TASK], next(
+        p.program for p in real_programs() if p.id == f"file{VARIANTS_TASK}"))
     plans = [{"identifier": pid, "kind": f"issue {u}", "llm_output": text}
              for pid, u, text in ISSUE_PLANS if pid in contexts]
-    plans += [{"identifier": "27_2", "kind": f"issue {u}", "llm_output": text}
+    plans += [{"identifier": VARIANTS_TASK, "kind": f"issue {u}", "llm_output": text}
               for u, text in _issue_variants(gold)]
     return plans
 
