@@ -167,14 +167,11 @@ def test_a_walk_before_the_first_step_on_an_object_lets_grounding_pick_another(t
 
 
 def test_repair_reads_the_failure_kind(tiny_home):
-    """An affordance failure (a table cannot be grabbed) is not tried with walks, grabs
-    and turns before it: two runs (the program, then nothing to try), not dozens."""
-    r = repair("[Grab] <table> (1.13)", tiny_home)
-    assert not r.executable and r.before.kind.value == "affordance"
-    assert r.runs <= 2 and r.insertions == ()
-    # Facing: the turn comes before the walk (kind not_facing).
+    """Facing: the turn is tried before the walk (kind not_facing), so one run finds it."""
     r = repair("[Walk] <tv> (1.14)\n[LookAt] <tv> (1.14)", tiny_home)
+    assert r.before.kind.value == "not_facing"
     assert [str(i.step) for i in r.insertions] == ["[TurnTo] <tv> (1.14)"]
+    assert r.runs == 2  # the program, then the turn: the first candidate
 
 
 def test_run_program_switches_off_what_is_on_only_when_nothing_else_helps(tiny_home):

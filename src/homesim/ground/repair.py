@@ -225,17 +225,13 @@ _FIRST: dict[FailureKind, tuple[str, ...]] = {
     FailureKind.STATE: ("PLUGIN", "OPEN", "SWITCHOFF"),
     FailureKind.ALREADY: ("SWITCHOFF", "CLOSE", "PLUGOUT"),
 }
-# Kinds no step inserted just before the failing one can mend: the home lacks the object,
-# or the object cannot take the action. Only a walk before an earlier step, which lets
-# grounding bind another instance, is tried.
-_ONLY_EARLIER = frozenset({FailureKind.MISSING, FailureKind.AFFORDANCE})
 
 
 def _by_kind(fixes: Iterator[tuple[Step, str]], kind: FailureKind | None
              ) -> Iterator[tuple[Step, str]]:
-    """`fixes` in the order the failure's kind suggests (see `_FIRST`)."""
-    if kind in _ONLY_EARLIER:
-        return iter(())
+    """`fixes` in the order the failure's kind suggests (see `_FIRST`). Every kind keeps
+    every candidate: even where the object cannot take the action, a walk may let
+    grounding bind (or preparation add) another instance that can."""
     first = _FIRST.get(kind, ()) if kind is not None else ()
     if not first:
         return fixes
