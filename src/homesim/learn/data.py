@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from homesim.knowledge.datasets import ActivityDataset, ActivityProgram
+from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 
 SPLIT_FRACTIONS = (0.7, 0.1, 0.2)
@@ -30,7 +31,7 @@ class Splits:
     test: list[Example]
 
 
-def ungrounded(program: Program) -> tuple[Program, dict[tuple[str, int], int]]:
+def ungrounded(program: Program) -> tuple[Program, Bindings]:
     """The program with node ids removed, and the bindings they gave."""
     example = ActivityProgram("", program).ungrounded()
     return example.program, example.bindings
