@@ -8,7 +8,7 @@ component of more than one module, with one circle through it.
 
     python tools/import_graph.py            # homesim; exit 1 when there is a circle
     python tools/import_graph.py mypackage
-    python tools/import_graph.py --known homesim.learn   # its inner circles, for now
+    python tools/import_graph.py --known homesim.somepackage   # its inner circles, for now
 
 A circle wholly inside a `--known` package is listed but does not fail the check; for a
 `--known` package without a circle it says to take the exception out.

@@ -175,7 +175,13 @@ def titles(
     force: Annotated[bool, typer.Option(help="Replace --prompts-out if it exists.")] = False,
 ) -> None:
     """Title -> program on the real data ("Task: Watch TV"): LCS and executability."""
-    from homesim.goals.titles import baseline, evaluate, prompts, read_predictions, title_splits
+    from homesim.learn.eval.titles import (
+        baseline,
+        evaluate,
+        prompts,
+        read_predictions,
+        title_splits,
+    )
 
     if prompts_out is not None:
         check_target(prompts_out, force)
