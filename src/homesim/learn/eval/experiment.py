@@ -20,7 +20,7 @@ from homesim.learn.embeddings import preload_sentence_vectors
 from homesim.learn.eval import baselines
 from homesim.learn.eval.rules import parse
 from homesim.learn.eval.scores import example_scores
-from homesim.learn.eval.splits import SPLIT_VERSIONS, make_split
+from homesim.learn.eval.splits import SPLIT_VERSIONS, check_unlocked, make_split
 from homesim.learn.eval.summary import gaps, summarize_rows
 from homesim.learn.execution import cross_home_rate, executable
 from homesim.learn.rerank.reranker import Reranker
@@ -87,12 +87,13 @@ def load_examples(dataset: str, synth_n: int = 5000) -> list[Example]:
     raise HomesimError(f"unknown data set {dataset!r}: choose from {', '.join(DATASETS)}")
 
 
-def load_run_splits(spec: RunSpec, vectors: Path) -> Splits:
+def load_run_splits(spec: RunSpec, vectors: Path, final: bool = False) -> Splits:
     """The train/dev/test examples of a run, after `preload_vectors` of its whole data set
-    (cached in `vectors`)."""
+    (cached in `vectors`); a locked seed only with `final` (`splits.check_unlocked`)."""
+    check_unlocked(spec.seed, final)
     examples = load_examples(spec.dataset, spec.synth_n)
     preload_vectors(examples, vectors)
-    return make_split(spec.split, examples, spec.seed, spec.dataset)
+    return make_split(spec.split, examples, spec.seed, spec.dataset, final)
 
 
 def mle_model(spec: RunSpec, splits: Splits, folder: Path, device: str = "cpu",
@@ -207,8 +208,10 @@ def preload_vectors(examples: list[Example], cache: Path) -> None:
                              cache)
 
 
-def cached_run(spec: RunSpec, out: Path) -> dict | None:
-    """The scores a run already has (``scores.json`` for this spec), or None."""
+def cached_run(spec: RunSpec, out: Path, final: bool = False) -> dict | None:
+    """The scores a run already has (``scores.json`` for this spec), or None; a locked seed
+    only with `final`."""
+    check_unlocked(spec.seed, final)
     cache = spec.folder(out) / "scores.json"
     if not cache.is_file():
         return None
@@ -217,11 +220,13 @@ def cached_run(spec: RunSpec, out: Path) -> dict | None:
 
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
-        report: Report | None = None) -> dict:
+        report: Report | None = None, final: bool = False) -> dict:
     """Score every row of one run (`with_model`: also the learned rows this data set gets,
     `MLE_DATASETS` and `RERANK_DATASETS`); rows already in ``scores.json`` for the same spec are
     kept (so baselines scored without the model are reused, and an interrupted run resumes).
+    A locked seed only with `final` (`splits.check_unlocked`).
     """
+    check_unlocked(spec.seed, final)
     folder = spec.folder(out)
     cache = folder / "scores.json"
     rows: dict[str, dict] = {}
@@ -229,7 +234,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         old = json.loads(cache.read_text())
         if spec.matches(old.get("spec")):
             rows = old["rows"]
-    splits = load_run_splits(spec, out / spec.dataset / "vectors.npz")
+    splits = load_run_splits(spec, out / spec.dataset / "vectors.npz", final)
     t2p = (mle_model(spec, splits, folder, device, report)
            if with_model and spec.dataset in MLE_DATASETS else None)
     jobs = baseline_jobs(splits, spec.seed)
