@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.learn.embeddings import lone_sentence_vectors
 from homesim.learn.rerank.base import Query
 from homesim.learn.rerank.folds import Known
@@ -37,6 +36,7 @@ from homesim.learn.rerank.insertion import (
 from homesim.learn.rerank.lexicon import words
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
+from homesim.world.vocab import ROOM_NAMES
 
 DELETE_THRESHOLD = 0.2
 """Steps the classifier gives less than this probability of being in the truth are deleted
