@@ -17,7 +17,6 @@ from functools import cached_property
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.learn.data import Example
 from homesim.learn.embeddings import example_vectors
 from homesim.learn.rerank.candidates import drops, mention_order, substitutions
@@ -26,6 +25,7 @@ from homesim.learn.rerank.lexicon import ObjectLexicon, actions, classes, words
 from homesim.learn.rerank.median import Medians, uniform_median
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
+from homesim.world.vocab import ROOM_NAMES
 
 
 def feature_names(config: RerankConfig) -> tuple[str, ...]:

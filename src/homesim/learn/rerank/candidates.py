@@ -14,10 +14,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.knowledge.objects import load_kb
 from homesim.learn.rerank.lexicon import classes
 from homesim.program.model import Program
+from homesim.world.vocab import ROOM_NAMES
 
 
 def substitutions(program: Program, named: frozenset[str], chain_length: int

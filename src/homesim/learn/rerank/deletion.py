@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.learn.embeddings import lone_sentence_vectors
 from homesim.learn.rerank.base import Query
 from homesim.learn.rerank.config import RerankConfig
@@ -37,6 +36,7 @@ from homesim.learn.rerank.insertion import (
 from homesim.learn.rerank.lexicon import words
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
+from homesim.world.vocab import ROOM_NAMES
 
 STEP_FEATURES = ("neighbour support", "activity support", "share of programs with it", "objects",
                  "action", "objects named", "a room", "action said", "position", "length",
