@@ -6,9 +6,10 @@ Glossary:
         ground-truth class pixel shares. Both models below are the same but for it, so
         the gap between them is how much of the task is perception.
     frame encoder: an MLP over a frame's descriptor.
-    TRN: temporal relation network (Zhou et al.): for k = 2..`MAX_SCALE`, ordered subsets of
-        k of the clip's `FRAMES` sampled frames are concatenated and passed through an MLP
-        g_k; the mean over subsets, summed over scales, is the clip feature.
+    TRN: temporal relation network (Zhou et al.): for k = 2..`ClipConfig.max_scale`,
+        ordered subsets of k of the clip's `ClipConfig.frames` sampled frames are
+        concatenated and passed through an MLP g_k; the mean over subsets, summed over
+        scales, is the clip feature.
     single-frame: the clip feature is the middle frame's encoding (the baseline).
 Two linear heads read the clip feature: the clip's action and its step (action and object
 classes). Scores are mean per-class accuracy (recall averaged over the test classes;
@@ -34,18 +35,13 @@ from homesim.learn.video.data import Episode
 
 Descriptors = dict[str, np.ndarray]
 """Episode key -> (frames, width) float32: one vector per frame (CNN feature or shares)."""
-FRAMES = 8
-"""Frames sampled evenly from a clip."""
-MAX_SCALE = 4
-SUBSETS = 4
-"""Ordered frame subsets per scale (evenly spread over all of them)."""
 KINDS = ("trn", "single")
 INPUTS = ("rgb", "oracle")
 
 
 @dataclass
 class ClipConfig:
-    """A clip model; saved with its checkpoint."""
+    """A clip model and how it trains; saved with its checkpoint."""
 
     kind: str  # "trn" | "single"
     input: str  # "rgb" | "oracle"
@@ -57,19 +53,26 @@ class ClipConfig:
     batch_size: int = 32
     lr: float = 2e-3
     seed: int = 0
+    frames: int = 8
+    """Frames sampled evenly from a clip."""
+    max_scale: int = 4
+    """The TRN's largest subset of frames (scales 2..max_scale)."""
+    subsets: int = 4
+    """Ordered frame subsets per scale (evenly spread over all of them)."""
+    hidden: int = 128
+    """Width of the frame encoder's and the relation MLPs' hidden layer."""
+    dropout: float = 0.3
+    oracle_scale: float = 10.0
+    """Oracle descriptors (class pixel shares, small) are multiplied by this."""
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def _subsets(k: int) -> list[tuple[int, ...]]:
-    every = list(combinations(range(FRAMES), k))
-    picks = np.linspace(0, len(every) - 1, SUBSETS).round().astype(int)
+def _subsets(k: int, frames: int, subsets: int) -> list[tuple[int, ...]]:
+    every = list(combinations(range(frames), k))
+    picks = np.linspace(0, len(every) - 1, subsets).round().astype(int)
     return [every[i] for i in sorted(set(picks.tolist()))]
-
-
-INPUT_SCALE = {"rgb": 1.0, "oracle": 10.0}
-"""Descriptors are multiplied by this (class pixel shares are small)."""
 
 
 class FrameEncoder(nn.Module):
@@ -77,9 +80,9 @@ class FrameEncoder(nn.Module):
 
     def __init__(self, cfg: ClipConfig):
         super().__init__()
-        self.scale = INPUT_SCALE[cfg.input]
-        self.net = nn.Sequential(nn.Linear(cfg.n_inputs, 128), nn.ReLU(),
-                                 nn.Linear(128, cfg.feature), nn.ReLU())
+        self.scale = cfg.oracle_scale if cfg.input == "oracle" else 1.0
+        self.net = nn.Sequential(nn.Linear(cfg.n_inputs, cfg.hidden), nn.ReLU(),
+                                 nn.Linear(cfg.hidden, cfg.feature), nn.ReLU())
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
         return self.net(x * self.scale)
@@ -93,23 +96,25 @@ class ClipModel(nn.Module):
         self.cfg = cfg
         self.frames = FrameEncoder(cfg)
         f = cfg.feature
-        self.scales = list(range(2, MAX_SCALE + 1)) if cfg.kind == "trn" else []
+        self.scales = list(range(2, cfg.max_scale + 1)) if cfg.kind == "trn" else []
         self.relations = nn.ModuleList(
-            nn.Sequential(nn.Linear(k * f, 128), nn.ReLU(), nn.Linear(128, f), nn.ReLU())
+            nn.Sequential(nn.Linear(k * f, cfg.hidden), nn.ReLU(), nn.Linear(cfg.hidden, f),
+                          nn.ReLU())
             for k in self.scales)
-        self.drop = nn.Dropout(0.3)
+        self.drop = nn.Dropout(cfg.dropout)
         self.action_head = nn.Linear(f, cfg.n_actions)
         self.step_head = nn.Linear(f, cfg.n_steps)
 
     def features(self, clips: torch.Tensor) -> torch.Tensor:
-        """(B, FRAMES, width) descriptors -> (B, feature) clip features."""
+        """(B, frames, width) descriptors -> (B, feature) clip features."""
+        n = self.cfg.frames
         if not self.scales:
-            return self.frames(clips[:, FRAMES // 2])
+            return self.frames(clips[:, n // 2])
         b = clips.shape[0]
-        per_frame = self.frames(clips.flatten(0, 1)).view(b, FRAMES, -1)
+        per_frame = self.frames(clips.flatten(0, 1)).view(b, n, -1)
         out = torch.zeros_like(per_frame[:, 0])
         for k, g in zip(self.scales, self.relations, strict=True):
-            subs = _subsets(k)
+            subs = _subsets(k, n, self.cfg.subsets)
             out = out + sum(g(per_frame[:, list(s)].flatten(1)) for s in subs) / len(subs)
         return out
 
@@ -120,7 +125,7 @@ class ClipModel(nn.Module):
 
 @dataclass
 class ClipSet:
-    """Clips as tensors: inputs (N, FRAMES, descriptor width), their action and step
+    """Clips as tensors: inputs (N, frames, descriptor width), their action and step
     texts."""
 
     inputs: torch.Tensor
@@ -128,26 +133,28 @@ class ClipSet:
     steps: list[str]
 
 
-def clip_inputs(vectors: np.ndarray, a: int, b: int) -> np.ndarray:
-    """(`FRAMES`, width): the descriptors of `FRAMES` evenly spaced frames of [a, b)."""
-    return vectors[np.linspace(a, b - 1, FRAMES).round().astype(int)]
+def clip_inputs(vectors: np.ndarray, a: int, b: int, frames: int) -> np.ndarray:
+    """(frames, width): the descriptors of `frames` evenly spaced frames of [a, b)."""
+    return vectors[np.linspace(a, b - 1, frames).round().astype(int)]
 
 
-TRAIN_HOP = 1.0
-"""Seconds between the starts of training clips (overlapping: twice the clips)."""
+def clip_labels(episodes: list[Episode], hop: float | None = None
+                ) -> tuple[list[str], list[str]]:
+    """The action and the step of every labelled clip of the episodes (every `hop` s;
+    default non-overlapping), in `clip_set`'s order."""
+    steps = [label for ep in episodes for _, _, label in ep.clips(hop=hop)]
+    return [label.split("]")[0].strip("[") for label in steps], steps
 
 
-def clip_set(episodes: list[Episode], descriptors: Descriptors, hop: float | None = None
-             ) -> ClipSet:
-    """Every labelled clip of the episodes (every `hop` s; default non-overlapping)."""
-    inputs, actions, steps = [], [], []
-    for ep in episodes:
-        for a, b, label in ep.clips(hop=hop):
-            inputs.append(clip_inputs(descriptors[ep.key], a, b))
-            actions.append(label.split("]")[0].strip("["))
-            steps.append(label)
+def clip_set(episodes: list[Episode], descriptors: Descriptors, frames: int,
+             hop: float | None = None) -> ClipSet:
+    """Every labelled clip of the episodes (every `hop` s; default non-overlapping), each
+    as the descriptors of `frames` of its frames."""
+    inputs = [clip_inputs(descriptors[ep.key], a, b, frames)
+              for ep in episodes for a, b, _ in ep.clips(hop=hop)]
+    actions, steps = clip_labels(episodes, hop)
     width = next(iter(descriptors.values())).shape[1] if descriptors else 0
-    stacked = np.stack(inputs) if inputs else np.zeros((0, FRAMES, width), np.float32)
+    stacked = np.stack(inputs) if inputs else np.zeros((0, frames, width), np.float32)
     return ClipSet(torch.from_numpy(stacked.astype(np.float32)), actions, steps)
 
 
@@ -159,8 +166,9 @@ class Labels:
     steps: list[str]
 
     @classmethod
-    def build(cls, data: ClipSet) -> Labels:
-        return cls(sorted(set(data.actions)), sorted(set(data.steps)))
+    def build(cls, actions: list[str], steps: list[str]) -> Labels:
+        """The classes of the training clips' `actions` and `steps` (`clip_labels`)."""
+        return cls(sorted(set(actions)), sorted(set(steps)))
 
     def ids(self, names: list[str], table: list[str]) -> torch.Tensor:
         index = {n: i for i, n in enumerate(table)}

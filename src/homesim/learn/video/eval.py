@@ -59,23 +59,23 @@ def _clip_scores(folder: Path, rows: dict[str, list[Episode]], train: list[Episo
                  vectors: dict[str, C.Descriptors], seed: int, device: str
                  ) -> dict[str, dict[str, dict[str, float]]]:
     """{test row: {method: {action, step, n}}} for one seed."""
-    train_set = C.clip_set(train, vectors["oracle"])
+    train_actions, train_steps = C.clip_labels(train)
     models = {key: load_clip_model(clip_path(folder, key[1], key[0]), device)
               for key in CLIP_MODELS}
     out: dict[str, dict[str, dict[str, float]]] = {}
     for row, episodes in rows.items():
-        sets = {inp: C.clip_set(episodes, vectors[inp]) for inp in ("rgb", "oracle")}
-        truth = sets["oracle"]
-        n = len(truth.steps)
+        truth_actions, truth_steps = C.clip_labels(episodes)
+        n = len(truth_steps)
         out[row] = {"Random retrieval": {
             "action": C.mean_class_accuracy(
-                C.random_retrieval(train_set.actions, n, seed), truth.actions),
+                C.random_retrieval(train_actions, n, seed), truth_actions),
             "step": C.mean_class_accuracy(
-                C.random_retrieval(train_set.steps, n, seed), truth.steps), "n": n}}
+                C.random_retrieval(train_steps, n, seed), truth_steps), "n": n}}
         for key, (model, labels) in models.items():
-            actions, steps = C.predict_clips(model, sets[key[0]], labels)
-            out[row][CLIP_NAMES[key]] = {"action": C.mean_class_accuracy(actions, truth.actions),
-                                         "step": C.mean_class_accuracy(steps, truth.steps),
+            clips = C.clip_set(episodes, vectors[key[0]], model.cfg.frames)
+            actions, steps = C.predict_clips(model, clips, labels)
+            out[row][CLIP_NAMES[key]] = {"action": C.mean_class_accuracy(actions, truth_actions),
+                                         "step": C.mean_class_accuracy(steps, truth_steps),
                                          "n": n}
         rgb, oracle = out[row][CLIP_NAMES[("rgb", "trn")]], out[row][CLIP_NAMES[("oracle", "trn")]]
         out[row][GAP] = {m: oracle[m] - rgb[m] for m in ("action", "step")} | {"n": n}

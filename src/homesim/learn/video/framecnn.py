@@ -24,7 +24,7 @@ from homesim.learn.video.data import Episode, step_class
 
 @dataclass
 class FrameCNNConfig:
-    """The frame CNN; saved with its checkpoint."""
+    """The frame CNN and how it trains; saved with its checkpoint."""
 
     n_actions: int
     n_steps: int
@@ -33,6 +33,8 @@ class FrameCNNConfig:
     batch_size: int = 64
     lr: float = 2e-3
     seed: int = 0
+    dropout: float = 0.3
+    """Dropout on the feature before the heads."""
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -58,7 +60,7 @@ class FrameCNN(nn.Module):
         return self.net(frames.float() / 255.0 - 0.5)
 
     def heads(self, frames: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        h = F.dropout(self.forward(frames), 0.3, self.training)
+        h = F.dropout(self.forward(frames), self.cfg.dropout, self.training)
         return self.action_head(h), self.step_head(h)
 
 

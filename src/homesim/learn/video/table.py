@@ -60,6 +60,13 @@ class VideoRunConfig:
     pg_epochs: int = 10
     batch_size: int = 16
     pg_lr: float = 5e-4
+    train_hop: float = 1.0
+    """Seconds between the starts of training clips (overlapping: twice the clips)."""
+    word_dim: int = 64
+    """The video -> program model's sizes (`Seq2SeqConfig`): clip features are projected
+    to `word_dim`."""
+    hidden: int = 100
+    step_dim: int = 100
 
     @property
     def format(self) -> VideoFormat:
@@ -161,17 +168,18 @@ def _train_clips(config: VideoRunConfig, parts: dict[str, list[Episode]],
     start = time.perf_counter()
     everything = [e for v in parts.values() for e in v]
     oracle = descriptors(everything, "oracle", None)
-    labels = C.Labels.build(C.clip_set(parts["train"], oracle, C.TRAIN_HOP))
+    labels = C.Labels.build(*C.clip_labels(parts["train"], config.train_hop))
     cnn = _train_cnn(config, parts, labels, seed, folder, device, report)
     vectors = {"oracle": oracle, "rgb": descriptors(everything, "rgb", cnn)}
     seconds = {"frame_cnn": time.perf_counter() - start}
     kept = None
     for inp, kind in CLIP_MODELS:
         start = time.perf_counter()
-        data = C.clip_set(parts["train"], vectors[inp], C.TRAIN_HOP)
-        cfg = C.ClipConfig(kind, inp, data.inputs.shape[2], len(labels.actions),
-                           len(labels.steps), epochs=config.clip_epochs, seed=seed)
-        val = C.clip_set(parts["val"], vectors[inp]) if parts["val"] else None
+        cfg = C.ClipConfig(kind, inp, next(iter(vectors[inp].values())).shape[1],
+                           len(labels.actions), len(labels.steps), epochs=config.clip_epochs,
+                           seed=seed)
+        data = C.clip_set(parts["train"], vectors[inp], cfg.frames, config.train_hop)
+        val = C.clip_set(parts["val"], vectors[inp], cfg.frames) if parts["val"] else None
         trained = C.train_clip_model(cfg, data, labels, val, device)
         save_clip_model(trained.model, labels, classes, clip_path(folder, kind, inp),
                         trained.best_epoch)
@@ -192,7 +200,9 @@ def _train_programs(config: VideoRunConfig, parts: dict[str, list[Episode]],
     start = time.perf_counter()
     train = [e.example for e in parts["train"]]
     val = [e.example for e in parts["val"]]
-    v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, device)
+    v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, device,
+                                  word_dim=config.word_dim, hidden=config.hidden,
+                                  step_dim=config.step_dim)
     v2p.features = video_features(clip_model, parts["train"] + parts["val"], rgb)
     best = BestOnDev(v2p, val)
     cfg = TrainConfig(epochs=config.mle_epochs, batch_size=config.batch_size, seed=seed)
@@ -206,11 +216,11 @@ def _train_programs(config: VideoRunConfig, parts: dict[str, list[Episode]],
     for name, use_sim in (("pg_lcs", False), ("pg_lcs_sim", True)):
         start = time.perf_counter()
         pg = copy.deepcopy(v2p)
-        best = BestOnDev(pg, val, use_sim)
-        if val:
-            best(-1)  # the MLE weights are a candidate too (epoch -1)
         cfg = TrainConfig(epochs=config.pg_epochs, batch_size=config.batch_size,
                           lr=config.pg_lr, seed=seed)
+        best = BestOnDev(pg, val, use_sim, cfg.sim_weight)
+        if val:
+            best(-1)  # the MLE weights are a candidate too (epoch -1)
         history = train_pg(pg, train, cfg, use_sim, after_epoch=best if val else None)
         best.restore()
         pg.meta.update(model=name, history=history, val=best.scores, best_epoch=best.epoch)
@@ -242,7 +252,7 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
             config, parts, clip_model, rgb, seed, folder, device, report)}
     summary = {"config": asdict(config), "episodes": {p: len(v) for p, v in parts.items()},
                "clips": {p: sum(len(e.clips()) for e in v) for p, v in parts.items()},
-               "train_clips": sum(len(e.clips(hop=C.TRAIN_HOP)) for e in parts["train"]),
+               "train_clips": sum(len(e.clips(hop=config.train_hop)) for e in parts["train"]),
                "load_seconds": load_seconds, "train_seconds": seconds,
                "total_seconds": time.perf_counter() - start, "device": device}
     write_text(out / "train.json", json.dumps(summary, indent=2) + "\n")
