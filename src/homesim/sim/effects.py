@@ -80,10 +80,7 @@ _SIT_CAPACITY = {"couch": 4, "bed": 4, "chair": 1, "loveseat": 2, "sofa": 4, "to
 _LIE_CAPACITY = {"couch": 2, "bathtub": 2, "bed": 3, "loveseat": 2, "sofa": 2, "bench": 1}
 _SQUEEZABLE = frozenset({"cleaning_solution", "tooth_paste", "shampoo", "food_peanut_butter",
                          "dish_soap", "soap", "towel", "rag", "paper", "sponge", "food_lemon",
-                         "check",
-                         # the same objects as the full homes name them
-                         "cleaningsolution", "toothpaste", "foodpeanutbutter", "dishsoap",
-                         "dishwashingliquid", "washing_sponge", "foodlemon"})
+                         "check"})
 _POUR_INTO = frozenset({"hands_both", "sponge", "face"})
 _WALK_CLEARS = (INSIDE, CLOSE, FACING)
 NOWHERE: tuple[int, str] = (-1, "")
