@@ -198,13 +198,15 @@ def verify(root: Annotated[Path, typer.Argument(help="Data set folder, or a plan
 
 @app.command()
 def card(
-    root: Annotated[Path, typer.Argument(help="Data set folder.")],
+    root: Annotated[Path, typer.Argument(help="Data set folder, or a plan folder.")],
     out: Annotated[Path, typer.Option(help="Folder for stats.json and the figures.")],
     seed: Annotated[int, typer.Option(help="Seed of the episodes on the contact sheet.")] = 0,
 ) -> None:
     """Figures of the data set card: counts and Table 1(a) (stats.json), action and object
     histograms, and a contact sheet of 12 random episodes."""
-    from homesim.dataset.card import write_card
+    from homesim.dataset.card import write_card, write_plan_card
+    from homesim.dataset.plan import read_plan
 
-    for path in write_card(root, out, seed):
+    write = write_card if read_plan(root) is None else write_plan_card
+    for path in write(root, out, seed):
         console.print(f"wrote {path}")
