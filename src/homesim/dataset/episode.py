@@ -27,8 +27,8 @@ from homesim.dataset.spec import FORMAT, DatasetConfig, EpisodeSpec
 from homesim.dataset.tarfiles import MemberHash, add_member, open_writer
 from homesim.errors import HomesimError
 from homesim.files import atomic_write
-from homesim.ground.kbtypes import default_kb
 from homesim.ground.pipeline import Run, run_program
+from homesim.knowledge.kbtypes import default_kb
 from homesim.program.parse import parse_program
 from homesim.render.video import H264Writer
 from homesim.world.graph import EnvironmentGraph

@@ -10,8 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from homesim.knowledge.datasets import ActivityDataset, ActivityProgram
-from homesim.knowledge.realdata import real_programs
+from homesim.knowledge.datasets import ActivityDataset, ActivityProgram, real_programs
 from homesim.program.model import Program
 from homesim.synth import generate, read_jsonl
 

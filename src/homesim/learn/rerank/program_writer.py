@@ -17,7 +17,6 @@ import pickle
 import threading
 from dataclasses import dataclass
 from functools import cache
-from importlib.metadata import version
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +33,7 @@ from homesim.learn.rerank.reranker import Reranker
 from homesim.limits import MAX_DESCRIPTION_CHARS
 from homesim.program.model import Program
 from homesim.program.parse import step_lines
+from homesim.version import __version__
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 
@@ -161,7 +161,7 @@ def examples_key(examples: list[Example]) -> str:
     versions of homesim and scikit-learn."""
     import sklearn  # deferred: scikit-learn takes seconds to import
 
-    h = hashlib.sha256(f"{FORMAT} {version('homesim')} {sklearn.__version__}".encode())
+    h = hashlib.sha256(f"{FORMAT} {__version__} {sklearn.__version__}".encode())
     for e in examples:
         h.update(f"\0{e.title}\0{e.description}\0{e.program}".encode())
     return h.hexdigest()[:16]
