@@ -8,7 +8,7 @@ import pytest
 
 pytest.importorskip("torch")
 
-from homesim.learn.video.segment import (  # noqa: E402
+from homesim.learn.video.segment import (
     SegConfig,
     confusion,
     predict_maps,
