@@ -33,7 +33,8 @@ PLAN = {"name": "tiny",
 @pytest.fixture(scope="module")
 def tiny_plan(tmp_path_factory) -> Path:
     from homesim.dataset import DatasetConfig
-    from homesim.dataset.plan import Plan, generate_plan
+    from homesim.dataset.generate import generate_plan
+    from homesim.dataset.plan import Plan
     from homesim.render.gl import BACKEND, gl_available
 
     if not gl_available():
