@@ -464,7 +464,7 @@ def _failure(search: _Search, stopped: bool) -> GroundingError:
     obj = str(step.args[0]) if step.args else None
     error = GroundingError(f"step {index + 1} {step}: cannot be grounded: {reason}; "
                            f"tried {what}{tail}", index + 1, obj, what)
-    error.bindings = search.deepest_bindings
+    error.bindings = Bindings(search.deepest_bindings)
     return error
 
 
@@ -514,7 +514,7 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     extra: list[Key] = []
-    pins: dict[Key, int] = {}
+    pins = Bindings()
     rooms = {n.class_name for n in graph.rooms()}
     failure: GroundingError | None = None
     while True:
@@ -537,5 +537,5 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
                 raise failure from None
             extra += new
             # Put the new instances next to what the search had chosen when it failed.
-            pins = {k: n for k, n in e.bindings.items() if n in graph}
+            pins = Bindings({k: n for k, n in e.bindings.items() if n in graph})
             repairs -= 1

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from homesim.knowledge.datasets import ActivityDataset, ActivityProgram, real_programs
+from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.synth import generate, read_jsonl
 
@@ -31,7 +32,7 @@ class Splits:
     test: list[Example]
 
 
-def ungrounded(program: Program) -> tuple[Program, dict[tuple[str, int], int]]:
+def ungrounded(program: Program) -> tuple[Program, Bindings]:
     """The program with node ids removed, and the bindings they gave."""
     example = ActivityProgram("", program).ungrounded()
     return example.program, example.bindings

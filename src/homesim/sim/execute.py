@@ -29,13 +29,13 @@ prepares the home and grounds the program first.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
 from homesim.errors import BindingError
-from homesim.program.bindings import unbound_error
+from homesim.program.bindings import Bindings, unbound_error
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.effects import EFFECTS
 from homesim.sim.state import Changes, SimState
@@ -148,7 +148,7 @@ class ExecutionResult:
         }
 
 
-def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
+def node_ids(step: Step, bindings: Bindings | None = None
              ) -> tuple[int, ...]:
     """The node ids a step's objects refer to, read as the reference simulator does.
 
@@ -161,7 +161,7 @@ def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
 
 
 def binding_problems(program: Program, graph: EnvironmentGraph,
-                     bindings: Mapping[tuple[str, int], int] | None = None,
+                     bindings: Bindings | None = None,
                      kb: ClassKnowledge | None = None) -> list[BindingError]:
     """Every object ref of `program` that names no node of `graph`, or one of another class.
 
@@ -174,13 +174,13 @@ def binding_problems(program: Program, graph: EnvironmentGraph,
         n = graph.nodes.get(node)
         return None if n is None else n.class_name
 
-    return _problems(program, bindings or {}, class_of, kb, stop=False)
+    return _problems(program, bindings or _NONE, class_of, kb, stop=False)
 
 
-_NONE: Mapping[tuple[str, int], int] = {}
+_NONE = Bindings()
 
 
-def _problems(program: Program, given: Mapping[tuple[str, int], int],
+def _problems(program: Program, given: Bindings,
               class_of: Callable[[int], str | None], kb: ClassKnowledge | None,
               stop: bool) -> list[BindingError]:
     problems: list[BindingError] = []
@@ -246,7 +246,7 @@ def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
 
 
 def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
-            bindings: Mapping[tuple[str, int], int] | None = None, *,
+            bindings: Bindings | None = None, *,
             reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Execute `program` on `graph`; the graph is not changed.
 
@@ -274,7 +274,7 @@ def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
 
 
 def execute_on(program: Program, st: SimState, trace: bool = False,
-               bindings: Mapping[tuple[str, int], int] | None = None, *,
+               bindings: Bindings | None = None, *,
                reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Like `execute`, but continue from an existing state (which it modifies)."""
     if not reference:

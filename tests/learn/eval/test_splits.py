@@ -39,3 +39,18 @@ def test_splits_are_declared_once_and_seeded():
         assert [e.id for e in a.test] == [e.id for e in b.test]
     assert ({e.activity for e in make_split(SPLITS[1], ex, 4).test}
             != {e.activity for e in make_split(SPLITS[1], ex, 5).test})
+
+
+def test_locked_seeds_are_refused_without_final():
+    import pytest
+
+    from homesim.errors import HomesimError
+    from homesim.learn.eval.splits import DEV_SEEDS, LOCKED_FROM, is_locked, locked_seeds
+
+    ex = _examples()
+    assert locked_seeds(5) == (100, 101, 102, 103, 104) and LOCKED_FROM == 100
+    assert not any(is_locked(s) for s in DEV_SEEDS) and is_locked(100) and not is_locked(99)
+    for name in SPLITS:
+        with pytest.raises(HomesimError, match="seed 100: seeds from 100 on are the locked"):
+            make_split(name, ex, seed=100)
+        assert make_split(name, ex, seed=100, final=True).test

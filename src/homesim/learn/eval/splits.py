@@ -10,6 +10,15 @@
 
 `SPLITS` names them; `make_split(name, examples, seed)` builds one. The same seed gives the
 same split.
+
+**Which seeds are for what** (issue 44; fixed before any tuning of that issue, and not to be
+changed after a look at the figures). Development chooses everything (features, thresholds,
+epochs) by cross-validation within train and on dev, at the development seeds `DEV_SEEDS`
+(0-4: their test splits were also looked at while developing, docs/learn.md). The published
+test is at the *locked* seeds: the first N seeds from `LOCKED_FROM` (100, 101, ...; N is the
+table's ``--seeds``, 5 published). Development never runs them: `make_split` refuses a
+locked seed unless told ``final=True``, which only ``homesim learn table --final`` does, and
+that command records every such run before it scores anything (`homesim.learn.eval.ledger`).
 """
 
 from __future__ import annotations
@@ -22,6 +31,10 @@ from homesim.learn.data import SPLIT_FRACTIONS, Example, Splits, split
 from homesim.program.metrics import step_tokens
 
 SPLITS = ("stratified", "leave-activities-out")
+DEV_SEEDS = (0, 1, 2, 3, 4)
+"""The development seeds of the table (looked at while developing)."""
+LOCKED_FROM = 100
+"""The locked test seeds are ``LOCKED_FROM, LOCKED_FROM + 1, ...`` (`locked_seeds`)."""
 SPLIT_VERSIONS = {"stratified": 2, "leave-activities-out": 1}
 """Raised when a split's definition changes, so that no run cached with the old one is reused
 (`experiment.RunSpec`). Stratified 2: dev drops copies of training programs too."""
@@ -58,8 +71,29 @@ def leave_activities_out(examples: list[Example], seed: int, name: str = "") -> 
     return Splits(name, train, dev, test)
 
 
-def make_split(split_name: str, examples: list[Example], seed: int, name: str = "") -> Splits:
-    """The split called `split_name` (one of `SPLITS`) of `examples`."""
+def locked_seeds(n: int) -> tuple[int, ...]:
+    """The first `n` locked test seeds (module docstring)."""
+    return tuple(range(LOCKED_FROM, LOCKED_FROM + n))
+
+
+def is_locked(seed: int) -> bool:
+    """Whether `seed` is a locked test seed, which development never runs."""
+    return seed >= LOCKED_FROM
+
+
+def check_unlocked(seed: int, final: bool = False) -> None:
+    """A clear error for a locked `seed` unless `final` (the recorded final table run)."""
+    if is_locked(seed) and not final:
+        raise HomesimError(f"seed {seed}: seeds from {LOCKED_FROM} on are the locked test; "
+                           "only `homesim learn table --final` runs them (docs/learn.md, "
+                           "\"The locked test\"); develop on seeds 0-4")
+
+
+def make_split(split_name: str, examples: list[Example], seed: int, name: str = "",
+               final: bool = False) -> Splits:
+    """The split called `split_name` (one of `SPLITS`) of `examples`; a locked `seed` only
+    with `final` (module docstring)."""
+    check_unlocked(seed, final)
     if split_name == "stratified":
         return stratified(examples, seed, name)
     if split_name == "leave-activities-out":

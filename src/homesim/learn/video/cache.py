@@ -2,7 +2,7 @@
 
 A 320x240, 15 fps episode with every modality is ~50 MB compressed and several GB
 decoded; the clip models read small frames at a few frames per second (a 2-s clip's
-`clips.FRAMES` = 8 frames are every frame at the default 4 frames/s).
+`clips.ClipConfig.frames` = 8 frames are every frame at the default 4 frames/s).
 `shard_episodes(shard, fmt, cache)` streams each episode of a shard once: frames are kept
 at `VideoFormat.fps` (the nearest source frame of each tick; never more than the source
 has), RGB is area-scaled to the format's size by ffmpeg while decoding, and each kept

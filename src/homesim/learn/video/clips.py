@@ -8,10 +8,10 @@ Glossary:
     descriptor: one vector per frame: the feature of a frame encoder trained here
         (`framecnn`) on RGB, on the predicted class map (`segment`) or on the
         ground-truth class map (the oracle). The TRN models differ only in it.
-    TRN: temporal relation network (Zhou et al.): for k = 2..`MAX_SCALE` (up to 4-frame
-        relations), `SUBSETS` ordered k-frame subsets of the clip's frames, spread over
-        all of them, are concatenated and passed through an MLP g_k; the mean over
-        subsets, summed over scales, is the clip feature.
+    TRN: temporal relation network (Zhou et al.): for k = 2..`ClipConfig.max_scale` (up to
+        4-frame relations), `ClipConfig.subsets` ordered k-frame subsets of the clip's
+        frames, spread over all of them, are concatenated and passed through an MLP g_k;
+        the mean over subsets, summed over scales, is the clip feature.
     single frame: the clip feature is the middle frame's encoding (the baseline).
 Two linear heads read the clip feature (class-weighted cross-entropy on both). Scores are
 mean per-class accuracy (recall averaged over the test classes; a class never seen in
@@ -36,13 +36,11 @@ from homesim.learn.video.framecnn import class_weights
 
 FRAMES = 8
 """Frames sampled evenly from a clip."""
-MAX_SCALE = 4
-SUBSETS = 4
-"""Ordered frame subsets per scale (evenly spread over all of them)."""
 KINDS = ("trn", "single")
 CLIP_SECONDS = 2.0
 TRAIN_HOP = 1.0
-"""Seconds between the starts of training clips (overlapping: twice the clips)."""
+"""Seconds between the starts of training clips (overlapping: twice the clips; the
+default of `VideoRunConfig.train_hop`)."""
 
 
 @dataclass
@@ -59,14 +57,21 @@ class ClipConfig:
     batch_size: int = 64
     lr: float = 1e-3
     seed: int = 0
+    max_scale: int = 4
+    """The TRN's largest subset of frames (scales 2..max_scale: up to 4-frame relations)."""
+    subsets: int = 4
+    """Ordered frame subsets per scale (evenly spread over all of them)."""
+    hidden: int = 256
+    """Width of the relation MLPs' hidden layer."""
+    dropout: float = 0.3
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def _subsets(k: int) -> list[tuple[int, ...]]:
+def _subsets(k: int, subsets: int) -> list[tuple[int, ...]]:
     every = list(combinations(range(FRAMES), k))
-    picks = np.linspace(0, len(every) - 1, SUBSETS).round().astype(int)
+    picks = np.linspace(0, len(every) - 1, subsets).round().astype(int)
     return [every[i] for i in sorted(set(picks.tolist()))]
 
 
@@ -79,11 +84,12 @@ class ClipModel(nn.Module):
         self.cfg = cfg
         f = cfg.feature
         self.frames = nn.Sequential(nn.Linear(cfg.n_inputs, f), nn.ReLU())
-        self.scales = list(range(2, MAX_SCALE + 1)) if cfg.kind == "trn" else []
+        self.scales = list(range(2, cfg.max_scale + 1)) if cfg.kind == "trn" else []
         self.relations = nn.ModuleList(
-            nn.Sequential(nn.Linear(k * f, 256), nn.ReLU(), nn.Linear(256, f), nn.ReLU())
+            nn.Sequential(nn.Linear(k * f, cfg.hidden), nn.ReLU(), nn.Linear(cfg.hidden, f),
+                          nn.ReLU())
             for k in self.scales)
-        self.drop = nn.Dropout(0.3)
+        self.drop = nn.Dropout(cfg.dropout)
         self.action_head = nn.Linear(f, cfg.n_actions)
         self.step_head = nn.Linear(f, cfg.n_steps)
 
@@ -95,7 +101,7 @@ class ClipModel(nn.Module):
         per_frame = self.frames(clips.flatten(0, 1)).view(b, FRAMES, -1)
         out = torch.zeros_like(per_frame[:, 0])
         for k, g in zip(self.scales, self.relations, strict=True):
-            subs = _subsets(k)
+            subs = _subsets(k, self.cfg.subsets)
             out = out + sum(g(per_frame[:, list(s)].flatten(1)) for s in subs) / len(subs)
         return out
 

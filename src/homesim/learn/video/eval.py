@@ -157,7 +157,7 @@ def _clip_rows(run: Run, features: dict[str, np.ndarray], rows: dict[str, list])
     tested = [e for eps in rows.values() for e in eps]
     unique = list({e.key: e for e in tested}.values())
     test = C.clip_set(unique, run.store.step)
-    train = C.clip_set(run.episodes("train"), run.store.step, C.TRAIN_HOP)
+    train = C.clip_set(run.episodes("train"), run.store.step, run.config.train_hop)
     pairs = list(zip(train.actions, train.steps, strict=True))
     per_seed = [clip_predictions(run, seed, test, features, pairs)
                 for seed in run.config.seeds]

@@ -49,6 +49,8 @@ class FrameCNNConfig:
     lr: float = 2e-3
     seed: int = 0
     frames_per_epoch: int = 60000  # training frames drawn each epoch (all if fewer)
+    dropout: float = 0.3
+    """Dropout on the feature before the heads."""
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -84,7 +86,7 @@ class FrameCNN(nn.Module):
         return self.net(x)
 
     def heads(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        h = F.dropout(self.forward(x), 0.3, self.training)
+        h = F.dropout(self.forward(x), self.cfg.dropout, self.training)
         return self.action_head(h), self.step_head(h)
 
 

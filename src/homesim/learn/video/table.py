@@ -83,6 +83,13 @@ class VideoRunConfig:
     pg_epochs: int = 10
     batch_size: int = 16
     pg_lr: float = 5e-4
+    train_hop: float = C.TRAIN_HOP
+    """Seconds between the starts of training clips (overlapping: twice the clips)."""
+    word_dim: int = 64
+    """The video -> program model's sizes (`Seq2SeqConfig`): clip features are projected
+    to `word_dim`."""
+    hidden: int = 100
+    step_dim: int = 100
 
     @property
     def format(self) -> VideoFormat:
@@ -119,7 +126,7 @@ def seed_dir(out: Path, seed: int) -> Path:
 
 def train_labels(run: Run) -> C.Labels:
     """The heads' classes: those of the training clips (1-s hop)."""
-    return C.Labels.build(C.clip_set(run.episodes("train"), run.store.step, C.TRAIN_HOP))
+    return C.Labels.build(C.clip_set(run.episodes("train"), run.store.step, run.config.train_hop))
 
 
 def frame_labels(store: FrameStore, labels: C.Labels) -> FrameLabels:
@@ -237,7 +244,7 @@ def _clip_models(run: Run, seed: int, labels: C.Labels, features: dict[str, np.n
     """The clip models of one seed (each skipped when saved)."""
     folder = seed_dir(run.out, seed)
     folder.mkdir(parents=True, exist_ok=True)
-    train = C.clip_set(run.episodes("train"), run.store.step, C.TRAIN_HOP)
+    train = C.clip_set(run.episodes("train"), run.store.step, run.config.train_hop)
     val = C.clip_set(run.episodes("val"), run.store.step)
     for inp, kind in CLIP_MODELS:
         path = clip_path(folder, kind, inp)
@@ -285,12 +292,14 @@ def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> Non
         v2p = Video2Prog(base.model, base.words, base.steps, base.meta, feats)
     else:
         start = time.perf_counter()
-        v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, run.device)
+        cfg = run.config
+        v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, run.device,
+                                      word_dim=cfg.word_dim, hidden=cfg.hidden,
+                                      step_dim=cfg.step_dim)
         v2p.features = feats
         best = BestOnDev(v2p, val)
-        cfg = TrainConfig(epochs=run.config.mle_epochs, batch_size=run.config.batch_size,
-                          seed=seed)
-        history = train_mle(v2p, train, cfg, after_epoch=best if val else None)
+        mle = TrainConfig(epochs=cfg.mle_epochs, batch_size=cfg.batch_size, seed=seed)
+        history = train_mle(v2p, train, mle, after_epoch=best if val else None)
         best.restore()
         v2p.meta.update(model="mle", input=inp, history=history, val=best.scores,
                         best_epoch=best.epoch)
@@ -301,12 +310,12 @@ def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> Non
             continue
         start = time.perf_counter()
         pg = copy.deepcopy(v2p)
-        best = BestOnDev(pg, val, use_sim)
+        pg_cfg = TrainConfig(epochs=run.config.pg_epochs, batch_size=run.config.batch_size,
+                             lr=run.config.pg_lr, seed=seed)
+        best = BestOnDev(pg, val, use_sim, pg_cfg.sim_weight)
         if val:
             best(-1)  # the MLE weights are a candidate too (epoch -1)
-        cfg = TrainConfig(epochs=run.config.pg_epochs, batch_size=run.config.batch_size,
-                          lr=run.config.pg_lr, seed=seed)
-        history = train_pg(pg, train, cfg, use_sim, after_epoch=best if val else None)
+        history = train_pg(pg, train, pg_cfg, use_sim, after_epoch=best if val else None)
         best.restore()
         pg.meta.update(model=name, input=inp, history=history, val=best.scores,
                        best_epoch=best.epoch)
