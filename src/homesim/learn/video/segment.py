@@ -4,7 +4,7 @@ ground-truth class maps.
 
 The network: a strided encoder to a quarter of the frame, two dilated convolutions for
 context (dilation 2 and 4, as DilatedNet widens its view without losing resolution), and
-one upsampling step joined with the half-size features (a skip connection) to per-pixel
+one upsampling step (nearest) joined with the half-size features (a skip connection) to per-pixel
 class logits at half size (the map size of `homesim.learn.video.store`). Classes are
 every class of the training maps (``num_classes``; the background is class 0); loss is
 per-pixel cross-entropy. Scored by pixel accuracy and mean IoU over the classes present
@@ -45,6 +45,13 @@ def _conv(a: int, b: int, stride: int = 1, dilation: int = 1) -> nn.Sequential:
                          nn.BatchNorm2d(b), nn.ReLU())
 
 
+def _double(x: torch.Tensor) -> torch.Tensor:
+    """Nearest upsampling by 2 as a broadcast: its gradient is a plain sum, deterministic
+    on CUDA (bilinear interpolation's is not)."""
+    n, c, h, w = x.shape
+    return x[:, :, :, None, :, None].expand(n, c, h, 2, w, 2).reshape(n, c, 2 * h, 2 * w)
+
+
 class SegNet(nn.Module):
     """(N, 3, H, W) uint8 -> (N, classes, H/2, W/2) logits (~20 MFLOP a 64x48 frame)."""
 
@@ -60,9 +67,16 @@ class SegNet(nn.Module):
 
     def forward(self, frames: torch.Tensor) -> torch.Tensor:
         half = self.fine(frames.float() / 255.0 - 0.5)
-        up = F.interpolate(self.quarter(half), size=half.shape[-2:], mode="bilinear",
-                           align_corners=False)
+        up = _double(self.quarter(half))[..., :half.shape[2], :half.shape[3]]
         return self.out(self.join(torch.cat([half, up], 1)))
+
+
+def pixel_loss(logits: torch.Tensor, truth: torch.Tensor) -> torch.Tensor:
+    """Per-pixel cross-entropy, (N, C, h, w) logits against (N, h, w) class ids, written
+    with a one-hot product: the same value as `F.cross_entropy`, and deterministic on CUDA
+    too (its 2-d form is not, and the CLI asks torch for deterministic algorithms)."""
+    one_hot = F.one_hot(truth, logits.shape[1]).permute(0, 3, 1, 2).to(logits.dtype)
+    return -(F.log_softmax(logits, 1) * one_hot).sum(1).mean()
 
 
 def train_segnet(cfg: SegConfig, frames: np.ndarray, maps: np.ndarray, train_rows: np.ndarray,
@@ -83,7 +97,7 @@ def train_segnet(cfg: SegConfig, frames: np.ndarray, maps: np.ndarray, train_row
             idx = np.sort(rows[batch])
             x = torch.from_numpy(np.asarray(frames[idx])).to(device)
             y = torch.from_numpy(np.asarray(maps[idx]).astype(np.int64)).to(device)
-            loss = F.cross_entropy(model(x), y.clamp(max=cfg.num_classes - 1))
+            loss = pixel_loss(model(x), y.clamp(max=cfg.num_classes - 1))
             opt.zero_grad()
             loss.backward()
             opt.step()
