@@ -124,13 +124,18 @@ def train(
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
     device: DeviceOption = "auto",
-    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 30,
+    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 20,
+    frame_epochs: Annotated[int, typer.Option(
+        help="video2prog: frame encoder epochs (each draws 60 000 training frames).")] = 6,
+    seg_epochs: Annotated[int, typer.Option(
+        help="video2prog: segmentation network epochs (40 000 frames each).")] = 4,
     seeds: Annotated[int, typer.Option(
         help="video2prog: train seeds SEED..SEED+N-1 (Table 2 gives mean ± sd).")] = 1,
     frame_size: Annotated[str, typer.Option(
         help="video2prog: WIDTHxHEIGHT the frames are reduced to.")] = "64x48",
     video_cache: Annotated[Path | None, typer.Option(
-        help="video2prog: folder for the reduced shards (default ~/.cache/homesim/video).")
+        help="video2prog: folder for the reduced episodes and the frame store (default "
+             "~/.cache/homesim/video).")
     ] = None,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
@@ -143,6 +148,7 @@ def train(
 
         video = VideoRunConfig(data, list(range(seed, seed + max(1, seeds))), frame_size,
                                cache=str(video_cache or DEFAULT_CACHE),
+                               frame_epochs=frame_epochs, seg_epochs=seg_epochs,
                                clip_epochs=clip_epochs, batch_size=batch_size)
         train_video2prog(out, video, mle_epochs, pg_epochs, force, device)
         return
