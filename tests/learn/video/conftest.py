@@ -1,4 +1,4 @@
-"""Four tiny generated episodes (seconds at 32x24, 2 frames/s) shared by the video tests."""
+"""Tiny generated data shared by the video tests (seconds at 32x24, 2 frames/s): four\nepisodes in one folder, and a plan of four episodes in train, val and test parts."""
 
 from __future__ import annotations
 
@@ -10,8 +10,13 @@ PROGRAMS = {"a_tv.txt": "Watch TV\nI turn on the TV.\n\n[Walk] <television> (1)\
                         "[SwitchOn] <television> (1)\n",
             "b_light.txt": "Lights on\nI turn on the light.\n\n[Walk] <light> (1)\n"
                            "[SwitchOn] <light> (1)\n"}
-PARTS = {"ep-000000": "train", "ep-000001": "train", "ep-000002": "val",
-         "ep-000003": "test-seen"}
+PLAN = {"name": "tiny",
+        "parts": [{"name": "train", "role": "train", "homes": ["scene1"],
+                   "agents": ["male1"], "share": 0.5},
+                  {"name": "val", "role": "val", "homes": ["scene2"], "share": 0.25},
+                  {"name": "test", "role": "test", "homes": ["scene1"], "share": 0.25}],
+        "rows": [{"row": "seen", "label": "seen homes and agents", "parts": ["test"]},
+                 {"row": "all", "label": "all test episodes", "parts": ["test"]}]}
 
 
 @pytest.fixture(scope="session")
@@ -36,8 +41,23 @@ def tiny_video(tmp_path_factory) -> Path:
     return out
 
 
-@pytest.fixture()
-def fixed_split(monkeypatch):
-    from homesim.learn.video import splits as videosplits
+@pytest.fixture(scope="session")
+def tiny_plan(tmp_path_factory) -> Path:
+    """A plan folder: two training episodes, one validation, one test."""
+    pytest.importorskip("homesim.render.gl", reason="needs the render extra (mujoco)")
+    from homesim.dataset import DatasetConfig
+    from homesim.dataset.generate import generate_plan
+    from homesim.dataset.plan import Plan
+    from homesim.render.gl import BACKEND, gl_available
 
-    monkeypatch.setattr(videosplits, "part_of", lambda item: PARTS[item.key])
+    if not gl_available():
+        pytest.skip(f"no OpenGL context with MUJOCO_GL={BACKEND}")
+    root = tmp_path_factory.mktemp("video-plan")
+    programs = root / "programs"
+    programs.mkdir()
+    for name, text in PROGRAMS.items():
+        (programs / name).write_text(text)
+    config = DatasetConfig(programs=str(programs), width=32, height=24, fps=2,
+                           modalities=("rgb", "class"), shard_size=4)
+    generate_plan(Plan.from_dict(PLAN), 4, root / "plan", config, workers=0)
+    return root / "plan"

@@ -23,19 +23,20 @@ def test_bad_frame_size_is_one_clear_error():
 def test_reduced_shards_are_cached(tiny_video, tmp_path):
     import numpy as np
 
-    from homesim.learn.video.cache import VideoFormat
-    from homesim.learn.video.data import load_episodes
+    from homesim.dataset.layout import Layout
+    from homesim.learn.video.cache import VideoFormat, episode_rows, shard_episodes
 
     fmt = VideoFormat(16, 12, 4)
-    first, index = load_episodes(tiny_video, fmt, tmp_path)
-    assert len(list(tmp_path.glob("16x12@4/*.npz"))) == 4  # one per episode
-    again, _ = load_episodes(tiny_video, fmt, tmp_path)
-    assert [e.key for e in again] == [e.key for e in first]
-    assert all(np.array_equal(a.frames, b.frames) and np.array_equal(a.classes, b.classes)
+    shard = Layout(tiny_video).finished_shards()[0]
+    path, rows = tiny_video / "shards" / shard["name"], episode_rows(shard["rows"])
+    first = shard_episodes(path, rows, fmt, tmp_path)
+    assert len(list(tmp_path.glob("16x12@4/*.npz"))) == len(rows)  # one per episode
+    again = shard_episodes(path, rows, fmt, tmp_path)
+    assert all(np.array_equal(a["frames"], b["frames"]) and np.array_equal(a["maps"], b["maps"])
                for a, b in zip(first, again, strict=True))
     ep = first[0]
-    assert ep.frames.shape[1:] == (3, 12, 16) and ep.fps == 2
-    assert np.allclose(ep.classes.sum(1), 1.0) and len(index) == ep.classes.shape[1]
+    assert ep["frames"].shape[1:] == (3, 12, 16) and ep["meta"]["fps"] == 2
+    assert ep["maps"].shape[1:] == (6, 8) and ep["maps"].max() < len(ep["meta"]["classes"])
 
 
 def test_staged_episodes_of_a_running_generation_are_cached(tiny_video, tmp_path):

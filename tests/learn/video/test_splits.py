@@ -1,19 +1,12 @@
-"""The video split: seen and unseen homes and agents."""
+"""The split of folders made without a plan."""
 
 
-def test_split_declares_seen_and_unseen_homes_and_agents():
-    from types import SimpleNamespace
+def test_legacy_folders_split_by_home_and_agent_and_never_test_validation():
+    from homesim.learn.video.splits import LEGACY, legacy_part
 
-    from homesim.learn.video.splits import part_of, test_rows, video_split
-
-    eps = [SimpleNamespace(key=f"ep-{i}", home=h, agent=a) for i, (h, a) in enumerate(
-        [("scene1", "male1"), ("scene2_trimmed", "female2"), ("scene5", "male1"),
-         ("gen-0", "female1")])]
-    assert part_of(eps[0]) in ("train", "test-seen")
-    assert part_of(eps[1]) == "test-unseen-agents"  # a seen home, an agent not trained on
-    assert part_of(eps[2]) == "val" and part_of(eps[3]) == "test-unseen-homes"
-    parts = video_split(eps)
-    assert sum(len(v) for v in parts.values()) == 4
-    rows = test_rows(parts)
-    assert [e.key for e in rows["unseen-homes"]] == ["ep-2", "ep-3"]  # scene5 and gen-*
-    assert len(rows["all"]) == 4 - len(parts["train"])
+    assert legacy_part("ep-1", "scene2_trimmed", "female2") == "test-unseen-agents"
+    assert legacy_part("ep-2", "scene5", "male1") == "val"
+    assert legacy_part("ep-3", "gen-0", "female1") == "test-unseen-homes"
+    assert legacy_part("ep-0", "scene1", "male1") in ("train", "test-seen")
+    tested = {p for _, _, parts in LEGACY.rows for p in parts}
+    assert "val" not in tested and all(LEGACY.roles[p] == "test" for p in tested)
