@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from homesim.knowledge.datasets import ActivityProgram
-from homesim.learn.rerank.base import Query, feature_names
+from homesim.learn.rerank.base import Bank, Query, feature_names
 from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.reranker import Reranker
 from homesim.program.model import Program
@@ -38,13 +38,13 @@ def test_reranker_prefers_the_program_whose_objects_the_text_names(tiny_splits):
 def test_the_settings_are_saved_with_the_model_and_read_from_it(tiny_splits):
     train, test = tiny_splits.train, tiny_splits.test
     config = RerankConfig(top_k=2, near=5, check_executable=1)
-    model = Reranker.fit(train, "program", delete=False, config=config)
+    model = Reranker.fit(train, "program", insert=False, config=config)
     assert model.config == config and model.bank.config is config
     again = pickle.loads(pickle.dumps(model))
     assert again.config == config  # the pickle (the program writer's) carries them
     assert [str(p) for p in again.predict(test[:3])] == [str(p) for p in model.predict(test[:3])]
     everything = np.ones(len(train), bool)
-    default = Query(Reranker.fit(train, "program", insert=False).bank, test[0], everything)
+    default = Query(Bank(train), test[0], everything)
     fewer = Query(model.bank, test[0], everything)
     assert len(fewer.near) == 5 < len(default.near)
     assert len(fewer.candidates) < len(default.candidates)
