@@ -77,9 +77,9 @@ def profiles(n: int, seed: int) -> None:
             per_core = n / cpu * 3600
             rates[name] = per_core
             print(f"{name}: {p.width}x{p.height}, {p.fps} fps, {'+'.join(p.modalities)}: "
-                  f"{summary.episodes} episodes ({summary.failed} failed, {summary.frames} frames in "
-                  f"all) in {cpu:.1f} CPU s / {wall:.1f} s wall = {per_core:.0f} episodes/h "
-                  f"per core ({n / wall * 3600:.0f} by wall); "
+                  f"{summary.episodes} episodes ({summary.failed} failed, {summary.frames} "
+                  f"frames) in {cpu:.1f} CPU s / {wall:.1f} s wall = {per_core:.0f} "
+                  f"episodes/h per core ({n / wall * 3600:.0f} by wall); "
                   f"{summary.bytes_per_frame / 1e3:.1f} KB per frame")
     print(f"ratio learn / full: {rates['learn'] / rates['full']:.2f}x; learn "
           f"{rates['learn']:.0f} episodes/h per core (goal >= {LEARN_GOAL})")

@@ -30,3 +30,22 @@ def test_bad_options_are_one_line(tmp_path, capsys):
     assert "unknown modality 'normals'" in capsys.readouterr().err
     assert main(["dataset", "verify", str(tmp_path)]) == 2
     assert "not a homesim data set" in capsys.readouterr().err
+
+
+def test_a_profile_sets_size_rate_and_modalities_and_options_override_it(tmp_path,
+                                                                         monkeypatch):
+    made = []
+
+    def generate(config, out, **kwargs):
+        made.append(config)
+        raise SystemExit(0)  # the config is all this test looks at
+
+    monkeypatch.setattr("homesim.dataset.generate_dataset", generate)
+    assert main(["dataset", "generate", "--out", str(tmp_path / "a"), "--profile", "learn"]) == 0
+    assert main(["dataset", "generate", "--out", str(tmp_path / "b"), "--profile", "learn",
+                 "--fps", "8", "--modalities", "rgb"]) == 0
+    learn, changed = made
+    assert (learn.width, learn.height, learn.fps, learn.modalities) == (64, 48, 4,
+                                                                         ("rgb", "class"))
+    assert (changed.width, changed.fps, changed.modalities) == (64, 8, ("rgb",))
+    assert main(["dataset", "generate", "--out", str(tmp_path / "c"), "--profile", "tiny"]) == 2

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import random
 import tarfile
 import time
@@ -127,9 +128,17 @@ def ground_episode(spec: EpisodeSpec, homes: Sequence[str] = ()) -> EpisodeHome:
     raise first
 
 
+RASTER_THREADS = "0"
+"""llvmpipe (OSMesa) threads besides the caller's in a process that makes episodes, set
+before it first draws unless ``LP_NUM_THREADS`` is set (Ray workers get it from
+`runners.task_environment`): a worker has one core, where rasterizer threads would only wait on
+each other over small frames. The pixels are the same."""
+
+
 def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> Outcome:
     """Make the episode and write it as a tar at `path` (atomically); a failure is an
     `Outcome` with its reason, never an exception (Ctrl-C and kills still stop it)."""
+    os.environ.setdefault("LP_NUM_THREADS", RASTER_THREADS)
     t0 = time.perf_counter()
     try:
         with atomic_write(path, "wb") as f:
