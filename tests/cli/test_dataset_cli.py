@@ -49,3 +49,29 @@ def test_a_profile_sets_size_rate_and_modalities_and_options_override_it(tmp_pat
                                                                          ("rgb", "class"))
     assert (changed.width, changed.fps, changed.modalities) == (64, 8, ("rgb",))
     assert main(["dataset", "generate", "--out", str(tmp_path / "c"), "--profile", "tiny"]) == 2
+
+
+def test_a_plan_from_the_command_line_verifies_part_by_part(tmp_path, capsys):
+    import json
+
+    from homesim.render.gl import gl_available
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    program = tmp_path / "p.txt"
+    program.write_text("Watch TV\nI turn on the TV.\n\n[Walk] <television> (1)\n")
+    plan = tmp_path / "plan.json"
+    plan.write_text(json.dumps({"parts": [
+        {"name": "train", "role": "train", "homes": ["scene1"], "share": 0.5},
+        {"name": "test", "role": "test", "homes": ["scene2"], "agents": ["male2"],
+         "share": 0.5}], "rows": [{"row": "all", "parts": ["test"]}]}))
+    out = tmp_path / "data"
+    args = ["dataset", "generate", "--out", str(out), "--programs", str(program), "--n", "2",
+            "--width", "32", "--height", "24", "--fps", "2", "--plan", str(plan),
+            "--workers", "0"]
+    assert main([*args, "--agents", "male1"]) == 2
+    assert "leave out --homes and --agents" in capsys.readouterr().err
+    assert main(args) == 0
+    assert capsys.readouterr().out.count("ok: 1 episodes (0 failed)") == 2
+    assert main(["dataset", "verify", str(out)]) == 0
+    assert capsys.readouterr().out.count("checksums match") == 2

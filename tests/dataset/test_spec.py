@@ -55,7 +55,7 @@ def test_bad_options_are_refused():
 
 def test_profiles_name_what_episodes_keep():
     """``full`` is the default config; ``learn`` what the video models read."""
-    from homesim.learn.videocache import VideoFormat
+    from homesim.learn.video.cache import VideoFormat
 
     assert DatasetConfig.from_profile("full") == DatasetConfig()
     learn = DatasetConfig.from_profile("learn", n=3)
