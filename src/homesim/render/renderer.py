@@ -14,10 +14,12 @@ import numpy as np
 
 from homesim.errors import HomesimError
 from homesim.render.gl import BACKEND, mujoco, thread_context
+from homesim.render.occlusion import corners, occluder_geoms, shadowed, target_geoms
 from homesim.render.scene import SceneModel
 
 HIDDEN_GROUP = 5
-"""Geom group of the static geoms a camera cannot see (not drawn)."""
+"""Geom group of the geoms a camera cannot see (not drawn)."""
+_NONE = np.zeros(0, np.int64)
 
 
 @dataclass(frozen=True)
@@ -63,6 +65,11 @@ class Renderer:
         self._culled_for: dict[int, bytes] = {}  # camera -> the pose it was culled for
         self._moving = np.flatnonzero(model.geom_bodyid != 0)  # agent, doors, held objects
         self._groups = self._cull_groups()
+        self._walls = occluder_geoms(model, scene.geom_class, scene.classes)
+        self._static = target_geoms(model, self._walls)
+        self._boxes: np.ndarray | None = None  # corners of the static geoms' boxes
+        self._placed: set[bytes] = set()  # camera positions given by `camera_moved`
+        self._shadowed: dict[bytes, np.ndarray] = {}  # camera position -> geoms behind walls
         self._opt.geomgroup[HIDDEN_GROUP] = 0
         # The light of the room a camera is in casts shadows in its colour draws.
         self._shadow_light = {c: scene.room_light.get(spec.room_id, -1)
@@ -158,25 +165,48 @@ class Renderer:
         out_y = (np.abs(rel[:, 1]) - ty * depth) / np.sqrt(1 + ty * ty)
         return (out_x > radii) | (out_y > radii) | (depth < -radii)
 
-    def _cull_moving(self, data: mujoco.MjData, cam: int, groups: np.ndarray) -> np.ndarray:
-        """`groups` with the geoms that move (the agent, doors, objects carried) and lie
-        outside the view as posed now hidden too: the image is the same, the draw cheaper
-        (MuJoCo draws every geom it is given). Not with shadows: a geom outside the view
-        may cast one into it."""
-        moving = self._moving
-        if self.shadows or not len(moving):
-            return groups
-        out = moving[self._outside(data, cam, moving)]
-        if not len(out):
+    def _view_groups(self, data: mujoco.MjData, cam: int) -> np.ndarray:
+        """The geom groups of a draw from camera `cam` as posed now: static geoms outside
+        its view hidden (`camera_moved`) and, without shadows, also the static geoms that
+        walls hide from where it stands (`homesim.render.occlusion`) and the moving ones
+        (the agent, doors, objects carried) outside its view. Hidden geoms cannot show:
+        the image is the same, the draw cheaper (MuJoCo draws every geom it is given).
+        With shadows they could cast one into the view, so they stay."""
+        groups = self._groups.get(cam, self._groups[-1])
+        if self.shadows:
             return groups
         groups = groups.copy()
-        groups[out] = HIDDEN_GROUP
+        groups[self._behind_walls(data, cam)] = HIDDEN_GROUP
+        moving = self._moving
+        groups[moving[self._outside(data, cam, moving)]] = HIDDEN_GROUP
         return groups
 
+    def _behind_walls(self, data: mujoco.MjData, cam: int) -> np.ndarray:
+        """The static geoms walls hide from camera `cam`'s position, found on the first
+        draw from there (~5 ms; a room camera is drawn from hundreds of times), except
+        from a position the caller moved a camera to (`camera_moved`: a close-up
+        candidate, drawn from once), where the search would not repay itself."""
+        key = data.cam_xpos[cam].tobytes()
+        hidden = self._shadowed.get(key)
+        if hidden is None:
+            if key in self._placed:
+                return _NONE
+            if self._boxes is None:  # static geoms do not move: their boxes once
+                self._boxes = corners(self.scene.model, data, self._static)
+            hidden = shadowed(self.scene.model, data, data.cam_xpos[cam].copy(), self._walls,
+                              self._static, self._boxes)
+            self._shadowed[key] = hidden
+        return hidden
+
     def camera_moved(self, data: mujoco.MjData, camera_id: int) -> None:
-        """A camera was moved, turned or zoomed (`data` posed with `mj_camlight` after):
-        cull for where it is now (else geoms it now sees could stay hidden). Each draw
-        does this by itself when the camera is not where it was culled for."""
+        """The caller moved a camera (`data` posed with `mj_camlight` after): cull for
+        where it is now. Each draw does this by itself when the camera is not where it was
+        culled for (a room camera aimed anew); a position given here is taken for one a
+        camera visits briefly (walls are not searched for what they hide from there)."""
+        self._placed.add(data.cam_xpos[camera_id].tobytes())
+        self._recull(data, camera_id)
+
+    def _recull(self, data: mujoco.MjData, camera_id: int) -> None:
         self._groups[camera_id] = self._cull(data, camera_id, self._groups[-1])
         self._culled_for[camera_id] = self._pose(data, camera_id)
 
@@ -186,9 +216,8 @@ class Renderer:
         # Renderers share the thread's GL context: draw into this one's framebuffer.
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self._con)
         if self._culled_for.get(camera_id) != self._pose(data, camera_id):
-            self.camera_moved(data, camera_id)  # a room camera aimed at the agent anew
-        groups = self._cull_moving(data, camera_id,
-                                   self._groups.get(camera_id, self._groups[-1]))
+            self._recull(data, camera_id)  # a room camera aimed at the agent anew
+        groups = self._view_groups(data, camera_id)
         # Set on every draw (a small copy): another renderer of the same model may have
         # changed the groups since.
         self.scene.model.geom_group[:] = groups
