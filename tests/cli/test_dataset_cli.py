@@ -75,3 +75,25 @@ def test_a_plan_from_the_command_line_verifies_part_by_part(tmp_path, capsys):
     assert capsys.readouterr().out.count("ok: 1 episodes (0 failed)") == 2
     assert main(["dataset", "verify", str(out)]) == 0
     assert capsys.readouterr().out.count("checksums match") == 2
+
+
+def test_a_learn_profile_data_set_keeps_rgb_and_class_only_and_verifies(tmp_path, capsys):
+    from homesim.dataset.verify import iter_episodes
+    from homesim.render.gl import gl_available
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    program = tmp_path / "p.txt"
+    program.write_text("Watch TV\nI turn on the TV.\n\n[Walk] <television> (1)\n")
+    out = tmp_path / "data"
+    assert main(["dataset", "generate", "--out", str(out), "--programs", str(program),
+                 "--n", "1", "--profile", "learn", "--fps", "2", "--homes", "scene1",
+                 "--workers", "0"]) == 0
+    assert main(["dataset", "verify", str(out)]) == 0
+    assert "checksums match" in capsys.readouterr().out
+    (shard,) = (out / "shards").glob("*.tar")
+    ((key, members),) = list(iter_episodes(shard))
+    kinds = {name.split(".", 1)[1].split(".")[-2] if name.endswith(".png") else
+             name.split(".", 1)[1] for name, _ in members}
+    assert "class" in kinds and "mp4" in kinds and "json" in kinds
+    assert not kinds & {"depth", "instance", "flow"}
