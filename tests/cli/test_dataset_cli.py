@@ -92,7 +92,7 @@ def test_a_learn_profile_data_set_keeps_rgb_and_class_only_and_verifies(tmp_path
     assert main(["dataset", "verify", str(out)]) == 0
     assert "checksums match" in capsys.readouterr().out
     (shard,) = (out / "shards").glob("*.tar")
-    ((key, members),) = list(iter_episodes(shard))
+    ((_, members),) = list(iter_episodes(shard))
     kinds = {name.split(".", 1)[1].split(".")[-2] if name.endswith(".png") else
              name.split(".", 1)[1] for name, _ in members}
     assert "class" in kinds and "mp4" in kinds and "json" in kinds

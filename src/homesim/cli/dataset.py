@@ -138,7 +138,8 @@ def _generate_one(config, out: Path, workers: int, ray_address: str | None, t0: 
 
 def _generate_plan(name: str, config, out: Path, workers: int, ray_address: str | None,
                    t0: float) -> dict:
-    from homesim.dataset.plan import generate_plan, load_plan
+    from homesim.dataset.generate import generate_plan
+    from homesim.dataset.plan import load_plan
 
     plan = load_plan(name)
     with _bar(t0) as bar:

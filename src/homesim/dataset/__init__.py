@@ -11,8 +11,19 @@ Glossary:
         the video models' format (`PROFILES`, ``--profile``).
 """
 
-from homesim.dataset.generate import Summary, generate_dataset, replay_episode
+from typing import Any
+
 from homesim.dataset.spec import PROFILES, DatasetConfig, EpisodeSpec
 
 __all__ = ["PROFILES", "DatasetConfig", "EpisodeSpec", "Summary", "generate_dataset",
            "replay_episode"]
+
+
+def __getattr__(name: str) -> Any:
+    """Generation needs the renderer; reading a data set (learning) does not, so it is
+    imported when first asked for."""
+    if name in ("Summary", "generate_dataset", "replay_episode"):
+        from homesim.dataset import generate
+
+        return getattr(generate, name)
+    raise AttributeError(f"module 'homesim.dataset' has no attribute {name!r}")
