@@ -181,7 +181,9 @@ def test_a_dataset_episode_records_what_the_library_runs(home, text, executable,
                            homes=(home,))
     spec = EpisodeSpec(0, "case", text, home, "male1", 0, 0, 0, 0, 1.0)
     graph, _, _ = build_home(spec, home)
-    run = homesim.run_program(homesim.parse_program(text), graph, seed=spec.ground_seed)
+    # An episode runs its program as written (`ground_episode`: no repair).
+    run = homesim.run_program(homesim.parse_program(text), graph, seed=spec.ground_seed,
+                              repair=False)
     if not executable:
         from homesim.dataset.episode import EpisodeFailed
 
