@@ -53,3 +53,19 @@ def test_the_settings_are_saved_with_the_model_and_read_from_it(tiny_splits):
 def test_settings_that_cannot_work_are_refused():
     with pytest.raises(ValueError, match="position_tau"):
         RerankConfig(taus=(0.02, 0.05, 0.3))
+
+
+def test_when_no_candidate_runs_the_steps_of_the_best_that_run_are_written(tiny_splits):
+    from homesim.learn.rerank.reranker import runnable_part
+
+    def runs(p: Program) -> bool:  # a home where nothing can be switched on
+        return not any(s.action.key == "SWITCHON" for s in p.steps)
+
+    tv = Program.parse(TV)
+    assert [str(s) for s in runnable_part(tv, runs).steps] == [str(s) for s in tv.steps[:2]]
+    assert runnable_part(tv, lambda p: not p.steps).steps == ()
+    train, test = tiny_splits.train, tiny_splits.test
+    model = Reranker.fit(train, "program", config=RerankConfig(check_executable=1))
+    for example in test[:3]:
+        chosen = model.choose(example, runs)
+        assert runs(chosen)

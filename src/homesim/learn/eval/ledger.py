@@ -27,7 +27,8 @@ _ITEM = re.compile(r"^- (\S+), commit (\S+), data (\S+), seeds (\d+)-(\d+)$")
 
 @dataclass(frozen=True)
 class FinalRun:
-    """One ``--final`` run: when it started (ISO 8601 UTC), the commit, data sets, seeds."""
+    """One ``--final`` run: when it started (ISO 8601 UTC, to the microsecond: two runs within
+    one second are two runs), the commit, data sets, seeds."""
 
     when: str
     commit: str
@@ -37,7 +38,7 @@ class FinalRun:
     @classmethod
     def now(cls, commit: str, datasets: tuple[str, ...], seeds: tuple[int, ...]) -> FinalRun:
         """A run starting now."""
-        when = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+        when = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%S.%fZ")
         return cls(when, commit, tuple(datasets), tuple(seeds))
 
     def item(self) -> str:

@@ -23,8 +23,8 @@ For a description x (the settings named here are fields of `config.RerankConfig`
    order agrees, its length against the neighbours' and the text's, its source's
    similarity, whether it was edited.
 4. **Choice.** The best-scoring candidate that executes in the example's home
-   (`execution.executable`, checked best-first among `check_executable`; the best one if
-   none does).
+   (`execution.executable`, checked best-first among `check_executable`; if none does, the
+   steps of the best one that run there, `runnable_part`), so the answer always executes.
 5. **Insertion.** The steps the text says that the choice lacks and that a classifier
    finds likely, inserted where the neighbours have them (`insertion`), when the result
    still executes there.
@@ -128,11 +128,14 @@ class Reranker:
     def choose(self, example: Example, runs: Callable[[Program], bool],
                vectors: tuple[np.ndarray, np.ndarray] | None = None) -> Program:
         """The best-scoring candidate that `runs` accepts among the first
-        `config.check_executable` (the best one if none is), edited (`edits`) when `runs`
-        accepts the result."""
+        `config.check_executable` (if none is, the steps of the best one that run,
+        `runnable_part`), edited (`edits`) when `runs` accepts the result: what it returns
+        always runs."""
         query, programs = self.ranked(example, vectors)
         first = programs[:self.config.check_executable]
-        chosen = next((p for p in first if runs(p)), programs[0])
+        chosen = next((p for p in first if runs(p)), None)
+        if chosen is None:
+            chosen = runnable_part(programs[0], runs)
         return next((p for p in self.edits(query, chosen)
                      if p.steps != chosen.steps and runs(p)), chosen)
 
@@ -143,6 +146,16 @@ class Reranker:
         if self.deleter is None:
             return [inserted]
         return [self.deleter.delete(query, inserted), inserted]
+
+
+def runnable_part(program: Program, runs: Callable[[Program], bool]) -> Program:
+    """The steps of `program` that `runs` accepts, kept in order: each step is kept when
+    the steps kept before it and it run (so the result runs; at worst it is empty)."""
+    kept: tuple = ()
+    for step in program.steps:
+        if runs(Program((*kept, step))):
+            kept = (*kept, step)
+    return Program(kept)
 
 
 def _executable_in(example: Example, program: Program) -> bool:
