@@ -301,6 +301,9 @@ def table(
                                        "with --final also N locked seeds from 100.")] = 5,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs (one set, seed 0).")] = 2000,
     mle_epochs: Annotated[int, typer.Option(help="MLE epochs of the seq2seq model.")] = 12,
+    mle: Annotated[bool, typer.Option(
+        help="Train the seq2seq model and score its rows (real data); --no-mle trains none and "
+             "keeps its rows already scored under OUT (CPU).")] = True,
     model: Annotated[bool, typer.Option(help="Train and score the learned rows (real data); "
                                         "--no-model scores the baselines only.")] = True,
     markdown: Annotated[Path | None, typer.Option(help="Also write the tables here.")] = None,
@@ -336,8 +339,8 @@ def table(
         ledger.record(out, entry)
         console.print(f"[yellow]locked test[/]: final run recorded in {out / ledger.LEDGER}")
         runs = [entry]
-    dev = _blocks(tuple(range(seeds)), *settings)
-    locked = _blocks(locked_seeds(seeds), *settings, final=True) if final else None
+    dev = _blocks(tuple(range(seeds)), *settings, mle=mle)
+    locked = _blocks(locked_seeds(seeds), *settings, final=True, mle=mle) if final else None
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
@@ -347,8 +350,9 @@ def table(
 
 def _blocks(seed_list: tuple[int, ...], datasets: tuple[str, ...], synth_n: int,
             mle_epochs: int, out: Path, device: str, model: bool, only_cached: bool,
-            final: bool = False) -> dict[str, dict[str, dict]]:
-    """Data set -> split -> summary block of the runs at `seed_list`, printed as they come."""
+            final: bool = False, mle: bool = True) -> dict[str, dict[str, dict]]:
+    """Data set -> split -> summary block of the runs at `seed_list`, printed as they come
+    (`mle`: training the seq2seq model where none is cached)."""
     from homesim.learn.eval.experiment import RunSpec, block
     from homesim.learn.eval.goals import beaten
     from homesim.learn.eval.splits import SPLITS
@@ -357,7 +361,7 @@ def _blocks(seed_list: tuple[int, ...], datasets: tuple[str, ...], synth_n: int,
     for name in datasets:
         for split in SPLITS if name == "real" else ("stratified",):
             specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in seed_list]
-            runs = _runs(specs, out, device, model, only_cached, final)
+            runs = _runs(specs, out, device, model, only_cached, final, mle)
             if not runs:
                 console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
                 continue
@@ -391,7 +395,7 @@ def _write_evaluation(markdown: Path, dev: dict, locked: dict | None, runs: list
 
 
 def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool,
-          final: bool = False) -> list[dict]:
+          final: bool = False, mle: bool = True) -> list[dict]:
     """Each spec's run: scored now (reusing what is cached), or only what is cached; locked
     seeds only with `final`."""
     from homesim.learn.eval.experiment import cached_run, run
@@ -406,7 +410,7 @@ def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bo
         with _bar() as bar:
             runs.append(run(spec, out, device, with_model,
                             _Reporter(bar, f"{spec.dataset} {spec.split} seed {spec.seed}"),
-                            final))
+                            final, mle))
     return runs
 
 

@@ -149,3 +149,19 @@ def test_a_cached_row_of_another_model_version_is_scored_again(tmp_path, monkeyp
     again = run(spec, tmp_path, with_model=False)["rows"]
     assert calls == [1] and again["Title-medoid"]["version"] == 2
     assert again["NN (title)"] == run(spec, tmp_path, with_model=False)["rows"]["NN (title)"]
+
+
+def test_without_mle_no_model_is_trained_and_its_scored_rows_are_kept(tmp_path, monkeypatch):
+    from homesim.learn.eval import experiment
+
+    monkeypatch.setattr(experiment, "MLE_DATASETS", ("synthetic",))
+    spec = RunSpec("synthetic", "stratified", 0, synth_n=30, mle_epochs=1, embeddings="none")
+    rows = run(spec, tmp_path, with_model=False, with_mle=False)["rows"]
+    assert not any(name in rows for name in experiment.MLE_ROWS)
+    assert not (spec.folder(tmp_path) / "mle.pt").exists()
+    trained = run(spec, tmp_path, with_model=False)["rows"]  # no reranker: quick
+    assert not any(name in trained for name in experiment.MLE_ROWS)  # with_model off
+    trained = run(spec, tmp_path)["rows"]
+    kept = run(spec, tmp_path, with_mle=False)["rows"]
+    assert list(kept) == list(trained)  # the seq2seq rows kept, in the table's order
+    assert kept["MLE (seq2seq)"] == trained["MLE (seq2seq)"]
