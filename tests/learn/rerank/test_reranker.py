@@ -69,3 +69,22 @@ def test_when_no_candidate_runs_the_steps_of_the_best_that_run_are_written(tiny_
     for example in test[:3]:
         chosen = model.choose(example, runs)
         assert runs(chosen)
+
+
+def test_a_bare_title_gets_the_typical_program_unedited(tiny_splits):
+    import math
+
+    from homesim.learn.eval.titles import title_only
+
+    train, test = tiny_splits.train, tiny_splits.test
+    config = RerankConfig(typical_margins=(math.inf,))  # the typical program at every level
+    model = Reranker.fit(train, "program", config=config)
+    assert model.typical_margins == (math.inf,) * 3
+    for example in test[:3]:
+        bare = title_only(example)
+        query, ranked = model.ranked(bare)
+        typical = query.candidates[query.typical].program
+        assert ranked[0] is typical
+        assert model.choose(bare, lambda p: True).steps == typical.steps  # unedited
+        some = typical.steps[:1]
+        assert model.choose(bare, lambda p, s=some: p.steps == s[:len(p.steps)]).steps == some

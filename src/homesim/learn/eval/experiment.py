@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -294,6 +294,39 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     data["rows"] = {**ordered, **{k: v for k, v in rows.items() if k not in ordered}}
     save()
     return {**data, "rows": ordered}
+
+
+def run_all(specs: list[RunSpec], out: Path, workers: int, device: str = "cpu",
+            with_model: bool = True, final: bool = False, with_mle: bool = True,
+            threads: int = 1) -> Iterator[RunSpec]:
+    """Score every spec's run (`run`) in `workers` processes at once (spawned, torch at
+    `threads` threads each), yielding each spec as its run is done; the scores land in
+    each run's ``scores.json``, where `run` and `cached_run` read them. Each run is the
+    same as alone. The data sets' sentence vectors must be cached already
+    (`preload_vectors`), so that no two processes write them."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(_run_in_worker, spec, out, device, with_model, final, with_mle,
+                               threads): spec for spec in specs}
+        for future in as_completed(futures):
+            future.result()
+            yield futures[future]
+
+
+def _run_in_worker(spec: RunSpec, out: Path, device: str, with_model: bool, final: bool,
+                   with_mle: bool, threads: int) -> None:
+    import os
+
+    # scikit-learn's trees use every core through OpenMP unless told: beside other workers
+    # on a loaded machine its threads wait on each other (set before OpenMP starts)
+    os.environ["OMP_NUM_THREADS"] = str(threads)
+    import torch
+
+    torch.set_num_threads(threads)  # as the CLI sets its own process (`cli.learn._torch`)
+    torch.use_deterministic_algorithms(True)
+    run(spec, out, device, with_model, None, final, with_mle)
 
 
 def block(runs: list[dict], beat: dict[str, tuple[str, ...]]) -> dict:

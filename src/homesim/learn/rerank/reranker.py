@@ -150,7 +150,8 @@ class Reranker:
     def ranked(self, example: Example, vectors: tuple[np.ndarray, np.ndarray] | None = None
                ) -> tuple[Query, list[Program]]:
         """The query for an example's title and description and its candidates,
-        best-scoring first (its program is not read); `vectors` as `Query` takes them."""
+        best-scoring first, the typical program first where the text's margin says so
+        (`support.gated`; its program is not read); `vectors` as `Query` takes them."""
         query = Query(self.bank, example, np.ones(len(self.bank.train), bool), vectors)
         scores = self.scores(query)
         first = gated(scores, query.typical, self.margin(example))
@@ -162,8 +163,16 @@ class Reranker:
         """The best-scoring candidate that `runs` accepts among the first
         `config.check_executable` (if none is, the steps of the best one that run,
         `runnable_part`), edited (`edits`) when `runs` accepts the result: what it returns
-        always runs."""
+        always runs. Where the text says nothing beyond its title (support level 0,
+        `support`) and the typical program comes first, it is written unedited (nothing to
+        edit by), or the steps of it that run."""
         query, programs = self.ranked(example, vectors)
+        bare = support_level(example, self.config.support_edges) == 0
+        if bare and query.typical >= 0 and programs[0] is query.candidates[query.typical].program:
+            typical = programs[0]
+            kept = typical if runs(typical) else runnable_part(typical, runs)
+            if kept.steps:
+                return kept
         first = programs[:self.config.check_executable]
         chosen = next((p for p in first if runs(p)), None)
         if chosen is None:
