@@ -164,15 +164,13 @@ class Reranker:
         `config.check_executable` (if none is, the steps of the best one that run,
         `runnable_part`), edited (`edits`) when `runs` accepts the result: what it returns
         always runs. Where the text says nothing beyond its title (support level 0,
-        `support`) and the typical program comes first, it is written unedited (nothing to
-        edit by), or the steps of it that run."""
+        `support`) and the typical program comes first and runs, it is written unedited
+        (there is nothing to edit by)."""
         query, programs = self.ranked(example, vectors)
         bare = support_level(example, self.config.support_edges) == 0
-        if bare and query.typical >= 0 and programs[0] is query.candidates[query.typical].program:
-            typical = programs[0]
-            kept = typical if runs(typical) else runnable_part(typical, runs)
-            if kept.steps:
-                return kept
+        if (bare and query.typical >= 0 and programs[0] is query.candidates[query.typical].program
+                and runs(programs[0])):
+            return programs[0]
         first = programs[:self.config.check_executable]
         chosen = next((p for p in first if runs(p)), None)
         if chosen is None:
