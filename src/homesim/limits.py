@@ -34,6 +34,10 @@ EXCERPT_CHARS = 80
 MAX_GRAPH_BYTES = 256 * 1024 * 1024
 """Largest environment graph file (bytes of JSON, after gunzip)."""
 
+MAX_DATA_FILE_BYTES = 256 * 1024 * 1024
+"""Largest other input file: a JSONL data set of programs, a file of plans to score, a
+data set's json (``dataset.json``, a shard's json), in bytes."""
+
 MAX_JSON_DEPTH = 32
 """Deepest nesting of JSON arrays and objects in a graph or request (a graph needs 4)."""
 

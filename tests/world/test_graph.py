@@ -98,7 +98,7 @@ def test_broken_files(tmp_path):
         EnvironmentGraph.load(tmp_path / "missing.json")
     big = tmp_path / "big.json"
     big.write_text(json.dumps(tiny_home_dict()))
-    with pytest.raises(GraphError, match=r"over the 0 MiB limit"):
+    with pytest.raises(GraphError, match=r"over the limit of 10 bytes for a graph \(MAX_GRAPH_BYTES\)"):
         EnvironmentGraph.load(big, max_bytes=10)
     binary = tmp_path / "bin.json"
     binary.write_bytes(b"\xff\xfe\x00garbage")

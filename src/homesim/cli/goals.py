@@ -12,7 +12,8 @@ from rich.table import Table
 
 from homesim.cli.common import console, read_graph, read_program
 from homesim.errors import DataError, HomesimError
-from homesim.files import check_target
+from homesim.files import check_target, read_text_limited
+from homesim.limits import MAX_DATA_FILE_BYTES
 from homesim.world.graph import EnvironmentGraph
 
 if TYPE_CHECKING:
@@ -129,8 +130,9 @@ def plans(
     if out is not None:
         check_target(out, force)
     try:
-        records = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as e:
+        records = json.loads(read_text_limited(path, MAX_DATA_FILE_BYTES,
+                                               "MAX_DATA_FILE_BYTES", "plans"))
+    except ValueError as e:
         raise DataError(f"{path}: cannot read plans ({e})") from None
     if not isinstance(records, list):
         raise DataError(f"{path}: expected a JSON list of {{identifier, llm_output}}")

@@ -23,8 +23,8 @@ from typing import Any, TypeGuard, cast
 
 import orjson
 
-from homesim.errors import GraphError, excerpt
-from homesim.files import write_bytes, write_text
+from homesim.errors import GraphError, HomesimError, excerpt
+from homesim.files import read_limited, write_bytes, write_text
 from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
 from homesim.world.index import HomeIndex, index_edges
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS, ROOM_CATEGORY
@@ -170,16 +170,10 @@ class EnvironmentGraph:
         Every `GraphError` names the file and says why in one line."""
         path = Path(path)
         try:
-            size = path.stat().st_size
-        except OSError as e:
-            raise GraphError(f"{path}: cannot read graph file ({e.strerror})") from None
-        if size > max_bytes:
-            raise GraphError(
-                f"{path}: file is {size / 2**20:.0f} MiB, over the {max_bytes / 2**20:.0f} MiB "
-                "limit for a graph (MAX_GRAPH_BYTES)"
-            )
+            raw = read_limited(path, max_bytes, "MAX_GRAPH_BYTES", "graph")
+        except HomesimError as e:
+            raise GraphError(str(e)) from None
         try:
-            raw = path.read_bytes()
             if path.suffix == ".gz":
                 # Read at most the limit: a small .gz file can unpack to gigabytes.
                 with gzip.GzipFile(fileobj=io.BytesIO(raw)) as f:
