@@ -41,6 +41,14 @@ data set's json (``dataset.json``, a shard's json), in bytes."""
 MAX_JSON_DEPTH = 32
 """Deepest nesting of JSON arrays and objects in a graph or request (a graph needs 4)."""
 
+MAX_NODE_ID = 2**31 - 1
+"""Largest node id of a graph (ids index 32-bit arrays in render: segmentation, MuJoCo
+names); ids are at least 0."""
+
+MAX_RENDER_NODES = 4000
+"""Most nodes of a home that is rendered (an apartment has ~450): MuJoCo compiles the scene
+in one call that cannot be interrupted, minutes for tens of thousands of boxes."""
+
 MAX_COORD = 1.0e4
 """Largest absolute bounding-box coordinate, in metres."""
 

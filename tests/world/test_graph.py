@@ -59,6 +59,9 @@ def broken(mutate):
          r"edges\[14\]: unknown relation 'NEAR'"),
         (broken(lambda d: d["nodes"][3].update(id="11")), r"nodes\[3\]: 'id' must be an integer"),
         (broken(lambda d: d["nodes"][3].update(id=True)), r"'id' must be an integer"),
+        (broken(lambda d: d["nodes"][3].update(id=2**31)),  # D10: OverflowError in render
+         r"nodes\[3\]: 'id' 2147483648 is outside 0..2147483647 \(MAX_NODE_ID"),
+        (broken(lambda d: d["nodes"][3].update(id=-1)), r"'id' -1 is outside 0.."),
         (broken(lambda d: d["nodes"][3].update(states="OPEN")),
          r"nodes\[3\] \(id 11\): 'states' must be a list of strings"),
         (broken(lambda d: d["nodes"][3].update(class_name="")), r"'class_name' must be a non-empty"),

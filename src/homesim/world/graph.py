@@ -25,7 +25,14 @@ import orjson
 
 from homesim.errors import GraphError, HomesimError, excerpt
 from homesim.files import read_limited, write_bytes, write_text
-from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
+from homesim.limits import (
+    MAX_COORD,
+    MAX_GRAPH_BYTES,
+    MAX_JSON_DEPTH,
+    MAX_NODE_ID,
+    MAX_SIZE,
+    deeper_than,
+)
 from homesim.world.index import HomeIndex, index_edges
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS, ROOM_CATEGORY
 
@@ -393,6 +400,9 @@ def _node_from_dict(raw: Any, where: str, i: int) -> Node:
     if type(raw_id) is not int and not _is_int(raw_id):
         raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {raw_id!r:.60}")
     node_id = cast(int, raw_id)
+    if not 0 <= node_id <= MAX_NODE_ID:
+        raise GraphError(f"{_node_where(where, i)}: 'id' {excerpt(str(node_id))} is outside 0.."
+                         f"{MAX_NODE_ID} (MAX_NODE_ID: ids index 32-bit arrays in render)")
     class_name = raw.get("class_name")
     if not isinstance(class_name, str) or not class_name.strip():
         raise GraphError(f"{_node_where(where, i, node_id)}: 'class_name' must be a non-empty "
