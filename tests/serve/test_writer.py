@@ -29,6 +29,8 @@ def test_write_answers_the_program_and_its_run(client, small):
     ({"description": "tv", "title": "t" * 2001}, 422, "title: 2001 characters"),
     ({"description": "tv", "home": "nowhere"}, 404, "unknown home 'nowhere'"),
     ({"title": "Watch TV"}, 422, "description: Field required"),
+    ({"description": "\ud800 tv"}, 422, "description: not valid text"),  # D12: was 500
+    ({"description": "tv", "title": "\udfff"}, 422, "title: not valid text"),
 ])
 def test_write_refuses_bad_requests_with_one_message(client, small, body, status, words):
     r = client.post("/api/write", json=body)

@@ -146,6 +146,11 @@ def check_text(field: str, text: str) -> str:
         raise LimitError(f"{field}: {len(text)} characters, over the limit of "
                          f"{MAX_DESCRIPTION_CHARS} (MAX_DESCRIPTION_CHARS)",
                          "MAX_DESCRIPTION_CHARS")
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as e:  # a lone surrogate: from bytes not UTF-8, or "\ud800"
+        raise HomesimError(f"{field}: not valid text (character {e.start + 1} is not "
+                           "Unicode; give UTF-8 text)") from None
     folded = " ".join(text.split())
     if not folded:
         raise HomesimError(f"{field}: empty")
@@ -231,5 +236,7 @@ def write_program(description: str, home: EnvironmentGraph | str = "scene1",
     home's name or a graph), with the writer fitted on the real programs."""
     from homesim.world.homes import load_home
 
+    check_text("description", description)  # bad text is refused before the model loads
+    check_title(title)
     graph = load_home(home) if isinstance(home, str) else home
     return real_writer().write(description, graph, title=title, seed=seed)

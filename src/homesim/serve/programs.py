@@ -110,8 +110,12 @@ def video_renderer() -> Callable[..., Any]:
 
 
 def render_plan(request: RenderRequest) -> dict[str, Any]:
-    """Check a render request before queueing it: the program parses, the home exists and
-    frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the line of each key frame."""
+    """Check a render request before queueing it: a video's sides are even, the program
+    parses, the home exists and frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the
+    line of each key frame."""
+    if isinstance(request, VideoRequest) and (request.width % 2 or request.height % 2):
+        raise ApiError(422, "render", f"image size {request.width}x{request.height}: width "
+                       "and height of a video must be even (H.264)")
     program, lines = parse_request(request.program)
     get_home(request.home)
     pixel_frames = len(program.steps) * request.width * request.height
