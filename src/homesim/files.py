@@ -21,6 +21,7 @@ reading, not only from ``stat``.
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 import stat
@@ -28,7 +29,7 @@ import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, Any, BinaryIO
 
 from homesim.errors import HomesimError, LimitError
 
@@ -157,26 +158,41 @@ def remove_stale(parent: str | Path, name: str, folder: bool = False) -> list[Pa
     return removed
 
 
-def read_limited(path: str | Path, limit: int, limit_name: str, what: str = "file"
-                 ) -> bytes:
-    """The bytes of the regular file `path`, refusing one over `limit` bytes.
+def open_regular(path: str | Path, what: str = "file", follow_links: bool = True
+                 ) -> BinaryIO:
+    """`path` opened for reading in binary, when it is a regular file.
 
-    Anything but a regular file (a folder, a FIFO, a device such as ``/dev/zero``) is
-    refused before a byte is read; opening does not block on a FIFO. The size is counted
-    while reading, so a file that grows or lies about its size cannot pass the limit.
-    Raises `LimitError` naming `limit_name`, or `HomesimError` naming the file and why.
+    Anything else (a folder, a FIFO, a device such as ``/dev/zero``; a symbolic link
+    unless `follow_links`) is refused before a byte is read, and opening does not block
+    on a FIFO. Raises `HomesimError` naming the file and why.
     """
     path, label = Path(path), "file" if what == "file" else f"{what} file"
+    flags = os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0)
+    if not follow_links:
+        flags |= getattr(os, "O_NOFOLLOW", 0)
     try:
-        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+        fd = os.open(path, flags)
     except OSError as e:
+        if e.errno == errno.ELOOP and not follow_links:
+            raise HomesimError(f"{path}: a symbolic link, not a {label}") from None
         raise HomesimError(f"{path}: cannot read {label} ({e.strerror or e})") from None
     mode = os.fstat(fd).st_mode
     if not stat.S_ISREG(mode):
         os.close(fd)
         raise HomesimError(f"{path}: not a regular file ({_kind(mode)}); give a {label}")
+    return os.fdopen(fd, "rb")
+
+
+def read_limited(path: str | Path, limit: int, limit_name: str, what: str = "file",
+                 follow_links: bool = True) -> bytes:
+    """The bytes of the regular file `path` (`open_regular`), refusing one over `limit`
+    bytes. The size is counted while reading, so a file that grows or lies about its size
+    cannot pass the limit. Raises `LimitError` naming `limit_name`, or `HomesimError`
+    naming the file and why.
+    """
+    label = "file" if what == "file" else f"{what} file"
     chunks, size = [], 0
-    with os.fdopen(fd, "rb") as f:
+    with open_regular(path, what, follow_links) as f:
         while size <= limit:
             try:
                 chunk = f.read(min(1 << 20, limit + 1 - size))
@@ -192,10 +208,10 @@ def read_limited(path: str | Path, limit: int, limit_name: str, what: str = "fil
     return b"".join(chunks)
 
 
-def read_text_limited(path: str | Path, limit: int, limit_name: str, what: str = "file"
-                      ) -> str:
+def read_text_limited(path: str | Path, limit: int, limit_name: str, what: str = "file",
+                      follow_links: bool = True) -> str:
     """`read_limited`, decoded as UTF-8 (a leading BOM dropped); one-line error if not."""
-    data = read_limited(path, limit, limit_name, what)
+    data = read_limited(path, limit, limit_name, what, follow_links)
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as e:

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.markup import escape
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
@@ -92,7 +93,8 @@ def generate(
             bar.update(task, completed=done, total=total)
 
         summary = generate_dataset(config, out, workers=workers, ray_address=ray_address,
-                                   progress=progress)
+                                   progress=progress, notice=lambda line: bar.console.print(
+                                       f"note: {escape(line)}"))
     seconds = time.perf_counter() - t0
     console.print(
         f"[green]ok[/]: {summary.ok} episodes ({summary.failed} failed), {summary.frames} "
@@ -105,13 +107,14 @@ def replay(
     root: Annotated[Path, typer.Argument(help="Data set folder.")],
     key: Annotated[str, typer.Argument(help="Episode key (ep-000042) or index.")],
     out: Annotated[Path, typer.Option(help="Tar file to write the episode to.")],
+    force: Annotated[bool, typer.Option(help="Replace --out if it exists.")] = False,
 ) -> None:
     """Render one episode again from its recorded choices and say whether its bytes equal
-    the stored ones."""
+    the stored ones. OUT is written only when the episode is made."""
     from homesim.dataset.replay import replay_from_dataset
     from homesim.dataset.spec import FORMAT
 
-    outcome, recorded = replay_from_dataset(root, key, out)
+    outcome, recorded = replay_from_dataset(root, key, out, force)
     expected = recorded.sha256
     if not outcome.ok:
         raise HomesimError(f"{outcome.key}: failed again ({outcome.stage}: {outcome.reason})")
@@ -129,12 +132,12 @@ def replay(
 @app.command()
 def verify(root: Annotated[Path, typer.Argument(help="Data set folder.")]) -> None:
     """Check every shard's checksum, every episode's checksum and frame counts, and the
-    manifest."""
+    manifest; each fault found is one line naming the file (and member)."""
     from homesim.dataset.verify import verify_dataset
 
     report = verify_dataset(root)
-    for p in report.problems[:20]:
-        console.print(f"[red]problem[/]: {p}", markup=True)
+    for p in report.problems:
+        console.print(f"[red]problem[/]: {escape(p)}")
     if report.problems:
         raise HomesimError(f"{root}: {len(report.problems)} problems")
     console.print(f"[green]ok[/]: {report.shards} shards, {report.episodes} episodes "

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import random
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from homesim.errors import HomesimError
+from homesim.errors import DataError, HomesimError
 from homesim.render.video import check_size
 
 AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
@@ -73,6 +73,10 @@ class DatasetConfig:
             raise HomesimError("--n, --gt-stride and --shard-size must be at least 1")
         if not self.homes:
             raise HomesimError("no homes to choose from")
+        unknown_homes = [h for h in self.homes if not _is_home(h)]
+        if unknown_homes:
+            raise HomesimError(f"--homes {unknown_homes[0][:60]}: not a built-in home or "
+                               "gen-SEED (see 'homesim homes')")
         check_size(self.width, self.height, self.fps)
 
     def to_dict(self) -> dict[str, Any]:
@@ -81,11 +85,14 @@ class DatasetConfig:
         return d
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> DatasetConfig:
-        names = {f.name for f in fields(cls)}
-        d = {k: v for k, v in data.items() if k in names}
-        d["modalities"], d["homes"] = tuple(d["modalities"]), tuple(d["homes"])
-        return cls(**d)
+    def from_dict(cls, data: Any) -> DatasetConfig:
+        """The config a data set's json recorded; `DataError` naming the field that is
+        missing or of the wrong type."""
+        d = typed_fields(data, _CONFIG_TYPES, "config", required=False)
+        try:
+            return cls(**d)
+        except HomesimError as e:
+            raise DataError(f"config: {e}") from None
 
     @property
     def num_shards(self) -> int:
@@ -120,12 +127,49 @@ class EpisodeSpec:
         return d
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> EpisodeSpec:
-        names = {f.name for f in fields(cls)} - {"extra"}
-        missing = names - set(data)
-        if missing:
-            raise HomesimError(f"episode spec lacks {sorted(missing)[0]!r}")
-        return cls(**{k: data[k] for k in names})
+    def from_dict(cls, data: Any) -> EpisodeSpec:
+        return cls(**typed_fields(data, _SPEC_TYPES, "episode spec"))
+
+
+_CONFIG_TYPES: dict[str, type] = {
+    "programs": str, "n": int, "seed": int, "width": int, "height": int, "fps": int,
+    "modalities": tuple, "gt_stride": int, "homes": tuple, "shard_size": int, "format": str}
+_SPEC_TYPES: dict[str, type] = {
+    "index": int, "program_id": str, "program": str, "home": str, "agent": str,
+    "render_seed": int, "ground_seed": int, "placement_seed": int, "moves": int,
+    "speed": float}
+
+
+def typed_fields(data: Any, types: dict[str, type], what: str, required: bool = True
+                 ) -> dict[str, Any]:
+    """The fields of JSON object `data` named in `types`, each checked to be of its type
+    (``tuple``: a list of strings; ``float``: any number); `DataError` naming the first
+    that is not. Missing fields are an error when `required`, else left out."""
+    if not isinstance(data, dict):
+        raise DataError(f"{what}: expected a JSON object")
+    out: dict[str, Any] = {}
+    for name, kind in types.items():
+        if name not in data:
+            if required:
+                raise DataError(f"{what} lacks {name!r}")
+            continue
+        value = data[name]
+        if kind is tuple and isinstance(value, list) and all(isinstance(v, str)
+                                                             for v in value):
+            value = tuple(value)
+        elif kind is float and type(value) in (int, float):
+            value = float(value)
+        elif type(value) is not kind:
+            wanted = "a list of strings" if kind is tuple else kind.__name__
+            raise DataError(f"{what}: {name!r} must be {wanted}, got {str(value)[:40]!r}")
+        out[name] = value
+    return out
+
+
+def _is_home(name: str) -> bool:
+    from homesim.world.homes import home_names, is_generated
+
+    return name in home_names() or is_generated(name)
 
 
 def episode_key(index: int) -> str:
