@@ -102,6 +102,9 @@ MAX_WALK_CELLS = 16_000_000
 400 m x 400 m; an apartment has ~30 000). A home spread wider is refused before the grid
 is allocated (a 1 byte per cell array)."""
 
+MAX_EPISODES = 1_000_000
+"""Most episodes of one activity video data set (``homesim dataset generate --n``)."""
+
 RENDER_WORKERS = 1
 """Render requests that run at the same time (each holds an OpenGL context)."""
 

@@ -49,15 +49,15 @@ class Summary:
         return self.disk_bytes / self.frames if self.frames else 0.0
 
 
-def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
-    """(id, text) of the config's programs: ``synth`` samples `n` from the grammar with the
-    config's seed, drawing each in one of its homes; else a data set file (JSONL), a folder
-    of program files or one program file."""
+def load_programs(config: DatasetConfig, count: int | None = None) -> list[tuple[str, str]]:
+    """(id, text) of the config's programs: ``synth`` samples `n` (or the first `count`)
+    from the grammar with the config's seed, drawing each in one of its homes; else a data
+    set file (JSONL), a folder of program files or one program file."""
     if config.programs == "synth":
         from homesim.synth import generate
 
         return [(p.id, str(p.program))
-                for p in generate(config.n, config.seed, homes=config.homes)]
+                for p in generate(count or config.n, config.seed, homes=config.homes)]
     from homesim.knowledge.datasets import ActivityDataset
 
     source = config.programs
@@ -66,7 +66,7 @@ def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
         ds = ActivityDataset.from_folder(path)
     elif path.suffix == ".jsonl":
         ds = ActivityDataset.from_jsonl(path)
-    elif path.is_file():
+    elif path.exists():  # a file, or something else: read_limited says what
         ds = ActivityDataset.from_file(path)
     else:
         raise HomesimError(f"--programs {source}: no such file or folder (or 'synth')")

@@ -8,7 +8,7 @@ import io
 from pathlib import Path
 from typing import Any
 
-from homesim.errors import DataError, HomesimError, excerpt
+from homesim.errors import DataError, HomesimError, one_line
 from homesim.files import read_limited, write_bytes
 from homesim.limits import MAX_DATA_FILE_BYTES
 
@@ -43,7 +43,7 @@ def read_manifest(path: str | Path) -> list[dict[str, Any]]:
         raise DataError(str(e)) from None
     except (OSError, ValueError, pa.ArrowException) as e:
         raise DataError(f"{path}: cannot read the manifest "
-                        f"({excerpt(str(e) or type(e).__name__, 120)})") from None
+                        f"({one_line(str(e) or type(e).__name__, 120)})") from None
     return [r if isinstance(r, dict) else {} for r in rows]
 
 

@@ -10,7 +10,7 @@ from homesim.dataset.episode import Outcome
 from homesim.dataset.generate import load_programs, replay_episode
 from homesim.dataset.layout import Layout, read_json
 from homesim.dataset.manifest import read_manifest
-from homesim.dataset.spec import DatasetConfig, EpisodeSpec, episode_key, plan_episodes
+from homesim.dataset.spec import DatasetConfig, EpisodeSpec, draw_spec, episode_key
 from homesim.dataset.verify import scan_shard
 from homesim.errors import DataError, HomesimError, excerpt
 from homesim.files import check_target
@@ -82,8 +82,10 @@ def _spec(layout: Layout, config: DatasetConfig, key: str, index: int, ok: bool
             return EpisodeSpec.from_dict(spec)
         except DataError as e:
             raise DataError(f"{shard.name}: {key}.json: {e}") from None
-    programs = load_programs(config)
-    return plan_episodes(config, programs)[index]
+    programs = load_programs(config, count=index + 1)  # a synth data set: only those
+    if not programs:
+        raise DataError(f"{config.programs}: no programs")
+    return draw_spec(config, index, *programs[index % len(programs)])
 
 
 def replay_from_dataset(root: str | Path, key: str, out: str | Path, force: bool = False

@@ -14,7 +14,8 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from homesim.errors import DataError, HomesimError
+from homesim.errors import DataError, HomesimError, LimitError
+from homesim.limits import MAX_EPISODES
 from homesim.render.video import check_size
 
 AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
@@ -71,6 +72,9 @@ class DatasetConfig:
                                f"{', '.join(MODALITIES)}")
         if self.n < 1 or self.gt_stride < 1 or self.shard_size < 1:
             raise HomesimError("--n, --gt-stride and --shard-size must be at least 1")
+        if max(self.n, self.gt_stride, self.shard_size) > MAX_EPISODES:
+            raise LimitError(f"--n, --gt-stride and --shard-size must be at most "
+                             f"{MAX_EPISODES:,} (MAX_EPISODES)", "MAX_EPISODES")
         if not self.homes:
             raise HomesimError("no homes to choose from")
         unknown_homes = [h for h in self.homes if not _is_home(h)]

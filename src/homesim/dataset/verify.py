@@ -21,7 +21,7 @@ from typing import Any, BinaryIO
 from homesim.dataset.layout import Layout, read_json, shard_names
 from homesim.dataset.manifest import read_manifest
 from homesim.dataset.tarfiles import MemberHash, iter_members
-from homesim.errors import DataError, HomesimError, excerpt
+from homesim.errors import DataError, HomesimError, excerpt, one_line
 from homesim.files import open_regular
 
 MAX_META_BYTES = 64 * 1024 * 1024
@@ -114,7 +114,7 @@ def scan_shard(path: Path, sha: list[str] | None = None) -> Iterator[ScannedEpis
                 sha.append(reader.finish())
         except (tarfile.TarError, EOFError, OSError, ValueError) as e:
             raise ShardError(f"{path.name}: unreadable at or after {_shown(last)} "
-                             f"({excerpt(str(e) or type(e).__name__, 120)})") from None
+                             f"({one_line(str(e) or type(e).__name__, 120)})") from None
 
 
 def _read_member(tar: tarfile.TarFile, info: tarfile.TarInfo, current: dict[str, Any]
