@@ -95,7 +95,12 @@ def ray_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
                     f"{e}; making the episodes in this process instead (as --workers 0)")
                 yield from serial_outcomes(specs, config, root)
                 return
-        yield from _ray_tasks(ray, specs, config, root)
+        with _Signals() as signals:
+            try:
+                yield from _ray_tasks(ray, specs, config, root)
+            except SystemExit:
+                signals.raise_caught()  # what our handler raised, before Ray replaced it
+                raise
     finally:
         if started:
             ray.shutdown()
@@ -128,6 +133,36 @@ def _ray_tasks(ray: Any, specs: Sequence[EpisodeSpec], config: DatasetConfig, ro
                 raise HomesimError(f"{spec.key}: its Ray task failed {TASK_ATTEMPTS} times; "
                                    f"the last: {_first_line(e)}") from None
             todo.append(spec)
+
+
+class _Signals:
+    """Notes which of SIGINT and SIGTERM arrived, then calls our handler as before. Ray
+    turns an exception raised by a handler while it waits into ``SystemExit(1)``;
+    `raise_caught` raises the handler's own again (KeyboardInterrupt, or the CLI's
+    exit 143)."""
+
+    def __init__(self) -> None:
+        self.caught: int | None = None
+        self.handlers: dict[int, Callable[[int, Any], Any]] = {}
+
+    def __enter__(self) -> _Signals:
+        for signum, handler in _our_handlers().items():
+            if callable(handler):
+                self.handlers[signum] = handler
+                signal.signal(signum, self._note)
+        return self
+
+    def _note(self, signum: int, frame: Any) -> None:
+        self.caught = signum
+        self.handlers[signum](signum, frame)
+
+    def raise_caught(self) -> None:
+        if self.caught is not None:
+            self.handlers[self.caught](self.caught, None)
+
+    def __exit__(self, *exc: object) -> None:
+        for signum, handler in self.handlers.items():
+            signal.signal(signum, handler)
 
 
 def _first_line(e: BaseException) -> str:
