@@ -27,26 +27,16 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.learn import baselines
 from homesim.learn.data import Example
-from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
-from homesim.learn.insertion import Known
-from homesim.learn.likelihood import folds as fold_of_each
-from homesim.learn.rerank import (
-    Bank,
-    Query,
-    Reranker,
-    _labelled,
-    cross_deleted,
-    cross_fitted_best,
-    cross_inserted,
-    design,
-    fit_editors,
-    fit_trees,
-    fold_knowledge,
-    has_copy,
-)
-from homesim.learn.splits import SPLITS
+from homesim.learn.eval import baselines
+from homesim.learn.eval.experiment import HOLDOUT, RunSpec, load_run_splits
+from homesim.learn.eval.splits import SPLITS
+from homesim.learn.rerank.base import Bank, Query, labelled
+from homesim.learn.rerank.editors import cross_deleted, cross_inserted, fit_editors
+from homesim.learn.rerank.folds import Known, fold_knowledge, has_copy
+from homesim.learn.rerank.folds import folds as fold_of_each
+from homesim.learn.rerank.reranker import Reranker
+from homesim.learn.rerank.trees import cross_fitted_best, design, fit_trees
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 
@@ -176,7 +166,7 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     for i, example, allowed, fold in training_queries(bank, split, without_copies):
         query = Query(bank, example, allowed)
         if query.candidates:
-            groups.append(_labelled(query))
+            groups.append(labelled(query))
             folds.append(fold)
             base.append(baseline_on_query(query, split))
             alone.append(not has_copy(bank, example))
@@ -184,11 +174,11 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
             indexed.append((i, query))
     everything = np.ones(len(train), bool)
     dev_queries = [Query(bank, e, everything) for e in splits.dev]
-    dev = [_labelled(q) for q in dev_queries]
+    dev = [labelled(q) for q in dev_queries]
     known = fold_knowledge(train, HOLDOUT[split])[1]
     inserted, deleted = edited_cross_validated(queries, groups, folds, known)
-    model = Reranker(bank, fit_trees(groups), None, *fit_editors(bank, HOLDOUT[split],
-                                                                  indexed, groups, True))
+    model = Reranker(bank, fit_trees(groups), *fit_editors(bank, HOLDOUT[split], indexed,
+                                                           groups, True))
     dev_inserted, dev_deleted = [], []
     for q, (f, _) in zip(dev_queries, dev, strict=True):
         chosen = q.candidates[int(np.argmax(model.trees.predict(design(f))))].program

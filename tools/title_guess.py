@@ -1,5 +1,6 @@
 """How often the program writer names a description's activity right when no title is given
-(`homesim.learn.writer.ProgramWriter.guess_title`), leave-one-out over the real programs.
+(`homesim.learn.rerank.program_writer.ProgramWriter.guess_title`), leave-one-out over the
+real programs.
 
     .venv/bin/python tools/title_guess.py
 
@@ -12,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from homesim.learn.writer import TITLE_TAU, real_writer, vote_titles
+from homesim.learn.rerank.program_writer import TITLE_TAU, real_writer, vote_titles
 
 TAUS = (0.01, 0.02, 0.05, 0.1, 0.2)
 

@@ -7,6 +7,8 @@ catch `HomesimError` and print that line; any other exception is a bug of ours.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from homesim.limits import EXCERPT_CHARS
 
 
@@ -113,8 +115,9 @@ class GroundingError(HomesimError):
         self.step = step
         self.obj = obj
         self.tried = tried
-        self.bindings: dict[tuple[str, int], int] = {}
-        """The search's choices when it failed (program object -> node id), if any."""
+        self.bindings: Mapping[tuple[str, int], int] = {}
+        """The search's choices when it failed, if any: a `homesim.program.Bindings` (named
+        by its plain type here: this module sits below `homesim.program`)."""
         super().__init__(message)
 
 

@@ -17,7 +17,7 @@ from tests.dataset.conftest import tiny_config, tree_hashes
 
 
 @pytest.mark.parametrize(("args", "words"), [
-    (["--homes", "nope"], "--homes nope: not a built-in home"),
+    (["--homes", "nope"], "unknown home 'nope'"),
     (["--programs", "missing.txt"], "--programs missing.txt: no such file"),
     (["--workers", "-1"], "--workers must be 0 (no Ray) or more"),
     (["--programs", "/dev/zero"], "not a regular file"),

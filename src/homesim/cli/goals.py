@@ -86,7 +86,7 @@ def _task_goals(task: str) -> TaskGoals:
 
 def _task_home(task: str) -> EnvironmentGraph:
     """The stored initial graph of program `task`, the home its goals refer to."""
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     key = _task_key(task)
     found = [p for p in real_programs() if p.id == key]
@@ -177,7 +177,13 @@ def titles(
     force: Annotated[bool, typer.Option(help="Replace --prompts-out if it exists.")] = False,
 ) -> None:
     """Title -> program on the real data ("Task: Watch TV"): LCS and executability."""
-    from homesim.goals.titles import baseline, evaluate, prompts, read_predictions, title_splits
+    from homesim.learn.eval.titles import (
+        baseline,
+        evaluate,
+        prompts,
+        read_predictions,
+        title_splits,
+    )
 
     if prompts_out is not None:
         check_target(prompts_out, force)

@@ -29,7 +29,7 @@ TASKS = ("text2prog", "video2prog")
 
 
 def _datasets(data: str) -> tuple[str, ...]:
-    from homesim.learn.table import DATASETS
+    from homesim.learn.eval.paper_table import DATASETS
 
     if data == "both":
         return DATASETS
@@ -39,7 +39,7 @@ def _datasets(data: str) -> tuple[str, ...]:
 
 
 def _table_datasets(data: str) -> tuple[str, ...]:
-    from homesim.learn.experiment import DATASETS
+    from homesim.learn.eval.experiment import DATASETS
 
     if data == "all":
         return DATASETS
@@ -139,7 +139,7 @@ def train(
     device = _torch(threads, device)
     if task == "video2prog":
         from homesim.cli.learn_video import train_video2prog
-        from homesim.learn.videotable import DEFAULT_CACHE, VideoRunConfig
+        from homesim.learn.video.table import DEFAULT_CACHE, VideoRunConfig
 
         video = VideoRunConfig(data, list(range(seed, seed + max(1, seeds))), frame_size,
                                cache=str(video_cache or DEFAULT_CACHE),
@@ -147,7 +147,7 @@ def train(
         train_video2prog(out, video, mle_epochs, pg_epochs, force, device)
         return
     datasets = _datasets(data)
-    from homesim.learn.table import MODELS, RunConfig, train_dataset
+    from homesim.learn.eval.paper_table import MODELS, RunConfig, train_dataset
 
     _check_run_folder(out, datasets, tuple(f"{m}.pt" for m in MODELS), force)
 
@@ -204,8 +204,8 @@ def evaluate(
     datasets = _datasets(data)
     if markdown is not None:
         check_target(markdown, force)
-    from homesim.learn.report import markdown_table
-    from homesim.learn.table import evaluate_dataset, trained, write_json
+    from homesim.learn.eval.paper_table import evaluate_dataset, trained, write_json
+    from homesim.learn.eval.report import markdown_table
 
     if data == "both":
         present = tuple(name for name in datasets if trained(runs / name))
@@ -225,7 +225,7 @@ def evaluate(
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        from homesim.learn.videoreport import with_table2
+        from homesim.learn.video.report import with_table2
         text = markdown_table(results, eval_seconds=seconds, machine=_machine())
         write_text(markdown, with_table2(markdown, text), force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
@@ -305,9 +305,9 @@ def table(
         raise HomesimError(f"--seeds must be at least 1, got {seeds}")
     if markdown is not None:
         check_target(markdown, force)
-    from homesim.learn.experiment import RunSpec, block
-    from homesim.learn.report import GOALS, MODEL_ROW, evaluation_markdown
-    from homesim.learn.splits import SPLITS
+    from homesim.learn.eval.experiment import RunSpec, block
+    from homesim.learn.eval.report import GOALS, MODEL_ROW, evaluation_markdown
+    from homesim.learn.eval.splits import SPLITS
 
     start = time.perf_counter()
     blocks: dict[str, dict[str, dict]] = {}
@@ -331,7 +331,7 @@ def table(
                 if only_cached else "")
         text = evaluation_markdown(blocks, _machine(device), _versions(),
                                    None if only_cached else seconds, note, str(out))
-        from homesim.learn.videoreport import with_table2
+        from homesim.learn.video.report import with_table2
         write_text(markdown, with_table2(markdown, text), force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
 
@@ -339,7 +339,7 @@ def table(
 def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool
           ) -> list[dict]:
     """Each spec's run: scored now (reusing what is cached), or only what is cached."""
-    from homesim.learn.experiment import cached_run, run
+    from homesim.learn.eval.experiment import cached_run, run
 
     runs = []
     for spec in specs:
@@ -379,7 +379,7 @@ def rules(
     """Score the hand-written rule parser of the synthetic phrasings on every program: how
     invertible the description text is (1.0: the text says the program outright)."""
     from homesim.learn.data import synthetic_examples
-    from homesim.learn.rules import parse
+    from homesim.learn.eval.rules import parse
     from homesim.program.metrics import lcs_steps
     from homesim.synth.grammar import STYLES
 
@@ -419,7 +419,7 @@ def write(
 
     from homesim.cli.common import err_console, read_graph
     from homesim.examples import DEMO_HOME
-    from homesim.learn.writer import write_program
+    from homesim.learn.rerank.program_writer import write_program
 
     if description == "-":
         description = sys.stdin.read(MAX_DESCRIPTION_CHARS + 1)

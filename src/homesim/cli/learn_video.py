@@ -12,13 +12,13 @@ from homesim.errors import HomesimError
 from homesim.files import write_text
 
 if TYPE_CHECKING:
-    from homesim.learn.videotable import VideoRunConfig
+    from homesim.learn.video.table import VideoRunConfig
 
 
 def train_video2prog(out: Path, config: VideoRunConfig, mle_epochs: int | None,
                      pg_epochs: int | None, force: bool, device: str) -> None:
     """Train the clip models and the video -> program models into OUT."""
-    from homesim.learn.videotable import train_video
+    from homesim.learn.video.table import train_video
 
     for folder in config.data.split(","):
         if not Path(folder).is_dir():
@@ -41,8 +41,8 @@ def train_video2prog(out: Path, config: VideoRunConfig, mle_epochs: int | None,
 
 def eval_video2prog(runs: Path, markdown: Path | None, device: str, machine: str) -> None:
     """Score Table 2, print it, write RUNS/results.json and the markdown section."""
-    from homesim.learn.videoeval import evaluate_video
-    from homesim.learn.videoreport import table2_markdown, write_section
+    from homesim.learn.video.eval import evaluate_video
+    from homesim.learn.video.report import table2_markdown, write_section
 
     result = evaluate_video(runs, device)
     result["runs"] = str(runs)

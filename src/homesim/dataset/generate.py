@@ -49,6 +49,15 @@ class Summary:
         return self.disk_bytes / self.frames if self.frames else 0.0
 
 
+def check_homes(homes: Sequence[str]) -> None:
+    """Every home loads: a built-in name, ``gen-N`` or a graph file (``.json``,
+    ``.json.gz``; the errors of ``homesim run --graph``), before any episode is planned."""
+    from homesim.world.homes import open_home
+
+    for home in dict.fromkeys(homes):
+        open_home(home)
+
+
 def load_programs(config: DatasetConfig, count: int | None = None) -> list[tuple[str, str]]:
     """(id, text) of the config's programs: ``synth`` samples `n` (or the first `count`)
     from the grammar with the config's seed, drawing each in one of its homes; else a data
@@ -83,7 +92,8 @@ def generate_dataset(config: DatasetConfig, out: str | Path, *, workers: int = 2
     that does not start: in this process, and `notice` gets one line saying so)."""
     if workers < 0:
         raise HomesimError(f"--workers must be 0 (no Ray) or more, got {workers}")
-    specs = plan_episodes(config, load_programs(config))  # before the folder is touched
+    check_homes(config.homes)  # these three before the folder is touched
+    specs = plan_episodes(config, load_programs(config))
     layout = Layout(out)
     layout.open(config)
     try:

@@ -87,6 +87,17 @@ def shard_names(info: Any, where: str = "dataset.json") -> list[str]:
     return names
 
 
+def _with_defaults(stored: Any) -> Any:
+    """A stored config with the options added since it was written at their defaults
+    (`--agents`), so that an older folder still resumes."""
+    if not isinstance(stored, dict):
+        return stored
+    try:
+        return DatasetConfig.from_dict(stored).to_dict()
+    except (HomesimError, TypeError, KeyError):
+        return stored
+
+
 class Layout:
     """Paths and steps of one data set folder."""
 
@@ -115,7 +126,7 @@ class Layout:
         try:
             self.wait_for_writers()
             self.remove_temporaries()
-            stored = None if fresh else read_json(self.config_path).get("config")
+            stored = None if fresh else _with_defaults(read_json(self.config_path)["config"])
             if stored != config.to_dict():
                 write_text(self.config_path, dumps({"format": FORMAT,
                                                     "config": config.to_dict()}))
@@ -131,7 +142,7 @@ class Layout:
             raise HomesimError(f"{self.root}: holds a data set in format "
                                f"{str(stored.get('format'))[:40]}, not {FORMAT}; use another "
                                "--out folder")
-        old = stored.get("config")
+        old = _with_defaults(stored.get("config"))
         if old == config.to_dict() or not self.made_anything():
             return
         old = old if isinstance(old, dict) else {}

@@ -61,9 +61,10 @@ class DatasetConfig:
     fps: int = 15
     modalities: tuple[str, ...] = MODALITIES
     gt_stride: int = 1  # dense maps (depth, class, instance, flow) every k-th frame
-    homes: tuple[str, ...] = DEFAULT_HOMES
+    homes: tuple[str, ...] = DEFAULT_HOMES  # names, or graph files (.json, .json.gz)
     shard_size: int = 8  # episodes per shard
     format: str = FORMAT
+    agents: tuple[str, ...] = AGENT_NAMES
 
     def __post_init__(self) -> None:
         unknown = [m for m in self.modalities if m not in MODALITIES]
@@ -77,15 +78,16 @@ class DatasetConfig:
                              f"{MAX_EPISODES:,} (MAX_EPISODES)", "MAX_EPISODES")
         if not self.homes:
             raise HomesimError("no homes to choose from")
-        unknown_homes = [h for h in self.homes if not _is_home(h)]
-        if unknown_homes:
-            raise HomesimError(f"--homes {unknown_homes[0][:60]}: not a built-in home or "
-                               "gen-SEED (see 'homesim homes')")
+        bad = [a for a in self.agents if a not in AGENT_NAMES]
+        if bad or not self.agents:
+            raise HomesimError(f"agent {bad[0] if bad else ''!r}: choose from "
+                               f"{', '.join(AGENT_NAMES)}")
         check_size(self.width, self.height, self.fps)
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
         d["modalities"], d["homes"] = list(self.modalities), list(self.homes)
+        d["agents"] = list(self.agents)
         return d
 
     @classmethod
@@ -137,7 +139,8 @@ class EpisodeSpec:
 
 _CONFIG_TYPES: dict[str, type] = {
     "programs": str, "n": int, "seed": int, "width": int, "height": int, "fps": int,
-    "modalities": tuple, "gt_stride": int, "homes": tuple, "shard_size": int, "format": str}
+    "modalities": tuple, "gt_stride": int, "homes": tuple, "shard_size": int, "format": str,
+    "agents": tuple}
 _SPEC_TYPES: dict[str, type] = {
     "index": int, "program_id": str, "program": str, "home": str, "agent": str,
     "render_seed": int, "ground_seed": int, "placement_seed": int, "moves": int,
@@ -170,12 +173,6 @@ def typed_fields(data: Any, types: dict[str, type], what: str, required: bool = 
     return out
 
 
-def _is_home(name: str) -> bool:
-    from homesim.world.homes import home_names, is_generated
-
-    return name in home_names() or is_generated(name)
-
-
 def episode_key(index: int) -> str:
     return f"ep-{index:06d}"
 
@@ -185,7 +182,7 @@ def draw_spec(config: DatasetConfig, index: int, program_id: str, program: str
     """The random choices of episode `index` (its own stream; see the module docstring)."""
     rng = random.Random(f"homesim-episode-{config.seed}-{index}")
     home = rng.choice(config.homes)
-    agent = rng.choice(AGENT_NAMES)
+    agent = rng.choice(config.agents)
     seeds = [rng.randrange(2**31) for _ in range(3)]
     moves = rng.randint(0, MAX_MOVES)
     speed = round(rng.uniform(*SPEED_RANGE), 3)

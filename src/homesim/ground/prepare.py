@@ -32,18 +32,19 @@ Two things are prepared, on a copy of the home (the input graph is never changed
 from __future__ import annotations
 
 import random
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.placement import place_box
-from homesim.ground.standing import FloorPlan, has_geometry, note_prepared
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.state import SimState
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
+from homesim.world.standing import FloorPlan, has_geometry, note_prepared
 from homesim.world.vocab import (
     CAN_OPEN,
     CHARACTER_CLASS,
@@ -54,6 +55,7 @@ from homesim.world.vocab import (
     HAS_SWITCH,
     INSIDE,
     ON,
+    ROOM_NAMES,
     S_CLOSED,
     S_LYING,
     S_OFF,
@@ -65,10 +67,6 @@ from homesim.world.vocab import (
     SURFACES,
 )
 
-ROOM_NAMES = frozenset({
-    "bathroom", "bedroom", "kitchen", "livingroom", "living_room", "dining_room",
-    "home_office", "office", "garage", "hallway", "entrance_hall", "kids_bedroom"})
-"""Room classes of VirtualHome programs and homes: a home lacking one cannot get it."""
 DEFAULT_SIZE = (0.15, 0.15, 0.15)
 """Box size (m) for an added object whose class has no prefab dimensions."""
 
@@ -145,7 +143,7 @@ def instances_of(graph: EnvironmentGraph, classes: list[str]) -> list[int]:
 def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
             kb: ObjectKnowledge | None = None,
             extra: Sequence[tuple[str, int]] = (),
-            pins: Mapping[tuple[str, int], int] | None = None) -> Prepared:
+            pins: Bindings | None = None) -> Prepared:
     """Add the objects `program` needs and set the initial states it presupposes.
 
     Args:
@@ -178,7 +176,7 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         return Prepared(graph, [])
     st = SimState(graph)
     changed = _set_states(st, states)
-    adder = _Adder(st, program, context, kb, random.Random(seed), pins or {})
+    adder = _Adder(st, program, context, kb, random.Random(seed), pins or Bindings())
     for ref in missing:
         addition = adder.add(ref)
         groups = _groups_of_class(required, ref.name)
@@ -506,7 +504,7 @@ class _Adder:
     destination the knowledge base allows, else on free floor."""
 
     def __init__(self, st: SimState, program: Program, context: _Context,
-                 kb: ObjectKnowledge, rng: random.Random, pins: Mapping[Key, int]):
+                 kb: ObjectKnowledge, rng: random.Random, pins: Bindings):
         self.st, self.program, self.context, self.kb, self.rng = st, program, context, kb, rng
         self.pins = pins
         self.plan = FloorPlan(st.graph) if has_geometry(st.graph) else None

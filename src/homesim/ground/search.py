@@ -5,7 +5,7 @@ Grounding finds node ids for them under which every step executes:
 
 - one node per program object, different nodes for different objects (all-different);
 - candidates are the home's nodes of the object's class or of an equivalent class name
-  (``television`` -> ``tv``), see `homesim.ground.kbtypes.class_names_for`;
+  (``television`` -> ``tv``), see `homesim.knowledge.kbtypes.class_names_for`;
 - the search walks the program step by step on one `SimState`; a step's unbound objects
   are bound when it is reached, trying candidates in order of preference, and the step
   is run by the simulator (its preconditions prune); on failure the state is rolled back
@@ -17,7 +17,7 @@ Grounding finds node ids for them under which every step executes:
 - backjumping: a failed step blames the objects of the step and those the character is
   close to, faces, sits on or holds; choices of other objects are skipped over;
 - with geometry, each interaction also needs free floor next to its object for the agent
-  to stand on (`homesim.ground.standing`); the chosen spots come with the result.
+  to stand on (`homesim.world.standing`); the chosen spots come with the result.
 
 >>> from homesim.program import parse_program
 >>> from homesim.world import load_home
@@ -39,14 +39,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from homesim.errors import GroundingError
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import Prepared, first_use, instances_of, prepare
-from homesim.ground.standing import FloorPlan, Spot, has_geometry
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.standing import FloorPlan, Spot, has_geometry
 from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 Key = tuple[str, int]
@@ -464,7 +464,7 @@ def _failure(search: _Search, stopped: bool) -> GroundingError:
     obj = str(step.args[0]) if step.args else None
     error = GroundingError(f"step {index + 1} {step}: cannot be grounded: {reason}; "
                            f"tried {what}{tail}", index + 1, obj, what)
-    error.bindings = search.deepest_bindings
+    error.bindings = Bindings(search.deepest_bindings)
     return error
 
 
@@ -514,7 +514,7 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     extra: list[Key] = []
-    pins: dict[Key, int] = {}
+    pins = Bindings()
     rooms = {n.class_name for n in graph.rooms()}
     failure: GroundingError | None = None
     while True:
@@ -537,5 +537,5 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
                 raise failure from None
             extra += new
             # Put the new instances next to what the search had chosen when it failed.
-            pins = {k: n for k, n in e.bindings.items() if n in graph}
+            pins = Bindings({k: n for k, n in e.bindings.items() if n in graph})
             repairs -= 1

@@ -29,7 +29,9 @@ from typing import Any, overload
 
 from homesim.errors import DataError, HomesimError, LimitError
 from homesim.files import atomic_write, read_text_limited
+from homesim.knowledge.fetch import dataset_dir, verify
 from homesim.limits import MAX_DATA_FILE_BYTES
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program, parse_steps
 from homesim.world.graph import EnvironmentGraph
@@ -68,7 +70,7 @@ class ActivityProgram:
     source: str = ""
     graph_path: Path | None = None
     home: str | None = None
-    bindings: dict[tuple[str, int], int] = field(default_factory=dict, compare=False)
+    bindings: Bindings = field(default_factory=Bindings, compare=False)
 
     @property
     def title(self) -> str:
@@ -125,7 +127,7 @@ class ActivityProgram:
             steps.append(Step(step.action, tuple(ObjectRef(r.name, r.instance)
                                                  for r in step.args)))
         return replace(self, program=replace(self.program, steps=tuple(steps)),
-                       bindings=bindings)
+                       bindings=Bindings(bindings))
 
     def to_json(self) -> dict:
         """The JSONL record of this program (fields in the module docstring)."""
@@ -177,6 +179,24 @@ def _read_text(path: Path) -> str:
 def read_program_file(path: Path) -> Program:
     """Read one ActivityPrograms file; `DataError` naming the file if it is bad."""
     return _check(parse_program(_read_text(path), source=str(path)), str(path))
+
+
+def real_programs(directory: Path | None = None, check: bool = False) -> list[ActivityProgram]:
+    """The real program data set (fetched by `homesim.knowledge.fetch`): all its programs,
+    sorted by id, each with its stored graphs; `check` verifies checksums first.
+
+    Ids are file stems, e.g. ``file1003_2`` (script 1003, second annotation); refs are
+    grounded (``<computer> (1.417)``).
+    """
+    directory = directory or dataset_dir()
+    if check:
+        verify(directory)
+    programs_dir = directory / "programs"
+    if not programs_dir.is_dir():
+        raise DataError(f"{directory}: the real data set is not here; run 'homesim data fetch'")
+    return [ActivityProgram(path.stem, read_program_file(path), str(path),
+                            directory / "graphs" / f"{path.stem}.json")
+            for path in sorted(programs_dir.glob("*.txt"))]
 
 
 class ActivityDataset(Sequence[ActivityProgram]):
@@ -292,8 +312,6 @@ class ActivityDataset(Sequence[ActivityProgram]):
     @classmethod
     def real(cls, directory: Path | None = None) -> ActivityDataset:
         """The fetched eai-eval data set: 518 programs, each with its stored graphs."""
-        from homesim.knowledge.realdata import real_programs
-
         return cls(real_programs(directory), "eai-eval-1.0.5")
 
     @classmethod
@@ -413,20 +431,20 @@ def _from_record(record: object, where: str, base: Path) -> ActivityProgram:
                            graph_path, home or None, _bindings(record.get("bindings"), where))
 
 
-def _bindings(value: Any, where: str) -> dict[tuple[str, int], int]:
-    """``[[class name, instance, node id], ...]`` as a dict; `DataError` if malformed.
+def _bindings(value: Any, where: str) -> Bindings:
+    """``[[class name, instance, node id], ...]`` as `Bindings`; `DataError` if malformed.
 
     `value` is raw JSON (hence `Any`); every item is checked here.
     """
     if value is None:
-        return {}
+        return Bindings()
     try:
         out: dict[tuple[str, int], int] = {}
         for name, instance, node in value:
             if not isinstance(name, str) or type(instance) is not int or type(node) is not int:
                 raise TypeError
             out[(name, instance)] = node
-        return out
+        return Bindings(out)
     except (TypeError, ValueError):
         raise DataError(f"{where}: 'bindings' must be a list of [class name, instance, "
                         "node id]") from None

@@ -13,11 +13,12 @@ from functools import lru_cache
 
 from homesim.ground.pipeline import run_program, runs
 from homesim.learn.data import Example
-from homesim.learn.vocab import StepKey, key_step
+from homesim.learn.vocabularies import StepKey, key_step
 from homesim.program.actions import ACTIONS
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program
+from homesim.world.homes import load_home
 
 SEED = 0
 """Seed of preparation and grounding for the reward, the table and decoding."""
@@ -90,8 +91,6 @@ def other_homes(example: Example) -> tuple[str, ...]:
 def runs_in_builtin(program_text: str, home: str) -> bool:
     """Whether `run_program` runs the program (its text) in a built-in home; cached, since
     retrieval rows propose the same training programs again and again."""
-    from homesim.world.homes import load_home
-
     return run_program(parse_program(program_text), load_home(home), seed=SEED).executable
 
 

@@ -29,20 +29,18 @@ prepares the home and grounds the program first.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from homesim.errors import BindingError
-from homesim.program.bindings import unbound_error
+from homesim.program.bindings import Bindings, unbound_error
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.effects import EFFECTS
 from homesim.sim.state import Changes, SimState
+from homesim.world.classes import ClassKnowledge, class_names_for, default_kb
 from homesim.world.graph import EnvironmentGraph
-
-if TYPE_CHECKING:
-    from homesim.ground.kbtypes import ObjectKnowledge
 
 
 @dataclass(frozen=True, slots=True)
@@ -150,7 +148,7 @@ class ExecutionResult:
         }
 
 
-def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
+def node_ids(step: Step, bindings: Bindings | None = None
              ) -> tuple[int, ...]:
     """The node ids a step's objects refer to, read as the reference simulator does.
 
@@ -163,27 +161,27 @@ def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
 
 
 def binding_problems(program: Program, graph: EnvironmentGraph,
-                     bindings: Mapping[tuple[str, int], int] | None = None,
-                     kb: ObjectKnowledge | None = None) -> list[BindingError]:
+                     bindings: Bindings | None = None,
+                     kb: ClassKnowledge | None = None) -> list[BindingError]:
     """Every object ref of `program` that names no node of `graph`, or one of another class.
 
     A ref names the node `bindings` gives it, else its node id (``<tv> (1.410)``).
     Classes match as grounding matches them: by the knowledge base's equivalent names
-    (``television`` and ``tv``, see `homesim.ground.kbtypes.class_names_for`).
+    (``television`` and ``tv``, see `homesim.world.classes.class_names_for`).
     One error per object, at the first step that uses it, in step order.
     """
     def class_of(node: int) -> str | None:
         n = graph.nodes.get(node)
         return None if n is None else n.class_name
 
-    return _problems(program, bindings or {}, class_of, kb, stop=False)
+    return _problems(program, bindings or _NONE, class_of, kb, stop=False)
 
 
-_NONE: Mapping[tuple[str, int], int] = {}
+_NONE = Bindings()
 
 
-def _problems(program: Program, given: Mapping[tuple[str, int], int],
-              class_of: Callable[[int], str | None], kb: ObjectKnowledge | None,
+def _problems(program: Program, given: Bindings,
+              class_of: Callable[[int], str | None], kb: ClassKnowledge | None,
               stop: bool) -> list[BindingError]:
     problems: list[BindingError] = []
     first: dict[tuple[str, int], int | None] = {}  # each object's node at its first use
@@ -213,12 +211,11 @@ def _problems(program: Program, given: Mapping[tuple[str, int], int],
     return problems
 
 
-def _class_names(name: str, kb: ObjectKnowledge | None
-                 ) -> tuple[ObjectKnowledge, list[str]]:
-    """The knowledge base (loaded if None) and the home classes `name` may stand for."""
-    # Imported here: grounding's view of the knowledge base sits above the simulator.
-    from homesim.ground.kbtypes import class_names_for, default_kb
-
+def _class_names(name: str, kb: ClassKnowledge | None
+                 ) -> tuple[ClassKnowledge, list[str]]:
+    """The knowledge base (the default one if None) and the home classes `name` may stand
+    for. The simulator sits below the knowledge base; it asks through the protocol of
+    `homesim.world.classes`, which the package's knowledge base answers."""
     kb = kb or default_kb()
     return kb, class_names_for(name, kb)
 
@@ -249,8 +246,8 @@ def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
 
 
 def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
-            bindings: Mapping[tuple[str, int], int] | None = None, *,
-            reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
+            bindings: Bindings | None = None, *,
+            reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Execute `program` on `graph`; the graph is not changed.
 
     Args:
@@ -261,7 +258,8 @@ def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
             win over node ids the refs carry.
         reference: read the program as the reference simulator does: a ref without a
             node id names node N by its instance ``(N)``, and nothing is checked.
-        kb: the knowledge base for equivalent class names (default: `load_kb()`).
+        kb: the knowledge base for equivalent class names (default: the package's,
+            `homesim.world.classes.default_kb`).
 
     Returns:
         An `ExecutionResult`; `executable` is False at the first step whose preconditions
@@ -276,8 +274,8 @@ def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
 
 
 def execute_on(program: Program, st: SimState, trace: bool = False,
-               bindings: Mapping[tuple[str, int], int] | None = None, *,
-               reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
+               bindings: Bindings | None = None, *,
+               reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Like `execute`, but continue from an existing state (which it modifies)."""
     if not reference:
         base_nodes, new_nodes = st._base_nodes, st._new_nodes

@@ -1,0 +1,16 @@
+"""Retrieve-and-edit on tiny data: seeded, and what it promises."""
+
+from homesim.learn.rerank.retrieve import RetrieveEdit
+
+
+def test_retrieve_and_edit_keeps_or_prunes_a_training_program(tiny_splits):
+    model = RetrieveEdit.fit(tiny_splits.train, tiny_splits.dev)
+    preds = model.predict(tiny_splits.test)
+    assert len(preds) == len(tiny_splits.test)
+    for p in preds:  # every step comes from one training program, in its order
+        assert p.steps and any(all(s in e.program.steps for s in p.steps)
+                               for e in tiny_splits.train)
+    weights = model.weights(tiny_splits.test)
+    assert abs(weights.sum(1) - 1).max() < 1e-6
+    assert [str(p) for p in RetrieveEdit.fit(tiny_splits.train, tiny_splits.dev)
+            .predict(tiny_splits.test)] == [str(p) for p in preds]
