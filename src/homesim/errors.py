@@ -25,7 +25,7 @@ def one_line(text: str, limit: int = EXCERPT_CHARS) -> str:
     """`text` with its whitespace runs (line breaks too) folded to one space, cut as
     `excerpt` does: a message quoting another library's error stays one line.
 
-    >>> one_line("a\n  b", 3)
+    >>> one_line("a\\n  b", 3)
     'a b'
     """
     return excerpt(" ".join(text.split()), limit)
