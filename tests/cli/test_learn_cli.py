@@ -114,12 +114,12 @@ def test_write_reads_the_description_from_stdin(writer_on_small_data, monkeypatc
 def test_write_bad_text_is_refused_before_the_model_loads(monkeypatch, capsys, tmp_path):
     """D12: ``homesim learn write $'\\xff tv'`` (a byte not UTF-8: a lone surrogate in
     argv) exited 70, and only after the writer was loaded or fitted."""
-    from homesim.learn import writer
+    from homesim.learn.rerank import program_writer
 
     def no_model():
         raise AssertionError("the model was loaded for a text that is refused")
 
-    monkeypatch.setattr(writer, "real_writer", no_model)
+    monkeypatch.setattr(program_writer, "real_writer", no_model)
     assert main(["learn", "write", "\udcff tv"]) == 2
     assert "description: not valid text" in capsys.readouterr().err
     assert main(["learn", "write", "tv", "--title", "\ud800"]) == 2
