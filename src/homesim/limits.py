@@ -131,6 +131,24 @@ PROGRAM_WORKERS = 1
 PROGRAM_QUEUE = 8
 """Large-program requests that may wait for a program worker; more are refused with 503."""
 
+PROGRAM_TIMEOUT_S = 30.0
+"""Longest a program worker may take for one request (a large program, or any request on
+a generated home) before it is killed and the client told so."""
+
+WORKER_MEMORY_BYTES = 3 * 1024**3
+"""Memory (``RLIMIT_DATA``) of each of the server's worker processes: program workers,
+writer workers and render jobs. A job needing more fails with one line."""
+
+WRITE_WORKERS = 1
+"""Worker processes that write programs for descriptions (``POST /api/write``); each keeps
+the writer's model loaded."""
+
+WRITE_QUEUE = 4
+"""Write requests that may wait for a writer worker; more are refused with 503."""
+
+WRITE_TIMEOUT_S = 60.0
+"""Longest one write may take (the model loaded: about a second; loading it: seconds)."""
+
 LARGE_BODIES_AT_ONCE = 1
 """Requests with bodies over `INLINE_PROGRAM_CHARS` bytes that the server reads and answers
 at the same time (1: small requests wait behind at most one); up to `PROGRAM_QUEUE` more

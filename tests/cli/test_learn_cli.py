@@ -71,7 +71,7 @@ def writer_on_small_data(small_writer, monkeypatch):
     """`homesim learn write` answers with the small writer (not one fitted on all 518)."""
     from homesim.learn.rerank import program_writer as writer
 
-    monkeypatch.setattr(writer, "real_writer", lambda: small_writer)
+    monkeypatch.setattr(writer, "real_writer", lambda fit=True: small_writer)
     return small_writer
 
 
@@ -116,7 +116,7 @@ def test_write_bad_text_is_refused_before_the_model_loads(monkeypatch, capsys, t
     argv) exited 70, and only after the writer was loaded or fitted."""
     from homesim.learn.rerank import program_writer
 
-    def no_model():
+    def no_model(fit=True):
         raise AssertionError("the model was loaded for a text that is refused")
 
     monkeypatch.setattr(program_writer, "real_writer", no_model)
