@@ -194,7 +194,7 @@ def evaluate(data: Path, scores: Path) -> None:
     """Cross-validated and dev top-candidate LCS: trees, trees + score, the score alone."""
     sys.path.insert(0, str(Path(__file__).parent))
     from homesim.learn.rerank.trees import fit_trees
-    from rerank_dev import cross_validated_each, top_lcs
+    from rerank_dev import CONFIG, cross_validated_each, top_lcs
 
     means = []
     for path in sorted(scores.glob("ce-stratified-*.json")):
@@ -215,8 +215,8 @@ def evaluate(data: Path, scores: Path) -> None:
         row = [float(cross_validated_each(plain, folds).mean()),
                float(cross_validated_each(more, folds).mean()),
                float(np.mean([t[int(np.argmax(c))] for _, _, t, c in train])),
-               float(np.mean(top_lcs(fit_trees(plain), [(f, t) for _, f, t, _ in dev]))),
-               float(np.mean(top_lcs(fit_trees(more), [(np.column_stack([f, c]), t)
+               float(np.mean(top_lcs(fit_trees(plain, CONFIG), [(f, t) for _, f, t, _ in dev]))),
+               float(np.mean(top_lcs(fit_trees(more, CONFIG), [(np.column_stack([f, c]), t)
                                                        for _, f, t, c in dev]))),
                float(np.mean([t[int(np.argmax(c))] for _, _, t, c in dev]))]
         means.append(row)

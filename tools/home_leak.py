@@ -51,12 +51,13 @@ def reading_the_home(seeds: int, vectors: Path) -> None:
     from homesim.learn.eval.experiment import HOLDOUT, RunSpec, load_run_splits
     from homesim.learn.execution import executable
     from homesim.learn.rerank.base import Query
-    from homesim.learn.rerank.reranker import CHECK_EXECUTABLE, Reranker
+    from homesim.learn.rerank.config import RerankConfig
+    from homesim.learn.rerank.reranker import Reranker
     from homesim.program.metrics import normalized_lcs, step_tokens
 
     def first_runnable(programs: list[Program], example) -> Program:
-        return next((p for p in programs[:CHECK_EXECUTABLE] if executable(p, example)),
-                    programs[0])
+        checked = programs[:RerankConfig().check_executable]
+        return next((p for p in checked if executable(p, example)), programs[0])
 
     rows = []
     for seed in range(seeds):

@@ -38,7 +38,7 @@ from homesim.learn.text.train import TrainConfig, train_mle
 from homesim.learn.vocabularies import END, step_key
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
-from rerank_dev import BASELINE, cross_validated_each, top_lcs, training_queries
+from rerank_dev import BASELINE, CONFIG, cross_validated_each, top_lcs, training_queries
 
 Group = tuple[np.ndarray, np.ndarray]
 UNKNOWN_LOGP = -12.0
@@ -91,7 +91,7 @@ class CrossFitted:
     @classmethod
     def fit(cls, train: list[Example], holdout: str, seed: int = 0) -> CrossFitted:
         """Fold models and the full model for `train`, hiding what `holdout` hides."""
-        assigned = folds(train, holdout)
+        assigned = folds(train, holdout, CONFIG.folds)
         models = {k: trained(_without_fold(train, assigned, k), seed)
                   for k in sorted(set(assigned))}
         return cls(assigned, models, trained(train, seed))
@@ -127,7 +127,7 @@ class LikelihoodReranker(Reranker):
                             ) -> LikelihoodReranker:
         """`Reranker.fit`, each training query's features with the likelihoods of the model
         trained without its fold (models trained with `seed`)."""
-        bank = Bank(train)
+        bank = Bank(train, CONFIG)
         fitted = CrossFitted.fit(train, holdout, seed)
         groups, queries = [], []
         for i, example in enumerate(train):
@@ -138,7 +138,7 @@ class LikelihoodReranker(Reranker):
                                                 fitted.for_training_query(i)), targets))
                 queries.append((i, query))
         inserter, deleter = fit_editors(bank, holdout, queries, groups, True)
-        return cls(bank, fit_trees(groups), inserter, deleter, fitted)
+        return cls(bank, fit_trees(groups, CONFIG), inserter, deleter, fitted)
 
     def scores(self, query: Query) -> np.ndarray:
         assert self.fitted is not None
@@ -149,7 +149,7 @@ class LikelihoodReranker(Reranker):
 def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float, float]:
     """(CV, dev) without and with the likelihood features, for one run."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
-    bank = Bank(splits.train)
+    bank = Bank(splits.train, CONFIG)
     fitted = CrossFitted.fit(splits.train, HOLDOUT[split], seed)
     base: list[Group] = []
     extended: list[Group] = []
@@ -168,9 +168,9 @@ def measure(split: str, seed: int, vectors: Path) -> tuple[float, float, float, 
     extended_dev = [(with_likelihoods(f, q, fitted.full), t)
                     for q, (f, t) in zip(dev, base_dev, strict=True)]
     return (float(cross_validated_each(base, fold_of).mean()),
-            float(np.mean(top_lcs(fit_trees(base), base_dev))),
+            float(np.mean(top_lcs(fit_trees(base, CONFIG), base_dev))),
             float(cross_validated_each(extended, fold_of).mean()),
-            float(np.mean(top_lcs(fit_trees(extended), extended_dev))))
+            float(np.mean(top_lcs(fit_trees(extended, CONFIG), extended_dev))))
 
 
 def on_test(split: str, seeds: int, vectors: Path) -> None:

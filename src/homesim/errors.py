@@ -109,12 +109,16 @@ class GroundingError(HomesimError):
         step: 1-based number of the step where the search failed (0 when no step applies).
         obj: the program object (``<cup> (1)``) that could not be placed or bound, if any.
         tried: what was tried, in words (classes, instances, destinations).
+        kind: the `homesim.sim.FailureKind` of the precondition the search could not
+            meet (``missing`` for an object the home lacks), when known.
     """
 
-    def __init__(self, message: str, step: int = 0, obj: str | None = None, tried: str = ""):
+    def __init__(self, message: str, step: int = 0, obj: str | None = None, tried: str = "",
+                 kind: str | None = None):
         self.step = step
         self.obj = obj
         self.tried = tried
+        self.kind = kind
         self.bindings: Mapping[tuple[str, int], int] = {}
         """The search's choices when it failed, if any: a `homesim.program.Bindings` (named
         by its plain type here: this module sits below `homesim.program`)."""

@@ -3,16 +3,10 @@ import json
 import pytest
 
 from homesim.dataset import DatasetConfig, generate_dataset
+from homesim.dataset.generate import generate_plan
 from homesim.dataset.layout import Layout
 from homesim.dataset.manifest import read_manifest
-from homesim.dataset.plan import (
-    PAPER,
-    Plan,
-    generate_plan,
-    load_plan,
-    part_configs,
-    read_plan,
-)
+from homesim.dataset.plan import PAPER, Plan, load_plan, part_configs, read_plan
 from homesim.errors import GraphError, HomesimError
 from homesim.world.homes import load_home
 from tests.dataset.conftest import tiny_config

@@ -7,7 +7,6 @@ the same folder."""
 
 from __future__ import annotations
 
-import inspect
 import os
 from pathlib import Path
 from typing import Annotated
@@ -15,9 +14,9 @@ from typing import Annotated
 import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from homesim.cli.common import console, read_graph, read_program
+from homesim.cli.common import console, demo_program, read_graph, read_program
 from homesim.errors import HomesimError
-from homesim.examples import DEMO_HOME, load_example
+from homesim.examples import DEMO_HOME
 from homesim.files import temp_dir
 from homesim.ground.pipeline import run_program
 
@@ -55,25 +54,23 @@ def render(
     no_ground: Annotated[bool, typer.Option(
         "--no-ground", help="Render an ungrounded program as is, reading (N) as node N.")]
     = False,
+    with_repair: Annotated[bool, typer.Option(
+        "--repair/--no-repair", help="Insert the steps a program misses when it cannot run "
+                                     "as written (default), or refuse it.")] = True,
 ) -> None:
     """Animate a program in 3D and record RGB video, depth, segmentation, flow and poses."""
     r = _render_module()
     check_out(out)
-    prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
-    ran = run_program(prog, g, seed=seed, reference=no_ground)
+    prog = read_program(program) if program else demo_program(gname)
+    # The program meets the simulator here, once: render animates this run's trace.
+    ran = run_program(prog, g, seed=seed, reference=no_ground, repair=with_repair, trace=True)
     if ran.stage == "grounding":
         raise HomesimError(f"cannot ground the program in {gname}: {ran.message}")
-    g = ran.graph
-    extra = {}
-    if ran.grounding is not None:
-        prog = ran.grounding.program
-        # Where grounding stood the agent for each step, once render walks there.
-        if ran.grounding.standing and "standing" in inspect.signature(
-                r.render_program).parameters:
-            extra["standing"] = ran.grounding.standing
+    for ins in ran.insertions:
+        console.print(f"inserted step {ins.index + 1} {ins.step}: {ins.reason}", markup=False)
     if ran.prepared is not None:
-        added = ", ".join(g.node(a.node_id).label() for a in ran.prepared.added)
+        added = ", ".join(ran.graph.node(a.node_id).label() for a in ran.prepared.added)
         console.print(f"grounded in {gname} (seed {seed})" + (f"; added {added}" if added else ""),
                       markup=False)
     bar = Progress(TextColumn("rendering"), BarColumn(), MofNCompleteColumn(),
@@ -90,9 +87,8 @@ def render(
     out.parent.mkdir(parents=True, exist_ok=True)
     with temp_dir(out.parent, f"render-{out.name}") as made:
         try:
-            result = r.render_program(prog, g, made, width=width, height=height, fps=fps,
-                                      seed=seed, progress=progress, agent=agent, home=gname,
-                                      **extra)
+            result = r.render_program(ran, made, width=width, height=height, fps=fps,
+                                      seed=seed, progress=progress, agent=agent, home=gname)
         finally:
             if task is not None:
                 bar.stop()

@@ -16,7 +16,6 @@ from typing import Any
 
 from homesim.errors import DataError, HomesimError, LimitError
 from homesim.limits import MAX_EPISODES
-from homesim.render.video import check_size
 
 AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
 """The four agents of `homesim.render.agent.AGENTS` (a test keeps the two equal)."""
@@ -28,6 +27,28 @@ DEFAULT_HOMES: tuple[str, ...] = (
 
 MODALITIES: tuple[str, ...] = ("rgb", "depth", "class", "instance", "flow")
 """Per-frame images an episode can hold; pose, cameras and step spans are always kept."""
+
+
+
+@dataclass(frozen=True)
+class Profile:
+    """What each episode of a data set keeps: image size, frame rate, per-frame maps."""
+
+    width: int
+    height: int
+    fps: int
+    modalities: tuple[str, ...]
+    gt_stride: int = 1
+
+
+PROFILES: dict[str, Profile] = {
+    "full": Profile(320, 240, 15, MODALITIES),
+    "learn": Profile(64, 48, 4, ("rgb", "class")),
+}
+"""The named profiles of ``homesim dataset generate --profile``: ``full`` (the default)
+keeps every modality at 320x240, 15 frames/s; ``learn`` only what the video models read
+(`homesim.learn.video.cache.VideoFormat`: 64x48 at 4 frames/s, RGB and class maps), so
+nothing is drawn, computed or stored for them to throw away."""
 
 SPEED_RANGE = (0.8, 1.25)
 """Action speed factor drawn per episode: every motion takes 1/speed of its time."""
@@ -82,6 +103,8 @@ class DatasetConfig:
         if bad or not self.agents:
             raise HomesimError(f"agent {bad[0] if bad else ''!r}: choose from "
                                f"{', '.join(AGENT_NAMES)}")
+        from homesim.render.video import check_size  # reading a data set needs no renderer
+
         check_size(self.width, self.height, self.fps)
 
     def to_dict(self) -> dict[str, Any]:
@@ -99,6 +122,14 @@ class DatasetConfig:
             return cls(**d)
         except HomesimError as e:
             raise DataError(f"config: {e}") from None
+
+    @classmethod
+    def from_profile(cls, profile: str, **options: Any) -> DatasetConfig:
+        """The config of a named profile (`PROFILES`), `options` overriding its values."""
+        if profile not in PROFILES:
+            raise HomesimError(f"unknown profile {profile!r}; choose from "
+                               f"{', '.join(PROFILES)}")
+        return cls(**{**asdict(PROFILES[profile]), **options})
 
     @property
     def num_shards(self) -> int:

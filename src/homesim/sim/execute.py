@@ -29,7 +29,7 @@ prepares the home and grounds the program first.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
@@ -38,6 +38,7 @@ from homesim.errors import BindingError
 from homesim.program.bindings import Bindings, unbound_error
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.effects import EFFECTS
+from homesim.sim.failure import Failure, FailureKind
 from homesim.sim.state import Changes, SimState
 from homesim.world.classes import ClassKnowledge, class_names_for, default_kb
 from homesim.world.graph import EnvironmentGraph
@@ -54,6 +55,7 @@ class StepRecord:
         ok: whether it ran.
         reason: why it could not run (None when it ran).
         changes: what it changed (empty when it failed).
+        kind: what kind of precondition failed (None when it ran).
     """
 
     index: int
@@ -62,6 +64,7 @@ class StepRecord:
     ok: bool
     reason: str | None
     changes: Changes
+    kind: FailureKind | None = None
 
     def to_dict(self, label: Callable[[int], str] | None = None,
                 line: int | None = None) -> dict[str, Any]:
@@ -71,6 +74,7 @@ class StepRecord:
             summary = self.changes.describe(label or str)
         return {"index": self.index, "line": line, "step": str(self.step),
                 "nodes": list(self.nodes), "ok": self.ok, "reason": self.reason,
+                "kind": None if self.kind is None else self.kind.value,
                 "changes": self.changes.to_dict(), "summary": summary}
 
 
@@ -85,6 +89,7 @@ class ExecutionResult:
         reason: why that step could not run, or None.
         trace: one `StepRecord` per step attempted, when asked for; else None.
         state: the simulator state after the last step that ran.
+        kind: what kind of precondition that step failed, or None.
     """
 
     program: Program
@@ -93,6 +98,7 @@ class ExecutionResult:
     reason: str | None
     trace: list[StepRecord] | None
     state: SimState = field(repr=False)
+    kind: FailureKind | None = None
 
     @property
     def failed_step(self) -> int | None:
@@ -122,7 +128,7 @@ class ExecutionResult:
         """Net changes of the whole run against the input graph."""
         return self.state.changes_since(0)
 
-    def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
+    def to_dict(self, lines: Sequence[int | None] | None = None) -> dict[str, Any]:
         """JSON view: verdict, message, each attempted step and the steps not run.
 
         `lines` gives the text line of each step (``line`` fields are None without it).
@@ -141,6 +147,7 @@ class ExecutionResult:
             "failed_step": self.failed_step,
             "failed_line": line(self.failed_index),
             "reason": self.reason,
+            "kind": None if self.kind is None else self.kind.value,
             "message": self.message,
             "steps": steps,
             "not_run": [{"index": i, "line": line(i), "step": str(self.program.steps[i])}
@@ -233,15 +240,17 @@ def _ref_problem(index: int, step: Step, ref: ObjectRef, node: int | None, cls: 
                         index + 1, obj, node)
 
 
-def _missing(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
+def _missing(st: SimState, step: Step, ids: tuple[int, ...]) -> Failure | None:
     for ref, nid in zip(step.args, ids, strict=True):
         if nid not in st:
-            return f"the home has no node {nid} for <{ref.name}> ({ref.instance})"
+            return Failure(FailureKind.MISSING,
+                           f"the home has no node {nid} for <{ref.name}> ({ref.instance})")
     return None
 
 
-def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
-    """Run one step on `st`; return why it cannot run (leaving `st` as it was) or None."""
+def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> Failure | None:
+    """Run one step on `st`; return why it cannot run (a `Failure`: its kind and reason),
+    leaving `st` as it was, or None."""
     return _missing(st, step, ids) or EFFECTS[step.action.key](st, *ids)
 
 
@@ -298,13 +307,17 @@ def execute_on(program: Program, st: SimState, trace: bool = False,
             mark = len(journal)
         for nid in ids:
             if nid not in base_nodes and nid not in new_nodes:
-                reason = _missing(st, step, ids)
+                failure = _missing(st, step, ids)
                 break
         else:
-            reason = effects[step.action.key](st, *ids)
+            failure = effects[step.action.key](st, *ids)
         if records is not None:
-            changes = Changes() if reason else st.changes_since(mark)
-            records.append(StepRecord(index, step, ids, reason is None, reason, changes))
-        if reason is not None:
-            return ExecutionResult(program, False, index, reason, records, st)
+            if failure is None:
+                records.append(StepRecord(index, step, ids, True, None, st.changes_since(mark)))
+            else:
+                records.append(StepRecord(index, step, ids, False, failure.reason, Changes(),
+                                          failure.kind))
+        if failure is not None:
+            return ExecutionResult(program, False, index, failure.reason, records, st,
+                                   failure.kind)
     return ExecutionResult(program, True, None, None, records, st)

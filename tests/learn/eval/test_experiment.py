@@ -1,7 +1,7 @@
 """One evaluation run on tiny synthetic data: every row, seeded, cached, summarised."""
 
 from homesim.cli.main import main
-from homesim.learn.eval.experiment import RunSpec, block, cached_run, run
+from homesim.learn.eval.experiment import TITLE_ROW, RunSpec, block, cached_run, run
 from homesim.learn.eval.report import MODEL_ROW, evaluation_markdown
 
 
@@ -23,10 +23,16 @@ def test_same_seed_same_scores_and_the_cache_is_reused(tmp_path, monkeypatch):
     assert all(e["simulator"] == 1.0 for e in a["rows"]["MLE + constrained decoding"]["examples"])
     assert all(e["solved"] == 0.0 for e in a["rows"]["Empty program"]["examples"])
     assert _examples(cached_run(spec, tmp_path / "a")) == _examples(a)
-    summary = block([a], MODEL_ROW, ("Title-medoid",))
+    assert TITLE_ROW in a["rows"]  # the reranker given the title as its only text
+    summary = block([a], {MODEL_ROW: ("Title-medoid",), TITLE_ROW: ("Title-median",)})
     text = evaluation_markdown({"real": {"stratified": summary}}, "box", "v")
     assert "| Empty program | 1 | 0.000 ± 0.000 |" in text
     assert "Goal (steps LCS at least 0.05 above Title-medoid):" in text
+    assert "### Real data, stratified split (development seeds 3)" in text
+    title_part = text.split("Title only:", 1)[1]
+    assert f"| {TITLE_ROW} | 1 |" in title_part and f"| {TITLE_ROW} | 1 |" not in text.split(
+        "Title only:", 1)[0]
+    assert f"{TITLE_ROW} minus each baseline" in title_part
     text = evaluation_markdown({"synthetic": {"stratified": summary}}, "box", "v", 12.0,
                                cache="/tmp/fresh")
     assert "### Synthetic data, template text, stratified split" in text
@@ -100,3 +106,46 @@ def test_a_run_cached_with_an_older_split_definition_is_not_reused(tmp_path):
         (folder / "scores.json").write_text(json.dumps({"spec": old, "rows": {"Row": {}}}))
         assert (cached_run(spec, tmp_path) is None) == (SPLIT_VERSIONS[split] > 1)
         assert not spec.matches({**spec.to_dict(), "split_version": SPLIT_VERSIONS[split] + 1})
+
+
+def test_locked_seeds_only_with_final_and_every_final_run_is_counted(tmp_path, capsys):
+    import pytest
+
+    from homesim.errors import HomesimError
+    from homesim.learn.eval import ledger
+
+    with pytest.raises(HomesimError, match="seed 100: seeds from 100 on are the locked test"):
+        run(RunSpec("synthetic", "stratified", 100, synth_n=30), tmp_path, with_model=False)
+    md = tmp_path / "results.md"
+    base = ["learn", "table", "--out", str(tmp_path), "--data", "synthetic", "--seeds", "1",
+            "--synth-n", "30", "--no-model", "--markdown", str(md), "--force"]
+    assert main(base) == 0  # development seeds only: no locked part, no ledger
+    text = md.read_text()
+    assert "(development seeds 0)" in text and "locked test seeds are not shown" in text
+    assert not (tmp_path / "synthetic" / "stratified" / "seed100").exists()
+    assert not (tmp_path / ledger.LEDGER).exists()
+    assert main([*base, "--final"]) == 0
+    text = md.read_text()
+    assert "(locked test seeds 100)" in text and "was run 1 time for" in text
+    assert text.index("## Locked test seeds 100") < text.index("## Development seeds 0")
+    assert main(base) == 0  # without --final the locked part is kept as it was
+    assert "(locked test seeds 100)" in md.read_text() and "was run 1 time for" in md.read_text()
+    (tmp_path / ledger.LEDGER).unlink()  # a lost ledger forgets no run the markdown lists
+    assert main([*base, "--final", "--only-cached"]) == 0
+    assert "was run 2 times for" in md.read_text()
+    assert len(ledger.listed(md.read_text())) == 2
+
+
+def test_a_cached_row_of_another_model_version_is_scored_again(tmp_path, monkeypatch):
+    from homesim.learn.eval import experiment
+
+    spec = RunSpec("synthetic", "stratified", 0, synth_n=30)
+    first = run(spec, tmp_path, with_model=False)["rows"]["Title-medoid"]
+    assert first["version"] == 1
+    calls = []
+    monkeypatch.setattr(experiment, "ROW_VERSIONS", {"Title-medoid": 2})
+    monkeypatch.setattr(experiment.baselines, "title_medoid",
+                        lambda train, test: calls.append(1) or [e.program for e in test])
+    again = run(spec, tmp_path, with_model=False)["rows"]
+    assert calls == [1] and again["Title-medoid"]["version"] == 2
+    assert again["NN (title)"] == run(spec, tmp_path, with_model=False)["rows"]["NN (title)"]

@@ -1,7 +1,6 @@
 import numpy as np
 
 from homesim.learn.rerank.deletion import (
-    DELETE_THRESHOLD,
     STEP_FEATURES,
     Deleter,
     step_features,
@@ -22,7 +21,7 @@ def test_unlikely_steps_are_deleted_but_never_all():
     bank = _bank()
     query = _query(bank, "watch tv")
     program = Program.parse(TV)
-    low = DELETE_THRESHOLD - 0.01
+    low = bank.config.delete_threshold - 0.01
     edited = Deleter(_fixed([0.9, low, 0.8]), {}).delete(query, program)  # type: ignore[arg-type]
     assert step_tokens(edited) == [("WALK", ("home_office",)), ("WATCH", ("television",))]
     assert Deleter(_fixed([low] * 3), {}).delete(query, program) is program  # type: ignore[arg-type]

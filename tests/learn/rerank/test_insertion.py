@@ -4,9 +4,9 @@ import numpy as np
 
 from homesim.knowledge.datasets import ActivityProgram
 from homesim.learn.rerank.base import Bank, Query
+from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.folds import Known
 from homesim.learn.rerank.insertion import (
-    INSERT_THRESHOLD,
     PROPOSAL_FEATURES,
     Inserter,
     clauses,
@@ -74,7 +74,7 @@ def test_only_likely_proposals_are_inserted_where_the_neighbours_have_them():
     query = _query(bank, "watch tv, switch light")
     choice = Program.parse("[Walk] <home_office> (1)\n[Watch] <television> (1)")
     # lacking: WALK tv, WALK bedroom, WALK light, SWITCHON light (in that order)
-    inserter = Inserter(Fixed([0.9, INSERT_THRESHOLD - 0.01, 0.2, 0.2]), {})  # type: ignore[arg-type]
+    inserter = Inserter(Fixed([0.9, RerankConfig().insert_threshold - 0.01, 0.2, 0.2]), {})  # type: ignore[arg-type]
     edited = inserter.insert(query, choice)
     assert step_tokens(edited) == [("WALK", ("home_office",)), ("WALK", ("television",)),
                                    ("WATCH", ("television",))]

@@ -28,14 +28,19 @@ def test_greedy_sample_and_constrained(tiny_splits):
 
 
 def test_penalty_discourages_reuse_and_forbids_long_runs():
-    from homesim.learn.text.decode import MAX_RUN, REPEAT_PENALTY, penalized
+    from homesim.learn.text.decode import penalized
+    from homesim.learn.text.seq2seq import Seq2SeqConfig
 
+    config = Seq2SeqConfig(4, 2, 2)  # the defaults: penalty 1, runs of one
     log_probs = torch.log_softmax(torch.tensor([0.0, 3.0, 1.0, 0.5]), 0)
-    p = penalized(log_probs, [1, 2, 1, 2])
-    assert p[1] == log_probs[1] - 2 * REPEAT_PENALTY and p[3] == log_probs[3]
+    p = penalized(log_probs, [1, 2, 1, 2], config)
+    assert p[1] == log_probs[1] - 2 * config.repeat_penalty and p[3] == log_probs[3]
     assert p[END] == log_probs[END]  # ending is never penalised
-    assert penalized(log_probs, [1] * MAX_RUN)[1] == float("-inf")
-    assert penalized(log_probs, [2])[2] == float("-inf")  # no step directly repeats
+    assert penalized(log_probs, [1] * config.max_run, config)[1] == float("-inf")
+    assert penalized(log_probs, [2], config)[2] == float("-inf")  # no step directly repeats
+    twice = Seq2SeqConfig(4, 2, 2, repeat_penalty=0.5, max_run=2)
+    assert penalized(log_probs, [2], twice)[2] == log_probs[2] - 0.5  # a run of two may be
+    assert penalized(log_probs, [2, 2], twice)[2] == float("-inf")
 
 
 def test_constrained_decoding_does_not_loop(tiny_splits):

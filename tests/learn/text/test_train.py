@@ -1,6 +1,8 @@
 from homesim.learn.eval.scores import lcs_scores
 from homesim.learn.text.text2prog import Text2Prog
-from homesim.learn.text.train import SIM_WEIGHT, TrainConfig, reward, train_mle, train_pg
+from homesim.learn.text.train import TrainConfig, reward, train_mle, train_pg
+
+SIM_WEIGHT = TrainConfig().sim_weight
 
 
 def test_mle_loss_falls_then_pg_runs(tiny_splits):
@@ -19,6 +21,7 @@ def test_reward_is_lcs_plus_simulator_bonus(tiny_splits):
     e = tiny_splits.train[0]
     assert reward(e.program, e, use_sim=False) == 1.0
     assert reward(e.program, e, use_sim=True) == 1.0 + SIM_WEIGHT
+    assert reward(e.program, e, use_sim=True, sim_weight=0.5) == 1.5
     wrong = e.program.with_steps(e.program.steps[1:])
     assert reward(wrong, e, use_sim=False) == lcs_scores(wrong, e.program)[2]
 

@@ -22,7 +22,9 @@ from homesim.learn.eval.rules import parse
 from homesim.learn.eval.scores import example_scores
 from homesim.learn.eval.splits import SPLIT_VERSIONS, check_unlocked, make_split
 from homesim.learn.eval.summary import gaps, summarize_rows
+from homesim.learn.eval.titles import title_only
 from homesim.learn.execution import cross_home_rate, executable
+from homesim.learn.rerank.program_writer import FORMAT
 from homesim.learn.rerank.reranker import Reranker
 from homesim.learn.rerank.retrieve import RetrieveEdit
 from homesim.learn.text.consensus import Consensus
@@ -169,10 +171,27 @@ def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
     ]
 
 
-def rerank_job(splits: Splits, split_name: str) -> Job:
-    """The learned reranker (`rerank`), fitted the way `split_name` hides test from train."""
-    return (RERANK_ROW,
-            lambda: Reranker.fit(splits.train, HOLDOUT[split_name]).predict(splits.test))
+TITLE_ROW = "Reranker, title only"
+"""The reranker given each test program's title as its only text (`titles.title_only`)."""
+TITLE_ONLY_ROWS = ("Title-medoid", "Title-median", "NN (title)", TITLE_ROW)
+"""The rows that read only the title (the three baselines always do)."""
+ROW_VERSIONS = {RERANK_ROW: FORMAT, TITLE_ROW: FORMAT}
+"""Row -> the version of its model; a cached row of another version is scored again (the
+reranker's is the writer's model `FORMAT`; a row not named here is version 1)."""
+
+
+def rerank_jobs(splits: Splits, split_name: str) -> list[Job]:
+    """The learned reranker (`rerank`), fitted once the way `split_name` hides test from
+    train, given each test example's title and description, and given its title only."""
+    fitted: dict[str, Reranker] = {}
+
+    def model() -> Reranker:
+        if "model" not in fitted:
+            fitted["model"] = Reranker.fit(splits.train, HOLDOUT[split_name])
+        return fitted["model"]
+
+    return [(RERANK_ROW, lambda: model().predict(splits.test)),
+            (TITLE_ROW, lambda: model().predict([title_only(e) for e in splits.test]))]
 
 
 def rule_job(splits: Splits) -> Job:
@@ -182,10 +201,12 @@ def rule_job(splits: Splits) -> Job:
 
 def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
                save: Callable[[], None] | None = None, report: Report | None = None) -> None:
-    """Per-example scores of every row not yet in `rows` (LCS, executes here and in the
-    other homes, repetition), calling `save` after each row."""
+    """Per-example scores of every row not yet in `rows`, or there from another version of
+    its model (`ROW_VERSIONS`): LCS, executes here and in the other homes, repetition;
+    calling `save` after each row."""
     for done, (name, job) in enumerate(jobs):
-        if name not in rows:
+        version = ROW_VERSIONS.get(name, 1)
+        if name not in rows or rows[name].get("version", 1) != version:
             start = time.perf_counter()
             preds = job()
             predicted = time.perf_counter() - start
@@ -193,7 +214,8 @@ def score_rows(splits: Splits, jobs: list[Job], rows: dict[str, dict],
                 "examples": [example_scores(p, e.program, executable(p, e),
                                             cross_home_rate(p, e))
                              for p, e in zip(preds, splits.test, strict=True)],
-                "predict_seconds": predicted, "seconds": time.perf_counter() - start}
+                "predict_seconds": predicted, "seconds": time.perf_counter() - start,
+                "version": version}
             if save:
                 save()
         if report:
@@ -241,7 +263,7 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     if t2p is not None:
         jobs += model_jobs(splits, spec.seed, t2p)
     if with_model and spec.dataset in RERANK_DATASETS:
-        jobs.append(rerank_job(splits, spec.split))
+        jobs += rerank_jobs(splits, spec.split)
     if spec.dataset != "real":
         jobs.append(rule_job(splits))
     unseen = StepVocab.build(e.program for e in splits.train).unseen_share(
@@ -262,15 +284,16 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     return {**data, "rows": ordered}
 
 
-def block(runs: list[dict], model_row: str, baselines_to_beat: tuple[str, ...]) -> dict:
-    """The summary of one data set and split over its runs (one per seed)."""
+def block(runs: list[dict], beat: dict[str, tuple[str, ...]]) -> dict:
+    """The summary of one data set and split over its runs (one per seed), with the gaps of
+    each model row of `beat` to its baselines (row -> baselines)."""
     def mean(key: str) -> float:
         values = [r[key] for r in runs if r.get(key) is not None]
         return round(sum(values) / len(values), 1) if values else 0.0
 
     out = {"seeds": [r["spec"]["seed"] for r in runs], "rows": summarize_rows(runs),
            "sizes": {"train": mean("n_train"), "dev": mean("n_dev"), "test": mean("n_test"),
-                     "unseen": sum(r["unseen_step_share"] for r in runs) / len(runs)}}
-    if any(model_row in r["rows"] for r in runs):
-        out["gaps"] = gaps(runs, model_row, baselines_to_beat)
+                     "unseen": sum(r["unseen_step_share"] for r in runs) / len(runs)},
+           "gaps": {row: gaps(runs, row, baselines) for row, baselines in beat.items()
+                    if any(row in r["rows"] for r in runs)}}
     return out

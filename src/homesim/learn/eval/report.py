@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
-from homesim.learn.eval.experiment import RERANK_ROW
+from homesim.learn.eval import ledger
+from homesim.learn.eval.experiment import RERANK_ROW, TITLE_ONLY_ROWS, TITLE_ROW
+from homesim.learn.eval.goals import GOALS, Goal, goals_of
+from homesim.learn.eval.ledger import FinalRun
+from homesim.learn.eval.splits import is_locked
 
 REGENERATE = ("nice homesim learn train --task text2prog --data both --out out/learn --force"
               " && nice homesim learn eval --runs out/learn --markdown docs/results.md --force")
@@ -36,14 +40,14 @@ def markdown_table(results: list[dict], eval_seconds: float | None = None,
 
 
 TABLE_COMMAND = ("nice homesim learn table --data all --seeds 5 --out out/learn "
-                 "--markdown docs/results.md --force")
+                 "--markdown docs/results.md --force --final")
 MODEL_ROW = RERANK_ROW
-GOALS = {"stratified": ("Title-medoid", 0.05), "leave-activities-out": ("NN (description)", 0.05)}
-"""Split -> (baseline the model must beat, by how much steps LCS) on real data (issue 18)."""
 COLUMNS = (("steps", "Steps LCS", 1.0), ("action", "Action", 1.0), ("objects", "Objects", 1.0),
            ("simulator", "Simulator %", 100.0), ("elsewhere", "Other homes %", 100.0),
            ("solved", "Solved %", 100.0), ("repetition", "Repeats %", 100.0))
 """(metric, header, scale) of the evaluation table."""
+LOCKED_START, LOCKED_END = "<!-- locked:start -->", "<!-- locked:end -->"
+"""Markers around the locked test's part of the markdown (kept by a run without --final)."""
 
 
 def _cell(s: dict | None, scale: float) -> str:
@@ -63,53 +67,130 @@ HEADINGS = {"real": "Real data", "synthetic": "Synthetic data, template text",
 """Data set -> its section heading."""
 
 
-def split_section(dataset: str, split: str, block: dict) -> list[str]:
-    """One data set and split: sizes, the table, and the model's gaps to the baselines."""
-    sizes = block["sizes"]
-    lines = [f"### {HEADINGS.get(dataset, dataset)}, {split} split", "",
-             f"Seeds {', '.join(map(str, block['seeds']))}; per seed train {sizes['train']}, "
-             f"dev {sizes['dev']}, test {sizes['test']} programs (mean). "
-             f"{100 * sizes['unseen']:.1f}% of test step tokens never occur in training "
-             "(no decoder here can emit them).", "",
-             "| Method | Seeds | " + " | ".join(h for _, h, _ in COLUMNS[:1]) + " | 95% CI | "
+def seed_label(seeds: list[int]) -> str:
+    """'development seeds 0-4' or 'locked test seeds 100-104' (`splits.is_locked`)."""
+    kind = "locked test seeds" if seeds and all(map(is_locked, seeds)) else (
+        "development seeds")
+    span = (f"{seeds[0]}-{seeds[-1]}" if len(seeds) > 1 and seeds == list(
+        range(seeds[0], seeds[-1] + 1)) else ", ".join(map(str, seeds)))
+    return f"{kind} {span}"
+
+
+def _rows_table(rows: dict[str, dict]) -> list[str]:
+    lines = ["| Method | Seeds | " + " | ".join(h for _, h, _ in COLUMNS[:1]) + " | 95% CI | "
              + " | ".join(h for _, h, _ in COLUMNS[1:]) + " |",
              "|---|" + "---:|" * (len(COLUMNS) + 2)]
-    for row, metrics in block["rows"].items():
+    for row, metrics in rows.items():
         cells = [str(metrics["n_seeds"]), _cell(metrics.get("steps"), 1.0),
                  _ci(metrics["steps"])]
         cells += [_cell(metrics.get(m), scale) for m, _, scale in COLUMNS[1:]]
         lines.append(f"| {row} | " + " | ".join(cells) + " |")
-    lines.append("")
-    lines += _gap_lines(split, block.get("gaps", {}), dataset == "real")
+    return [*lines, ""]
+
+
+def split_section(dataset: str, split: str, block: dict) -> list[str]:
+    """One data set and split: sizes, the table, the model's gaps to the baselines, and the
+    title-only rows with theirs."""
+    sizes, rows = block["sizes"], block["rows"]
+    lines = [f"### {HEADINGS.get(dataset, dataset)}, {split} split "
+             f"({seed_label(block['seeds'])})", "",
+             f"Seeds {', '.join(map(str, block['seeds']))}; per seed train {sizes['train']}, "
+             f"dev {sizes['dev']}, test {sizes['test']} programs (mean). "
+             f"{100 * sizes['unseen']:.1f}% of test step tokens never occur in training "
+             "(no decoder here can emit them).", ""]
+    lines += _rows_table({r: m for r, m in rows.items() if r != TITLE_ROW})
+    real, gaps = dataset == "real", block.get("gaps", {})
+    lines += _gap_lines(split, MODEL_ROW, gaps, real)
+    if TITLE_ROW in rows:
+        lines += ["Title only: the same test programs with the title as the only text (the "
+                  "baselines read only the title anyway; the reranker gets it as title and "
+                  "description).", ""]
+        lines += _rows_table({r: rows[r] for r in TITLE_ONLY_ROWS if r in rows})
+        lines += _gap_lines(split, TITLE_ROW, gaps, real)
     return lines
 
 
-def _gap_lines(split: str, gaps: dict, with_goal: bool = True) -> list[str]:
-    if not gaps:
+def _gap_lines(split: str, row: str, gaps: dict, with_goal: bool = True) -> list[str]:
+    mine = gaps.get(row, {})
+    if not mine:
         return []
-    lines = [f"{MODEL_ROW} minus each baseline (paired, same test programs):", "",
+    lines = [f"{row} minus each baseline (paired, same test programs):", "",
              "| Baseline | Seeds | Steps LCS gap | 95% CI | Simulator % gap | Solved % gap |",
              "|---|---:|---:|---:|---:|---:|"]
-    for baseline, g in gaps.items():
+    for baseline, g in mine.items():
         lines.append(f"| {baseline} | {g['n_seeds']} | {_cell(g['steps'], 1.0)} | "
                      f"{_ci(g['steps'])} | "
                      f"{_cell(g['simulator'], 100.0)} | {_cell(g['solved'], 100.0)} |")
-    target, margin = GOALS.get(split, (None, 0.0))
-    if with_goal and target in gaps:
-        gap = gaps[target]["steps"]["mean"]
-        verdict = "met" if gap >= margin else f"not met: short by {margin - gap:.3f}"
-        lines += ["", f"Goal (steps LCS at least {margin:.2f} above {target}): {verdict}."]
+    lines.append("")
+    if with_goal:
+        for goal in goals_of(split, row):
+            verdict = goal.verdict(gaps)
+            if verdict is not None:
+                lines += [f"Goal ({goal.text()}): {verdict}.", ""]
+    return lines
+
+
+def goals_side_by_side(dev: dict[str, dict], locked: dict[str, dict]) -> list[str]:
+    """The goals on real data (split -> block), development seeds beside the locked ones."""
+    def cell(blocks: dict[str, dict], goal: Goal) -> str:
+        block = blocks.get(goal.split)
+        gap = None if block is None else block.get("gaps", {}).get(goal.row, {}).get(
+            goal.baseline, {}).get("steps")
+        if gap is None or block is None:
+            return "– | –"
+        return (f"{gap['mean']:+.3f} [{gap['lo']:+.3f}, {gap['hi']:+.3f}] | "
+                f"{goal.verdict(block['gaps'])}")
+
+    def seeds(blocks: dict[str, dict]) -> str:
+        return next((seed_label(b["seeds"]) for b in blocks.values()), "no seeds")
+
+    lines = [f"| Split | Goal | {seeds(dev)}: gap [95% CI] | verdict | "
+             f"{seeds(locked)}: gap [95% CI] | verdict |", "|---|---|---:|---|---:|---|"]
+    for goal in GOALS:
+        lines.append(f"| {goal.split} | {goal.row}: {goal.text()} | {cell(dev, goal)} | "
+                     f"{cell(locked, goal)} |")
     return [*lines, ""]
+
+
+def locked_part(blocks: dict[str, dict[str, dict]], dev: dict[str, dict[str, dict]],
+                runs: list[FinalRun]) -> list[str]:
+    """The locked test's part (between `LOCKED_START` and `LOCKED_END`): the record of the
+    final runs, the goals beside the development seeds' and the locked tables."""
+    seeds: list[int] = next((b["seeds"] for splits in blocks.values() for b in splits.values()), [])
+    lines = [LOCKED_START, f"## {seed_label(seeds).capitalize()}", "",
+             "Development never runs these seeds (docs/learn.md, \"The locked test\"); only "
+             "`homesim learn table --final` scores and prints them.", "", *ledger.section(runs)]
+    if "real" in blocks:
+        lines += ["The goals, on the development seeds (looked at while developing) and on "
+                  "the locked ones (real data; gaps paired, 95% bootstrap CI):", "",
+                  *goals_side_by_side(dev.get("real", {}), blocks["real"])]
+    for dataset, splits in blocks.items():
+        for split, block in splits.items():
+            lines += split_section(dataset, split, block)
+    return [*lines, LOCKED_END, ""]
+
+
+def kept_locked_part(old: str) -> list[str]:
+    """The locked part of an earlier markdown `old` (a run without --final keeps it), or a
+    line saying there is none."""
+    if LOCKED_START in old and LOCKED_END in old:
+        part = LOCKED_START + old.split(LOCKED_START, 1)[1].split(LOCKED_END, 1)[0] + LOCKED_END
+        return [part, ""]
+    return ["The locked test seeds are not shown: only `homesim learn table --final` scores "
+            "them (docs/learn.md, \"The locked test\").", ""]
 
 
 def evaluation_markdown(blocks: dict[str, dict[str, dict]], machine: str, versions: str,
                         seconds: float | None = None, note: str = "",
-                        cache: str = "out/learn") -> str:
-    """The whole evaluation: data set -> split -> block (`summary` rows, gaps, sizes);
+                        cache: str = "out/learn", locked: list[str] | None = None) -> str:
+    """The whole evaluation: data set -> split -> block (`summary` rows, gaps, sizes) of the
+    development seeds, after the `locked` part's lines (`locked_part`, `kept_locked_part`);
     `cache` names the folder the runs were read from or computed into."""
     lines = ["# Programs from descriptions: evaluation", "",
              "Generated by `homesim learn table`; regenerate (checkpoints and scores are cached "
              "under out/learn, delete it to start afresh) with", "", f"    {TABLE_COMMAND}", "",
+             "(without `--final` it scores the development seeds only and keeps the locked "
+             "part below as it is).", "",
              "Every cell is the mean ± sample sd over seeds of that seed's figure; the 95% CI "
              "is a bootstrap over test programs within each seed (docs/learn.md). Steps LCS: "
              "longest common subsequence of steps with the true program over the longer "
@@ -123,6 +204,10 @@ def evaluation_markdown(blocks: dict[str, dict[str, dict]], machine: str, versio
     if seconds is not None:
         lines += [f"Wall time of the command that wrote this file: {seconds:.0f} s "
                   f"(with whatever was cached under {cache}).", ""]
+    lines += locked or []
+    seeds: list[int] = next((b["seeds"] for splits in blocks.values() for b in splits.values()), [])
+    lines += [f"## {seed_label(seeds).capitalize()}", "",
+              "Looked at while developing (docs/learn.md): these figures flatter.", ""]
     for dataset, splits in blocks.items():
         for split, block in splits.items():
             lines += split_section(dataset, split, block)

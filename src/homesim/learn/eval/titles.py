@@ -36,6 +36,14 @@ def prompt(example: Example) -> str:
     return f"Task: {example.title}"
 
 
+def title_only(example: Example) -> Example:
+    """The example with its title as its only text: the description is the title too, as
+    when a writer is asked with nothing but a title (``homesim learn write "Watch TV"
+    --title "Watch TV"``); the program, its home and bindings are kept for scoring."""
+    return replace(example, program=replace(example.program,
+                                            description=example.program.title))
+
+
 def title_splits(seed: int = 0, directory: Path | None = None) -> Splits:
     """The real data's learning split, each example reduced to its title."""
     examples = [replace(e, program=replace(e.program, description=""))

@@ -2,9 +2,10 @@
 and its candidates with their feature rows.
 
 `Bank` holds the training side (step tokens, their pairwise steps LCS, sentence vectors,
-the lexicon); `Query` is one description against it: similarities, neighbour weights at
-each tau of `TAUS`, the classes and actions the text names, and the candidates
-(`reranker` module docstring, steps 1-2) with their `FEATURES`. The reranker
+the lexicon) and the settings (`config.RerankConfig`); `Query` is one description against
+it: similarities, neighbour weights at each of the settings' taus, the classes and
+actions the text names, and the candidates (`reranker` module docstring, steps 1-2) with
+their features (`feature_names`). The reranker
 (`reranker.Reranker`) and the editors (`insertion`, `deletion`) read these; none of them
 is imported here.
 """
@@ -16,21 +17,20 @@ from functools import cached_property
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.learn.data import Example
 from homesim.learn.embeddings import example_vectors
 from homesim.learn.rerank.candidates import drops, mention_order, substitutions
+from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.lexicon import ObjectLexicon, actions, classes, words
 from homesim.learn.rerank.median import Medians, uniform_median
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
+from homesim.world.vocab import ROOM_NAMES
 
-TAUS = (0.02, 0.05, 0.1, 0.3)
-TOP_K = 8
-NEAR = 25
-DROP_FROM = 40
-"""Candidates (retrieved and substituted, in order) whose drops are added."""
-FEATURES = (*(f"expected LCS, tau {t}" for t in TAUS), "named classes used",
+
+def feature_names(config: RerankConfig) -> tuple[str, ...]:
+    """The names of a candidate's features (`Query.features` columns), in order."""
+    return (*(f"expected LCS, tau {t}" for t in config.taus), "named classes used",
             "classes named", "classes unexplained", "edited", "log length ratio",
             "abs log length ratio", "source similarity", "source description cosine",
             "source title cosine", "steps with named objects", "named classes missing",
@@ -50,9 +50,11 @@ class Candidate:
 
 @dataclass
 class Bank:
-    """The training side: step tokens, their pairwise LCS, sentence vectors, lexicon."""
+    """The training side: step tokens, their pairwise LCS, sentence vectors, lexicon, and
+    the settings everything fitted on it reads."""
 
     train: list[Example]
+    config: RerankConfig = field(default_factory=RerankConfig)
     lexicon: ObjectLexicon = field(init=False)
 
     def __post_init__(self) -> None:
@@ -64,7 +66,7 @@ class Bank:
                 self.lcs[i, j] = self.lcs[j, i] = normalized_lcs(self.tokens[i], self.tokens[j])
         self.desc, self.title = example_vectors(self.train)
         self.lengths = np.array([len(t) for t in self.tokens], dtype=float)
-        self.lexicon = ObjectLexicon.fit(self.train)
+        self.lexicon = ObjectLexicon.fit(self.train, self.config.lexicon)
         self.idf, self.bags = _bags([e.text for e in self.train])
 
     @cached_property
@@ -123,14 +125,15 @@ class Query:
         self.sims = 0.5 * (self.bank.desc @ self.desc) + 0.5 * (self.bank.title @ self.title)
         sims = np.where(self.allowed, self.sims, -np.inf)
         top = sims.max()
+        cfg = self.bank.config
         self.weights = {}
-        for tau in TAUS:
+        for tau in cfg.taus:
             w = np.where(self.allowed, np.exp((sims - top) / tau), 0.0)
             self.weights[tau] = w / w.sum()
         self.named = self.bank.lexicon.mentions(self.example.text)
         self.verbs = self.bank.lexicon.actions(self.example.text)
         self.overlap = self.bank.bags @ _bag(self.example.text, self.bank.idf)
-        self.near = np.argsort(-self.weights[TAUS[1]], kind="stable")[:NEAR]
+        self.near = np.argsort(-self.weights[cfg.taus[1]], kind="stable")[:cfg.near]
         self.candidates = self._candidates(sims)
 
     def activity_programs(self) -> np.ndarray:
@@ -138,11 +141,12 @@ class Query:
         return np.flatnonzero(self.allowed & self.bank.activity_mask(self.example.activity))
 
     def _candidates(self, sims: np.ndarray) -> list[Candidate]:
+        cfg = self.bank.config
         sources: list[int] = []
         best: dict[float, int] = {}
-        for tau in TAUS:
+        for tau in cfg.taus:
             expected = np.where(self.allowed, self.weights[tau] @ self.bank.lcs, -1.0)
-            ranked = [int(j) for j in np.argsort(-expected, kind="stable")[:TOP_K]]
+            ranked = [int(j) for j in np.argsort(-expected, kind="stable")[:cfg.top_k]]
             best[tau] = ranked[0]
             sources += ranked
         sources += [int(j) for j in np.argsort(-sims, kind="stable")[:3]]
@@ -159,10 +163,11 @@ class Query:
         for j in sources:
             program = self.bank.train[j].program
             add(program, j, False)
-            for q in substitutions(program, self.named):
+            for q in substitutions(program, self.named, cfg.max_substitutions):
                 add(q, j, True)
-        for c in out[:DROP_FROM]:
-            for p in drops(c.program, self.named, self.bank.lexicon.implicit_rate):
+        for c in out[:cfg.drop_from]:
+            for p in drops(c.program, self.named, self.bank.lexicon.implicit_rate,
+                           cfg.chain_implicit):
                 add(p, c.source, True)
         for j, p in self._medians(best):
             if p.steps:
@@ -170,34 +175,34 @@ class Query:
         return out
 
     def _medians(self, best: dict[float, int]) -> list[tuple[int, Program]]:
-        """(start, median) pairs: the median of the `NEAR` nearest neighbours under each tau's
+        """(start, median) pairs: the median of the `near` nearest neighbours under each tau's
         weights, started from that tau's best expected-LCS program (`best`), and the median
         of the programs of the query's activity (uniform weights) started from their medoid."""
-        bank, out = self.bank, []
+        bank, out, cfg = self.bank, [], self.bank.config
         references = [bank.train[k].program for k in self.near]
-        for tau in TAUS:
-            medians = Medians(references, self.weights[tau][self.near])
+        for tau in cfg.taus:
+            medians = Medians(references, self.weights[tau][self.near], cfg.median)
             out.append((best[tau], medians.median(bank.train[best[tau]].program)))
         same = self.activity_programs()
         if len(same):
             start = bank.medoid(same)
             out.append((start, uniform_median([bank.train[k].program for k in same],
-                                              bank.train[start].program)))
+                                              bank.train[start].program, cfg.median)))
         return out
 
     def features(self) -> np.ndarray:
-        """(candidates, len(FEATURES)) feature rows."""
+        """(candidates, len(feature_names)) feature rows."""
         return np.array([self._row(c) for c in self.candidates])
 
     def _row(self, c: Candidate) -> list[float]:
-        bank, near = self.bank, self.near
+        bank, near, taus = self.bank, self.near, self.bank.config.taus
         lcs = (np.array([normalized_lcs(c.tokens, bank.tokens[k]) for k in near]) if c.edited
                else bank.lcs[c.source][near])
         expected = [float(self.weights[t][near] @ lcs / max(self.weights[t][near].sum(), 1e-12))
-                    for t in TAUS]
+                    for t in taus]
         used, named = classes(c.program), self.named
         size = max(len(used), 1)
-        ratio = np.log(len(c.tokens) / (self.weights[TAUS[2]] @ bank.lengths)) if c.tokens else -3.0
+        ratio = np.log(len(c.tokens) / (self.weights[taus[2]] @ bank.lengths)) if c.tokens else -3.0
         steps_with = [ref.name for s in c.program.steps for ref in s.args]
         named_steps = [all(r.name in named or r.name in ROOM_NAMES for r in s.args)
                        for s in c.program.steps if s.args]

@@ -14,23 +14,19 @@ from dataclasses import replace
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.knowledge.objects import load_kb
 from homesim.learn.rerank.lexicon import classes
 from homesim.program.model import Program
-
-MAX_SUBSTITUTIONS = 5
-CHAIN_IMPLICIT = 0.7
-"""Unnamed classes left implicit in fewer than this share of training programs are dropped
-together in one more candidate."""
+from homesim.world.vocab import ROOM_NAMES
 
 
-def substitutions(program: Program, named: frozenset[str]) -> list[Program]:
+def substitutions(program: Program, named: frozenset[str], chain_length: int
+                  ) -> list[Program]:
     """`program` with one unnamed class replaced by a named one it lacks (every such swap the
-    actions allow), then with the first allowed swap repeated up to `MAX_SUBSTITUTIONS` times."""
+    actions allow), then with the first allowed swap repeated up to `chain_length` times."""
     singles = _swaps(program, named)
     chain, current = [], program
-    for _ in range(MAX_SUBSTITUTIONS):
+    for _ in range(chain_length):
         swaps = _swaps(current, named)
         if not swaps:
             break
@@ -39,13 +35,13 @@ def substitutions(program: Program, named: frozenset[str]) -> list[Program]:
     return singles + chain[1:]
 
 
-def drops(program: Program, named: frozenset[str],
-          implicit_rate: Callable[[str], float]) -> list[Program]:
+def drops(program: Program, named: frozenset[str], implicit_rate: Callable[[str], float],
+          chain_implicit: float) -> list[Program]:
     """`program` without the steps that use one class the text does not name (rooms kept),
     for each such class, then without all of those whose `implicit_rate` is below
-    `CHAIN_IMPLICIT` at once; never an empty program."""
+    `chain_implicit` at once; never an empty program."""
     unnamed = sorted(classes(program) - named - ROOM_NAMES)
-    rare = frozenset(c for c in unnamed if implicit_rate(c) < CHAIN_IMPLICIT)
+    rare = frozenset(c for c in unnamed if implicit_rate(c) < chain_implicit)
     out = [_without(program, frozenset({c})) for c in unnamed]
     if len(rare) > 1:
         out.append(_without(program, rare))

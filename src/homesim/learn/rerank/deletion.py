@@ -1,14 +1,14 @@
 """Steps of the written program that neither the text nor the neighbours support, deleted.
 
 After the choice and its inserted steps (`insertion`), a classifier (gradient-boosted trees,
-`insertion.CLASSIFIER`) gives each step of the program a probability of being in
-the true program, from its support among the query's neighbours and in its activity, how
-common it is, whether the text names its objects or says its action, how close the step in
-words is to the text in MiniLM's sentence space (`text_closeness`), where it stands and how
-long the program is against the neighbours' (`STEP_FEATURES`). Steps below
-`DELETE_THRESHOLD` are deleted (never all of them). Under the steps LCS over the longer
-length a step the truth lacks costs only when the program is the longer one, which the
-length features let the classifier see.
+the settings of `config.RerankConfig.classifier`) gives each step of the program a
+probability of being in the true program, from its support among the query's neighbours
+and in its activity, how common it is, whether the text names its objects or says its
+action, how close the step in words is to the text in MiniLM's sentence space
+(`text_closeness`), where it stands and how long the program is against the neighbours'
+(`STEP_FEATURES`). Steps below `config.RerankConfig.delete_threshold` are deleted (never
+all of them). Under the steps LCS over the longer length a step the truth lacks costs only
+when the program is the longer one, which the length features let the classifier see.
 
 The classifier learns as the inserter's does (`insertion.Known`), each training query with
 its cross-fitted choice and the steps an inserter fitted without its fold inserted.
@@ -23,12 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homesim.ground.prepare import ROOM_NAMES
 from homesim.learn.embeddings import lone_sentence_vectors
 from homesim.learn.rerank.base import Query
+from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.folds import Known
 from homesim.learn.rerank.insertion import (
-    POSITION_TAU,
     StepClassifier,
     clauses,
     support,
@@ -37,10 +36,8 @@ from homesim.learn.rerank.insertion import (
 from homesim.learn.rerank.lexicon import words
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program
+from homesim.world.vocab import ROOM_NAMES
 
-DELETE_THRESHOLD = 0.2
-"""Steps the classifier gives less than this probability of being in the truth are deleted
-(chosen by cross-validation over the training queries, docs/learn.md)."""
 STEP_FEATURES = ("neighbour support", "activity support", "share of programs with it", "objects",
                  "action", "objects named", "a room", "action said", "position", "length",
                  "length against the neighbours'", "times in the program", "words",
@@ -54,7 +51,7 @@ def step_features(query: Query, tokens: tuple, known: Known,
     to `query`; `action_codes` numbers action keys (new ones appended)."""
     named = known.lexicon.mentions(query.example.text)
     said = known.lexicon.actions(query.example.text)
-    usual_length = float(query.weights[POSITION_TAU] @ query.bank.lengths)
+    usual_length = float(query.weights[query.bank.config.position_tau] @ query.bank.lengths)
     n_words = len(words(query.example.text))
     rows = [[*support(query, token, known), len(token[1]),
              action_codes.setdefault(token[0], len(action_codes)),
@@ -89,7 +86,8 @@ class Deleter(StepClassifier):
     """Steps' classifier (module docstring)."""
 
     @classmethod
-    def fit(cls, examples: list[tuple[Query, Known, Program]]) -> Deleter | None:
+    def fit(cls, examples: list[tuple[Query, Known, Program]], config: RerankConfig
+            ) -> Deleter | None:
         """From (training query, what it may read without its fold, its program as written
         without its fold) triples: label each step by whether the query's own program has
         it. None when there is only one kind to learn from."""
@@ -100,17 +98,17 @@ class Deleter(StepClassifier):
             truth = set(step_tokens(query.example.program))
             rows.append(step_features(query, tokens, known, codes))
             labels += [t in truth for t in tokens]
-        return cls.fitted(rows, labels, codes)
+        return cls.fitted(rows, labels, codes, config)
 
     def delete(self, query: Query, program: Program, known: Known | None = None) -> Program:
-        """`program` without the steps of probability below `DELETE_THRESHOLD` (itself when
-        that would leave none); `known` defaults to `Known.everything`."""
+        """`program` without the steps of probability below the bank's delete threshold
+        (itself when that would leave none); `known` defaults to `Known.everything`."""
         tokens = tuple(step_tokens(program))
         if not tokens:
             return program
         rows = step_features(query, tokens, known or Known.everything(query),
                              dict(self.action_codes))
-        keep = self.chances(rows) >= DELETE_THRESHOLD
+        keep = self.chances(rows) >= query.bank.config.delete_threshold
         if not keep.any() or keep.all():
             return program
         return program.with_steps([s for s, k in zip(program.steps, keep, strict=True) if k])

@@ -4,19 +4,19 @@ The reranker chooses a whole program; descriptions often spell out a step that p
 lacks ("look at the light switch", "put the book on the table"). Per clause of the text (split
 at punctuation, "and", "then"), a *proposal* is every step token seen in the programs the
 query may see whose action a word of the clause links to and whose objects the clause all
-names (`lexicon.ObjectLexicon`). A classifier (gradient-boosted trees, `CLASSIFIER`) predicts
+names (`lexicon.ObjectLexicon`). A classifier (gradient-boosted trees) predicts
 whether each proposal the choice lacks is in the true program, from its support among the
 query's neighbours and in its activity, how common it is, its clause, how it relates to
 the choice, and how close the step in words is to the clauses proposing it in MiniLM's
 sentence space (`closeness`: the lexicon links "grab" to both GRAB and FIND; the encoder
-tells which one "grab the remote" says) (`PROPOSAL_FEATURES`). Those above
-`INSERT_THRESHOLD`, most likely first, are inserted one by one at the position of
-highest expected steps LCS to the query's nearest neighbours (`median.Medians`, weights
-at tau `POSITION_TAU`).
+tells which one "grab the remote" says) (`PROPOSAL_FEATURES`). Those above the insert
+threshold, most likely first, are inserted one by one at the position of highest expected
+steps LCS to the query's nearest neighbours (`median.Medians`, weights at the position
+tau). The settings (classifier, threshold, tau) are the bank's `config.RerankConfig`.
 
 The classifier learns from the training queries without a copy in training, each with the
 choice of trees fitted without its cross-validation fold, proposals from a lexicon fitted
-without that fold and counts over the programs of the other folds only (`Known`), so that
+without that fold and counts over the programs of the other folds only (`folds.Known`), so that
 they look as they will for a test description: counted over the programs the query may see,
 a count moved with whether its own hidden program had the step, and the classifier learned
 that. Why insert at all: proposals the choice lacks are in the truth about one time in six,
@@ -33,6 +33,7 @@ import numpy as np
 
 from homesim.learn.embeddings import lone_sentence_vectors
 from homesim.learn.rerank.base import Query
+from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.folds import Known
 from homesim.learn.rerank.lexicon import ObjectLexicon, words
 from homesim.learn.rerank.median import Medians
@@ -43,14 +44,6 @@ from homesim.program.model import Program, Step
 if TYPE_CHECKING:
     from sklearn.ensemble import HistGradientBoostingClassifier
 
-INSERT_THRESHOLD = 0.5
-"""Proposals the classifier gives at least this probability of being in the truth are
-inserted (chosen by cross-validation over the training queries, docs/learn.md)."""
-POSITION_TAU = 0.1
-"""The neighbour weights (`base.TAUS`) under which an inserted step is placed."""
-CLASSIFIER = {"max_iter": 150, "learning_rate": 0.05, "max_leaf_nodes": 15,
-              "min_samples_leaf": 40, "random_state": 0}
-"""`sklearn.ensemble.HistGradientBoostingClassifier` settings."""
 PROPOSAL_FEATURES = ("neighbour support", "activity support", "share of programs with it",
                      "objects", "action", "clause position", "proposals in its clause",
                      "clause words", "clause classes", "clause actions", "proposals",
@@ -60,11 +53,11 @@ CLAUSE_BREAK = re.compile(r"[.,;!?\n]|\band\b|\bthen\b")
 
 
 def support(query: Query, token: StepToken, known: Known) -> tuple[float, float, float]:
-    """The step's weighted share among the query's nearest neighbours (weights at
-    `POSITION_TAU`), among the counted programs of its activity (0 when none) and among all
+    """The step's weighted share among the query's nearest neighbours (weights at the
+    position tau), among the counted programs of its activity (0 when none) and among all
     counted programs (those the query may see)."""
     has = query.bank.having(token)
-    weights = query.weights[POSITION_TAU][query.near]
+    weights = query.weights[query.bank.config.position_tau][query.near]
     counted = known.counted & query.allowed
     same = counted & query.bank.activity_mask(query.example.activity)
     return (float(weights @ has[query.near].astype(float) / max(weights.sum(), 1e-12)),
@@ -172,15 +165,15 @@ class StepClassifier:
 
     @classmethod
     def fitted(cls: type[C], rows: list[np.ndarray], labels: list[bool],
-               codes: dict[str, int]) -> C | None:
-        """Trees (`CLASSIFIER`) fitted on feature `rows` and `labels`; None when the labels
-        are all of one kind (or there are none)."""
+               codes: dict[str, int], config: RerankConfig) -> C | None:
+        """Trees (`config.classifier`) fitted on feature `rows` and `labels`; None when the
+        labels are all of one kind (or there are none)."""
         # deferred: scikit-learn takes seconds to import
         from sklearn.ensemble import HistGradientBoostingClassifier
 
         if len(set(labels)) < 2:
             return None
-        classifier = HistGradientBoostingClassifier(**CLASSIFIER)
+        classifier = HistGradientBoostingClassifier(**config.classifier)
         return cls(classifier.fit(np.vstack(rows), np.array(labels)), codes)
 
     def chances(self, rows: np.ndarray) -> np.ndarray:
@@ -196,7 +189,8 @@ class Inserter(StepClassifier):
     """Proposals' classifier (module docstring)."""
 
     @classmethod
-    def fit(cls, examples: list[tuple[Query, Known, tuple]]) -> Inserter | None:
+    def fit(cls, examples: list[tuple[Query, Known, tuple]], config: RerankConfig
+            ) -> Inserter | None:
         """From (training query, what it may read without its fold, cross-fitted choice's
         step tokens) triples: label each proposal the choice lacks by whether the query's
         own program has it. None when there is nothing (or only one kind) to learn from."""
@@ -208,7 +202,7 @@ class Inserter(StepClassifier):
                 truth = set(step_tokens(query.example.program))
                 rows.append(proposal_features(query, found, choice, known, codes))
                 labels += [p.token in truth for p in found]
-        return cls.fitted(rows, labels, codes)
+        return cls.fitted(rows, labels, codes, config)
 
     def probabilities(self, query: Query, found: list[Proposal], choice: tuple, known: Known
                       ) -> np.ndarray:
@@ -226,7 +220,7 @@ class Inserter(StepClassifier):
         found = lacking(proposals(query, known.lexicon), choice)
         chance = self.probabilities(query, found, choice, known)
         likely = [found[int(i)] for i in np.argsort(-chance, kind="stable")
-                  if chance[int(i)] >= INSERT_THRESHOLD]
+                  if chance[int(i)] >= query.bank.config.insert_threshold]
         if not likely:
             return program
         return insert_steps(query, program, [p.step for p in likely])
@@ -234,10 +228,11 @@ class Inserter(StepClassifier):
 
 def insert_steps(query: Query, program: Program, steps: list[Step]) -> Program:
     """`program` with each of `steps` inserted in turn at the position of highest expected
-    steps LCS to the query's nearest neighbours (weights at `POSITION_TAU`; ties: the
+    steps LCS to the query's nearest neighbours (weights at the position tau; ties: the
     earliest)."""
     bank, near = query.bank, query.near
-    medians = Medians([bank.train[k].program for k in near], query.weights[POSITION_TAU][near])
+    medians = Medians([bank.train[k].program for k in near],
+                      query.weights[bank.config.position_tau][near], bank.config.median)
     current = medians.encode(program)
     for step in steps:
         current = medians.best_insertion(current, medians.symbol(step))

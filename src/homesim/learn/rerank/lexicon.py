@@ -4,8 +4,8 @@ A class is *mentioned* by a text when every word of one of its names occurs in i
 name itself (``remote_control``: "remote" and "control") or a script name the knowledge base
 gives it (``television``: "tv"). Names of one or two letters are ignored. On top of that,
 `ObjectLexicon.fit` learns associations from the training pairs: a word w points to a class
-c when c is in the program of at least ``MIN_PAIRS`` training examples whose text has w, in
-at least ``PRECISION`` of the examples whose text has w and ``COVERAGE`` of the programs
+c when c is in the program of at least ``min_pairs`` training examples whose text has w, in
+at least ``precision`` of the examples whose text has w and ``coverage`` of the programs
 with c ("kitchen" -> ``dining_room``, "living" -> ``home_office``).
 
 The same rule links words to action keys ("sit" -> ``SIT``). It also learns how often each
@@ -24,9 +24,17 @@ from homesim.knowledge.objects import load_kb
 from homesim.learn.data import Example
 from homesim.program.model import Program
 
-MIN_PAIRS = 2
-PRECISION = 0.5
-COVERAGE = 0.2
+
+@dataclass(frozen=True)
+class LexiconConfig:
+    """When a word points to a class or an action (part of `config.RerankConfig`)."""
+
+    min_pairs: int = 2
+    """Training examples whose text has the word and whose program has the part."""
+    precision: float = 0.5
+    """Share of the examples whose text has the word that have the part."""
+    coverage: float = 0.2
+    """Share of the programs with the part whose text has the word."""
 
 
 def words(text: str) -> list[str]:
@@ -49,16 +57,17 @@ class ObjectLexicon:
     action_links: dict[str, frozenset[str]] = field(default_factory=dict)
 
     @classmethod
-    def fit(cls, train: list[Example]) -> ObjectLexicon:
+    def fit(cls, train: list[Example], config: LexiconConfig = LexiconConfig()
+            ) -> ObjectLexicon:
         """The lexicon of the knowledge base's classes and `train`'s, with learned links."""
         kb = load_kb()
         seen = sorted({c for e in train for c in classes(e.program)} | set(kb.classes()))
         names = sorted({(frozenset(name.split("_")), c) for c in seen
                         for name in (c, *kb.script_names(c)) if len(name) > 2},
                        key=lambda n: (n[1], sorted(n[0])))
-        lexicon = cls(names, _links(train, classes))
+        lexicon = cls(names, _links(train, classes, config))
         lexicon.implicit = _implicit_rates(train, lexicon)
-        lexicon.action_links = _links(train, actions)
+        lexicon.action_links = _links(train, actions, config)
         return lexicon
 
     def mentions(self, text: str) -> frozenset[str]:
@@ -87,10 +96,10 @@ def actions(program: Program) -> frozenset[str]:
     return frozenset(step.action.key for step in program.steps)
 
 
-def _links(train: list[Example],
-           parts: Callable[[Program], frozenset[str]]) -> dict[str, frozenset[str]]:
+def _links(train: list[Example], parts: Callable[[Program], frozenset[str]],
+           config: LexiconConfig) -> dict[str, frozenset[str]]:
     """Word -> program parts (classes or actions) learned from co-occurrence in the
-    training pairs."""
+    training pairs (`LexiconConfig`)."""
     with_word: Counter[str] = Counter()
     with_class: Counter[str] = Counter()
     both: Counter[tuple[str, str]] = Counter()
@@ -101,7 +110,8 @@ def _links(train: list[Example],
         both.update((w, c) for w in present for c in used)
     links: dict[str, set[str]] = {}
     for (w, c), n in sorted(both.items()):
-        if n >= MIN_PAIRS and n >= PRECISION * with_word[w] and n >= COVERAGE * with_class[c]:
+        if (n >= config.min_pairs and n >= config.precision * with_word[w]
+                and n >= config.coverage * with_class[c]):
             links.setdefault(w, set()).add(c)
     return {w: frozenset(cs) for w, cs in links.items()}
 

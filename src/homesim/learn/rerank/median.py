@@ -13,16 +13,22 @@ suffix LCS tables (`Medians.move_scores`), so a search takes milliseconds.
 from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
 from homesim.program.metrics import step_tokens
 from homesim.program.model import Program, Step
 
-MEDIAN_VOCAB = 10
-"""Insertions try the steps of this many highest-weighted-support tokens."""
-MEDIAN_ITERS = 12
-"""Improving moves made at most."""
+
+@dataclass(frozen=True)
+class MedianConfig:
+    """How far the median search looks (part of the reranker's `config.RerankConfig`)."""
+
+    vocab: int = 10
+    """Insertions try the steps of this many highest-weighted-support tokens."""
+    iters: int = 12
+    """Improving moves made at most."""
 
 
 def position_masks(sequence: Sequence[int]) -> dict[int, int]:
@@ -44,16 +50,19 @@ def lcs_length(sequence: Sequence[int], masks: dict[int, int], length: int) -> i
     return length - row.bit_count()
 
 
-def uniform_median(programs: Sequence[Program], start: Program) -> Program:
+def uniform_median(programs: Sequence[Program], start: Program,
+                   config: MedianConfig = MedianConfig()) -> Program:
     """The median of `programs` weighted alike (a title's activity), searched from `start`
     (their medoid)."""
-    return Medians(programs, np.ones(len(programs))).median(start)
+    return Medians(programs, np.ones(len(programs)), config).median(start)
 
 
 class Medians:
     """Reference programs, weighted, against which sequences are scored and searched."""
 
-    def __init__(self, references: Sequence[Program], weights: np.ndarray) -> None:
+    def __init__(self, references: Sequence[Program], weights: np.ndarray,
+                 config: MedianConfig = MedianConfig()) -> None:
+        self.config = config
         self.codes: dict[Hashable, int] = {}
         self.steps: list[Step] = []
         refs = [self.encode(p) for p in references]
@@ -64,7 +73,7 @@ class Medians:
         for r, w in zip(refs, self.weights, strict=True):
             support[sorted(set(r))] += w
         order = np.argsort(-support, kind="stable")
-        self.vocab = [int(c) for c in order[:MEDIAN_VOCAB] if support[c] > 0]
+        self.vocab = [int(c) for c in order[:config.vocab] if support[c] > 0]
         fits = all(len(r) < 64 for r in refs)
         self._tables = _Tables(refs) if fits and refs else None
 
@@ -102,14 +111,14 @@ class Medians:
         return total
 
     def median(self, start: Program) -> Program:
-        """Greedy local search from `start`: at each of up to `MEDIAN_ITERS` moves, the
+        """Greedy local search from `start`: at each of up to `config.iters` moves, the
         single-step deletion or insertion (of a `vocab` step, anywhere) that raises
         `expected_lcs` most; stops when none does. Ties go to the first move tried."""
         if not self.weights:
             return start
         current = self.encode(start)
         best = self.expected_lcs(current)
-        for _ in range(MEDIAN_ITERS):
+        for _ in range(self.config.iters):
             scores = self.move_scores(current)
             if not len(scores) or float(np.max(scores)) <= best + 1e-12:
                 break

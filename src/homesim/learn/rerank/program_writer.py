@@ -1,7 +1,7 @@
 """Write a program for a description: the reranker of the evaluation, fitted on every real
 program, as a tool (``homesim learn write``, ``POST /api/write``, `write_program`).
 
-The model is `rerank.Reranker` fitted on the 518 real programs (queries hide only their own
+The model is `reranker.Reranker` fitted on the 518 real programs (queries hide only their own
 program, as on the stratified split: docs/results.md gives what it scores on unseen
 descriptions). Fitting takes about a minute on an idle machine and is done once, by
 ``homesim learn fit-writer`` (`FIT_STEP`; ``make test`` runs it after ``homesim data
@@ -9,8 +9,8 @@ fetch``); the fitted model is kept in the data directory (``$HOMESIM_DATA/models
 pickle that only homesim writes), keyed by what it was fitted from, and read back by later
 calls. The server never fits it (``POST /api/write`` says which step to run instead).
 A written program is ungrounded (``<television> (1)``) and is run in the home asked for
-through `run_program`: of the best `rerank.CHECK_EXECUTABLE` candidates the first that
-runs there is written.
+through `run_program`: of the best `RerankConfig.check_executable` candidates the first
+that runs there is written.
 """
 
 from __future__ import annotations
@@ -40,19 +40,16 @@ from homesim.version import __version__
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 
-FORMAT = 7
+FORMAT = 8
 """Bumped when what a stored model holds, or the candidates its trees were fitted on,
 change (a stored model of another format is fitted again); 2: the reranker's medians; 3:
 its inserter of the steps the text says; 4: the inserter's phrase-to-clause cosines; 5: its
 deleter, kept where its own cross-validation finds it pays; 6: the deleter's
 phrase-to-text cosines; 7: `homesim.learn` as packages (the pickled classes moved; the
-reranker lost its unused likelihood field)."""
+reranker lost its unused likelihood field); 8: the settings saved with the model
+(`RerankConfig` in its bank, the title vote's temperature in the writer)."""
 SEED = 0
 """Seed of preparation and grounding when a written program is run."""
-TITLE_TAU = 0.05
-"""Temperature of the title vote (`ProgramWriter.guess_title`): leave-one-out over the real
-programs it names the activity of 87.6% of descriptions (the nearest description's title:
-84.2%; tau .02 87.1%, .1 85.7%; `tools/title_guess.py`)."""
 
 
 @dataclass(frozen=True)
@@ -81,10 +78,15 @@ class Written:
 
 @dataclass
 class ProgramWriter:
-    """The fitted reranker and the key of the examples it was fitted on."""
+    """The fitted reranker (with its settings, `Reranker.config`), the key of the examples it
+    was fitted on, and the temperature of its title vote; pickled whole."""
 
     reranker: Reranker
     key: str
+    title_tau: float = 0.05
+    """Temperature of the title vote (`guess_title`): leave-one-out over the real programs
+    it names the activity of 87.6% of descriptions (the nearest description's title: 84.2%;
+    tau .02 87.1%, .1 85.7%; `tools/title_guess.py`)."""
 
     @classmethod
     def fit(cls, examples: list[Example]) -> ProgramWriter:
@@ -106,12 +108,13 @@ class ProgramWriter:
         query = ActivityProgram("query", Program((), title=title, description=description))
 
         def runs(p: Program) -> bool:
-            return run_program(p, graph, seed=seed).executable
+            return run_program(p, graph, seed=seed, repair=False).executable
 
         vectors = (desc_vector, self.title_vector(title))
         chosen = self.reranker.choose(query, runs, vectors)
         program = Program(chosen.steps, title=title, description=description)
-        return Written(program, given, run_program(program, graph, seed=seed, trace=True))
+        return Written(program, given, run_program(program, graph, seed=seed, trace=True,
+                                                   repair=False))
 
     def title_vector(self, title: str) -> np.ndarray:
         """A title's sentence vector, the same in every process: a training title's is the
@@ -125,10 +128,11 @@ class ProgramWriter:
         """The activity whose training descriptions are nearest to a description's
         sentence vector (`vote_titles`)."""
         bank = self.reranker.bank
-        return vote_titles((bank.desc @ desc_vector)[None], [e.title for e in bank.train])[0]
+        return vote_titles((bank.desc @ desc_vector)[None], [e.title for e in bank.train],
+                           self.title_tau)[0]
 
 
-def vote_titles(sims: np.ndarray, titles: list[str], tau: float = TITLE_TAU) -> list[str]:
+def vote_titles(sims: np.ndarray, titles: list[str], tau: float) -> list[str]:
     """For each row of `sims` (queries x training descriptions, MiniLM cosines; -inf for
     one a query may not see), the title the training descriptions vote for with weights
     softmax(cosine / `tau`); ties go to the first title in sorted order."""

@@ -7,7 +7,8 @@ training program c maximising the expected steps LCS sum_j w_j LCS(c, program_j)
 Bayes risk over the neighbours: tau -> 0 is nearest-neighbour retrieval, uniform weights
 within an activity the title-medoid). It is then edited: a step that fewer than
 ``support`` of the weighted neighbours contain, and whose objects the text does not name,
-is dropped. tau, mix and support are chosen on the dev split (`RetrieveEdit.fit`).
+is dropped. tau, mix and support are chosen on the dev split (`RetrieveEdit.fit`), from
+the grid of `RetrieveConfig`.
 """
 
 from __future__ import annotations
@@ -23,20 +24,26 @@ from homesim.learn.embeddings import example_vectors
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 
-TAUS = (0.03, 0.05, 0.1)
-MIXES = (0.3, 0.5, 0.7)
-SUPPORTS = (0.0, 0.2, 0.3, 0.4, 0.5)
-"""The dev grid of `RetrieveEdit.fit`."""
+
+@dataclass(frozen=True)
+class RetrieveConfig:
+    """The dev grid of `RetrieveEdit.fit`: every (tau, mix, support) is tried."""
+
+    taus: tuple[float, ...] = (0.03, 0.05, 0.1)
+    mixes: tuple[float, ...] = (0.3, 0.5, 0.7)
+    supports: tuple[float, ...] = (0.0, 0.2, 0.3, 0.4, 0.5)
 
 
 @dataclass
 class RetrieveEdit:
-    """A fitted retrieve-and-edit predictor over a training set (module docstring)."""
+    """A fitted retrieve-and-edit predictor over a training set (module docstring): the
+    (tau, mix, support) chosen, and the grid they were chosen from."""
 
     train: list[Example]
     tau: float = 0.05
     mix: float = 0.5
     support: float = 0.3
+    config: RetrieveConfig = field(default_factory=RetrieveConfig)
     _lcs: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -49,11 +56,14 @@ class RetrieveEdit:
         self._presence: dict[tuple, np.ndarray] = {}
 
     @classmethod
-    def fit(cls, train: list[Example], dev: list[Example]) -> RetrieveEdit:
-        """The model with the (tau, mix, support) of the grid scoring best on `dev`."""
-        model = cls(train)
+    def fit(cls, train: list[Example], dev: list[Example],
+            config: RetrieveConfig | None = None) -> RetrieveEdit:
+        """The model with the (tau, mix, support) of the grid (`config`, default
+        `RetrieveConfig()`) scoring best on `dev`."""
+        grid = config or RetrieveConfig()
+        model = cls(train, config=grid)
         best = (-1.0, model.tau, model.mix, model.support)
-        for tau, mix, support in itertools.product(TAUS, MIXES, SUPPORTS):
+        for tau, mix, support in itertools.product(grid.taus, grid.mixes, grid.supports):
             model.tau, model.mix, model.support = tau, mix, support
             value = float(np.mean([normalized_lcs(step_tokens(p), step_tokens(e.program))
                                    for p, e in zip(model.predict(dev), dev, strict=True)]))

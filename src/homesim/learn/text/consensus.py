@@ -1,7 +1,7 @@
 """Seq2seq + retrieval consensus: minimum-Bayes-risk choice among sampled and retrieved programs.
 
-For a description, the candidates are the seq2seq model's greedy program, ``SAMPLES``
-programs sampled from it, and the ``NEIGHBOURS`` training programs with the highest
+For a description, the candidates are the seq2seq model's greedy program, ``samples``
+programs sampled from it, and the ``neighbours`` training programs with the highest
 retrieval weight (`retrieve.RetrieveEdit.weights`: MiniLM similarity of description and
 title). The same samples and neighbours serve as pseudo-references, and the prediction is
 the candidate with the highest expected steps LCS against them:
@@ -11,7 +11,8 @@ the candidate with the highest expected steps LCS against them:
 with w the retrieval weights of the neighbours (renormalised). Candidates that do not execute
 in the example's home (`execution.executable`, checked best-first and only as far as
 needed) are passed over while one that does remains, so the choice never trades
-executability for LCS. beta is chosen on the dev split.
+executability for LCS. beta is chosen on the dev split (from ``betas``; the three
+settings are `ConsensusConfig`'s).
 Sampling is seeded: same model, seed and data, same programs.
 """
 
@@ -30,10 +31,17 @@ from homesim.learn.text.text2prog import Text2Prog
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 
-SAMPLES = 20
-NEIGHBOURS = 10
-BETAS = (0.25, 0.5, 0.75)
-"""The dev grid for beta (weight of the model's samples against the neighbours)."""
+
+@dataclass(frozen=True)
+class ConsensusConfig:
+    """How many candidates and pseudo-references, and the dev grid for beta."""
+
+    samples: int = 20
+    """Programs sampled from the seq2seq model."""
+    neighbours: int = 10
+    """Training programs of highest retrieval weight."""
+    betas: tuple[float, ...] = (0.25, 0.5, 0.75)
+    """The dev grid for beta (weight of the model's samples against the neighbours)."""
 
 
 @dataclass
@@ -77,19 +85,21 @@ class Consensus:
     retrieval: RetrieveEdit
     seed: int = 0
     beta: float = 0.5
+    config: ConsensusConfig = field(default_factory=ConsensusConfig)
 
     @classmethod
     def fit(cls, t2p: Text2Prog, retrieval: RetrieveEdit, dev: list[Example],
-            seed: int = 0) -> Consensus:
-        """The predictor with the beta of `BETAS` scoring best on `dev` (steps LCS)."""
-        model = cls(t2p, retrieval, seed)
+            seed: int = 0, config: ConsensusConfig | None = None) -> Consensus:
+        """The predictor with the beta of `config.betas` scoring best on `dev` (steps
+        LCS)."""
+        model = cls(t2p, retrieval, seed, config=config or ConsensusConfig())
         pools = model.pools(dev)
         truths = [step_tokens(e.program) for e in dev]
 
         def dev_score(beta: float) -> float:
             return float(np.mean([normalized_lcs(step_tokens(p.choose(beta)), t)
                                   for p, t in zip(pools, truths, strict=True)]))
-        model.beta = max(BETAS, key=dev_score)
+        model.beta = max(model.config.betas, key=dev_score)
         return model
 
     @torch.no_grad()
@@ -102,11 +112,12 @@ class Consensus:
         words, mask = self.t2p.batch(examples)
         generator = torch.Generator(device=self.t2p.device).manual_seed(self.seed)
         greedy = decode.greedy(model, words, mask)
-        sampled = [decode.sample(model, words, mask, generator)[0] for _ in range(SAMPLES)]
+        sampled = [decode.sample(model, words, mask, generator)[0]
+                   for _ in range(self.config.samples)]
         weights = self.retrieval.weights(examples)
         out = []
         for b, example in enumerate(examples):
-            near = np.argsort(-weights[b], kind="stable")[:NEIGHBOURS]
+            near = np.argsort(-weights[b], kind="stable")[:self.config.neighbours]
             w = weights[b][near] / weights[b][near].sum()
             samples = [steps.decode(s[b]) for s in sampled]
             neighbours = [self.retrieval.train[int(j)].program for j in near]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import torch
 
 from homesim.learn.execution import StepRunner
-from homesim.learn.text.seq2seq import Seq2Seq
+from homesim.learn.text.seq2seq import Seq2Seq, Seq2SeqConfig
 from homesim.learn.vocabularies import END, StepVocab
 
 
@@ -52,23 +52,18 @@ def _rollout(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, max_steps:
     return out, logp
 
 
-REPEAT_PENALTY = 1.0
-"""Log-probability taken off a step for each time the program already has it (coverage)."""
-MAX_RUN = 1
-"""The longest run of one step: 1, a step never directly follows itself (people's programs
-repeat the step before in 0.3-1.5 % of steps, unconstrained decoding in 2-8 %)."""
-
-
-def penalized(log_probs: torch.Tensor, emitted: list[int]) -> torch.Tensor:
-    """(steps,) log-probabilities less `REPEAT_PENALTY` per earlier use of each step, and
-    minus infinity for a step that would make a run longer than `MAX_RUN`."""
+def penalized(log_probs: torch.Tensor, emitted: list[int], config: Seq2SeqConfig
+              ) -> torch.Tensor:
+    """(steps,) log-probabilities less `config.repeat_penalty` per earlier use of each step,
+    and minus infinity for a step that would make a run longer than `config.max_run`."""
     out = log_probs.clone()
+    max_run = config.max_run
     if emitted:
         used = torch.bincount(torch.tensor(emitted, device=out.device),
                               minlength=out.shape[0]).to(out.dtype)
-        out -= REPEAT_PENALTY * used
-        tail = emitted[-MAX_RUN:]
-        if len(tail) == MAX_RUN and len(set(tail)) == 1:
+        out -= config.repeat_penalty * used
+        tail = emitted[-max_run:]
+        if len(tail) == max_run and len(set(tail)) == 1:
             out[tail[0]] = float("-inf")
     out[END] = log_probs[END]
     return out
@@ -98,7 +93,8 @@ def constrained(model: Seq2Seq, words: torch.Tensor, mask: torch.Tensor, vocab: 
         choice = [END] * batch
         for b in range(batch):
             if alive[b]:
-                choice[b] = _first_runnable(penalized(log_probs[b], out[b]), vocab, runners[b])
+                scores = penalized(log_probs[b], out[b], model.config)
+                choice[b] = _first_runnable(scores, vocab, runners[b])
                 alive[b] = choice[b] != END
                 if alive[b]:
                     out[b].append(choice[b])

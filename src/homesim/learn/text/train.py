@@ -2,7 +2,8 @@
 
 Policy gradient (Rennie et al.'s self-critical form, as in the paper): for each description
 sample a program and decode the greedy one; the loss is -(r(sample) - r(greedy)) times the
-sample's log-probability, with r = LCS(steps) [+ 0.1 * executable in the example's home].
+sample's log-probability, with r = LCS(steps) [+ `TrainConfig.sim_weight` (0.1) if it executes
+in the example's home].
 """
 
 from __future__ import annotations
@@ -26,8 +27,6 @@ Progress = Callable[[int, int, float], None]
 EpochHook = Callable[[int], None]
 """Called after each epoch with its 0-based number (e.g. to keep the best weights)."""
 
-SIM_WEIGHT = 0.1
-
 
 @dataclass
 class TrainConfig:
@@ -38,6 +37,8 @@ class TrainConfig:
     lr: float = 2e-3
     seed: int = 0
     clip: float = 5.0
+    sim_weight: float = 0.1
+    """The policy-gradient reward's bonus when the program executes (`reward`)."""
 
 
 def _targets(t2p: Text2Prog, examples: list[Example]) -> torch.Tensor:
@@ -92,11 +93,13 @@ def _update(opt: torch.optim.Optimizer, t2p: Text2Prog, loss: torch.Tensor,
     opt.step()
 
 
-def reward(pred: Program, example: Example, use_sim: bool) -> float:
-    """LCS of steps with the truth, plus 0.1 when `use_sim` and the program executes."""
+def reward(pred: Program, example: Example, use_sim: bool,
+           sim_weight: float = TrainConfig.sim_weight) -> float:
+    """LCS of steps with the truth, plus `sim_weight` when `use_sim` and the program
+    executes."""
     r = lcs_steps(pred, example.program)
     if use_sim and executable(pred, example):
-        r += SIM_WEIGHT
+        r += sim_weight
     return r
 
 
@@ -121,9 +124,9 @@ def train_pg(t2p: Text2Prog, train: list[Example], config: TrainConfig, use_sim:
                 base_ids = decode.greedy(t2p.model, words, mask)
             t2p.model.train()
             ids, logp = decode.sample(t2p.model, words, mask, gen)
-            r_s = torch.tensor([reward(t2p.steps.decode(p), e, use_sim)
+            r_s = torch.tensor([reward(t2p.steps.decode(p), e, use_sim, config.sim_weight)
                                 for p, e in zip(ids, chunk, strict=True)], device=t2p.device)
-            r_g = torch.tensor([reward(t2p.steps.decode(p), e, use_sim)
+            r_g = torch.tensor([reward(t2p.steps.decode(p), e, use_sim, config.sim_weight)
                                 for p, e in zip(base_ids, chunk, strict=True)],
                                device=t2p.device)
             loss = -((r_s - r_g) * logp).mean()
@@ -145,8 +148,9 @@ class BestOnDev:
     when `use_sim` (the quantity the model is trained for).
     """
 
-    def __init__(self, t2p: Text2Prog, dev: list[Example], use_sim: bool = False):
-        self.t2p, self.dev, self.use_sim = t2p, dev, use_sim
+    def __init__(self, t2p: Text2Prog, dev: list[Example], use_sim: bool = False,
+                 sim_weight: float = TrainConfig.sim_weight):
+        self.t2p, self.dev, self.use_sim, self.sim_weight = t2p, dev, use_sim, sim_weight
         self.best = float("-inf")
         self.epoch: int | None = None
         self.scores: list[float] = []
@@ -154,7 +158,8 @@ class BestOnDev:
 
     def __call__(self, epoch: int) -> None:
         preds = self.t2p.predict(self.dev)
-        value = sum(reward(p, e, self.use_sim) for p, e in zip(preds, self.dev, strict=True))
+        value = sum(reward(p, e, self.use_sim, self.sim_weight)
+                    for p, e in zip(preds, self.dev, strict=True))
         value /= max(1, len(self.dev))
         self.scores.append(value)
         if value > self.best:

@@ -2,16 +2,16 @@
 
 A 320x240, 15 fps episode with every modality is ~50 MB compressed and several GB
 decoded; the clip models read small frames at a few frames per second (a 2-s clip's
-`clips.FRAMES` = 8 frames are every frame at the default 4 frames/s).
+`clips.ClipConfig.frames` = 8 frames are every frame at the default 4 frames/s).
 `shard_episodes(shard, fmt, cache)` streams each episode of a shard once: frames are kept
 at `VideoFormat.fps` (the nearest source frame of each tick; never more than the source
 has), RGB is area-scaled to the format's size by ffmpeg while decoding, and each kept
-frame's ground-truth class map becomes the share of pixels of each of the episode's
-classes (the oracle-perception input, counted on the full map: exact, no map is kept).
-The result is written to ``<cache>/<format>/<episode checksum>.npz`` and read from there
-the next time (an episode is identified by its member checksum, so a cache file never goes
-stale, and the episodes of a generation still running can be cached from its staging
-folder: `warm_staged`); ~3 MB an episode at 64x48.
+frame's ground-truth class map is sampled at half the format's size (the segmentation
+network's target and the oracle's input, with layout). The result is written to
+``<cache>/<format>/<episode checksum>.npz`` and read from there the next time (an
+episode is identified by its member checksum, so a cache file never goes stale, and the
+episodes of a generation still running can be cached from its staging folder:
+`warm_staged`); ~1 MB an episode of 100 frames at 64x48.
 """
 
 from __future__ import annotations
@@ -32,7 +32,8 @@ from homesim.dataset.verify import iter_episodes
 from homesim.errors import HomesimError
 from homesim.files import atomic_write
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2
+ARRAYS = ("frames", "maps", "step")
 META_FIELDS = ("key", "home", "agent", "title", "description", "program", "classes")
 
 
@@ -103,24 +104,31 @@ def _rgb(ep: EncodedEpisode, keep: np.ndarray, fmt: VideoFormat) -> np.ndarray:
     return np.ascontiguousarray(frames[keep])
 
 
-def _shares(ep: EncodedEpisode, keep: np.ndarray) -> np.ndarray:
-    """(kept, classes) pixel shares of the episode's own classes on each kept frame."""
+def _maps(ep: EncodedEpisode, keep: np.ndarray, fmt: VideoFormat) -> np.ndarray:
+    """(kept, height/2, width/2) uint8: each kept frame's class map at half the format's
+    size (the pixel nearest each cell's centre), in the episode's own class ids."""
     if ep.meta["gt_stride"] != 1 or "class" not in ep.maps:
         raise HomesimError(f"{ep.key}: the clip models need class maps on every frame "
                            "(generate with --modalities rgb,class and --gt-stride 1)")
     n = len(ep.meta["classes"])
-    out = np.zeros((len(keep), n), np.float32)
+    if n > 256:
+        raise HomesimError(f"{ep.key}: {n} object classes; class maps hold at most 256")
+    h, w = fmt.height // 2, fmt.width // 2
+    out = np.zeros((len(keep), h, w), np.uint8)
     for row, f in enumerate(keep.tolist()):
-        ids = np.clip(encode.read_png16(ep.maps["class"][f]).astype(np.int64), 0, n - 1)
-        out[row] = np.bincount(ids.ravel(), minlength=n) / ids.size
+        full = encode.read_png16(ep.maps["class"][f])
+        ys = ((np.arange(h) + 0.5) * full.shape[0] / h).astype(np.int64)
+        xs = ((np.arange(w) + 0.5) * full.shape[1] / w).astype(np.int64)
+        out[row] = np.clip(full[np.ix_(ys, xs)], 0, n - 1)
     return out
 
 
 def reduce_episode(ep: EncodedEpisode, fmt: VideoFormat) -> dict[str, Any]:
-    """One episode as arrays at `fmt`: frames, class shares, step, and its meta."""
+    """One episode as arrays at `fmt`: frames, class maps at half size, step, and its
+    meta."""
     meta = ep.meta
     keep = kept_frames(ep.num_frames, int(meta["fps"]), fmt.fps)
-    return {"frames": _rgb(ep, keep, fmt), "shares": _shares(ep, keep),
+    return {"frames": _rgb(ep, keep, fmt), "maps": _maps(ep, keep, fmt),
             "step": np.asarray(ep.arrays["step"], np.int64)[keep],
             "meta": {**{k: meta[k] for k in META_FIELDS},
                      "fps": min(int(meta["fps"]), fmt.fps),
@@ -129,7 +137,7 @@ def reduce_episode(ep: EncodedEpisode, fmt: VideoFormat) -> dict[str, Any]:
 
 def _write(path: Path, episode: dict[str, Any]) -> None:
     arrays = {"meta": np.array(json.dumps(episode["meta"])),
-              **{name: episode[name] for name in ("frames", "shares", "step")}}
+              **{name: episode[name] for name in ARRAYS}}
     path.parent.mkdir(parents=True, exist_ok=True)
     with atomic_write(path, "wb") as f:
         np.savez(f, **arrays)
@@ -138,7 +146,7 @@ def _write(path: Path, episode: dict[str, Any]) -> None:
 def _read(path: Path) -> dict[str, Any]:
     with np.load(path, allow_pickle=False) as data:
         return {"meta": json.loads(str(data["meta"])),
-                **{name: data[name] for name in ("frames", "shares", "step")}}
+                **{name: data[name] for name in ARRAYS}}
 
 
 def cache_file(cache: Path, sha256: str, fmt: VideoFormat) -> Path:

@@ -1,46 +1,46 @@
-"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame vectors.
+"""Step recognition in 2-second clips (the paper's Table 2, left): TRN over frame features.
 
 Glossary:
-    descriptor: one vector per frame. RGB: the feature of the frame CNN trained here
-        (`homesim.learn.video.framecnn`, the backbone); *oracle perception*: the frame's
-        ground-truth class pixel shares. Both models below are the same but for it, so
-        the gap between them is how much of the task is perception.
-    frame encoder: an MLP over a frame's descriptor.
-    TRN: temporal relation network (Zhou et al.): for k = 2..`MAX_SCALE`, ordered subsets of
-        k of the clip's `FRAMES` sampled frames are concatenated and passed through an MLP
-        g_k; the mean over subsets, summed over scales, is the clip feature.
-    single-frame: the clip feature is the middle frame's encoding (the baseline).
-Two linear heads read the clip feature: the clip's action and its step (action and object
-classes). Scores are mean per-class accuracy (recall averaged over the test classes;
-classes never seen in training count with 0).
+    clip: `FRAMES` frames spread evenly over a 2-second window (every frame at 4
+        frames/s), labelled with the step shown at its middle frame: its *action* and its
+        *step* (action and object classes, instance numbers dropped, as the paper's
+        action-object-object).
+    descriptor: one vector per frame: the feature of a frame encoder trained here
+        (`framecnn`) on RGB, on the predicted class map (`segment`) or on the
+        ground-truth class map (the oracle). The TRN models differ only in it.
+    TRN: temporal relation network (Zhou et al.): for k = 2..`ClipConfig.max_scale` (up to
+        4-frame relations), `ClipConfig.subsets` ordered k-frame subsets of the clip's
+        frames, spread over all of them, are concatenated and passed through an MLP g_k;
+        the mean over subsets, summed over scales, is the clip feature.
+    single frame: the clip feature is the middle frame's encoding (the baseline).
+Two linear heads read the clip feature (class-weighted cross-entropy on both). Scores are
+mean per-class accuracy (recall averaged over the test classes; a class never seen in
+training scores 0).
 """
 
 from __future__ import annotations
 
-import copy
 import random
 from collections import Counter, defaultdict
-from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from itertools import combinations
-from typing import Protocol
+from pathlib import Path
 
 import numpy as np
 import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.video.data import Episode
+from homesim.learn.video.fit import FitResult, batches, fit
+from homesim.learn.video.framecnn import class_weights
 
-Descriptors = dict[str, np.ndarray]
-"""Episode key -> (frames, width) float32: one vector per frame (CNN feature or shares)."""
 FRAMES = 8
 """Frames sampled evenly from a clip."""
-MAX_SCALE = 4
-SUBSETS = 4
-"""Ordered frame subsets per scale (evenly spread over all of them)."""
 KINDS = ("trn", "single")
-INPUTS = ("rgb", "oracle")
+CLIP_SECONDS = 2.0
+TRAIN_HOP = 1.0
+"""Seconds between the starts of training clips (overlapping: twice the clips; the
+default of `VideoRunConfig.train_hop`)."""
 
 
 @dataclass
@@ -48,56 +48,48 @@ class ClipConfig:
     """A clip model; saved with its checkpoint."""
 
     kind: str  # "trn" | "single"
-    input: str  # "rgb" | "oracle"
+    input: str  # the descriptor: "rgb" | "seg" | "oracle"
     n_inputs: int  # descriptor width
     n_actions: int
     n_steps: int
-    feature: int = 64
-    epochs: int = 8
-    batch_size: int = 32
-    lr: float = 2e-3
+    feature: int = 128
+    epochs: int = 20
+    batch_size: int = 64
+    lr: float = 1e-3
     seed: int = 0
+    max_scale: int = 4
+    """The TRN's largest subset of frames (scales 2..max_scale: up to 4-frame relations)."""
+    subsets: int = 4
+    """Ordered frame subsets per scale (evenly spread over all of them)."""
+    hidden: int = 256
+    """Width of the relation MLPs' hidden layer."""
+    dropout: float = 0.3
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
-def _subsets(k: int) -> list[tuple[int, ...]]:
+def _subsets(k: int, subsets: int) -> list[tuple[int, ...]]:
     every = list(combinations(range(FRAMES), k))
-    picks = np.linspace(0, len(every) - 1, SUBSETS).round().astype(int)
+    picks = np.linspace(0, len(every) - 1, subsets).round().astype(int)
     return [every[i] for i in sorted(set(picks.tolist()))]
 
 
-INPUT_SCALE = {"rgb": 1.0, "oracle": 10.0}
-"""Descriptors are multiplied by this (class pixel shares are small)."""
-
-
-class FrameEncoder(nn.Module):
-    """(N, n_inputs) frame descriptors -> (N, feature)."""
-
-    def __init__(self, cfg: ClipConfig):
-        super().__init__()
-        self.scale = INPUT_SCALE[cfg.input]
-        self.net = nn.Sequential(nn.Linear(cfg.n_inputs, 128), nn.ReLU(),
-                                 nn.Linear(128, cfg.feature), nn.ReLU())
-
-    def forward(self, x: torch.Tensor) -> torch.Tensor:
-        return self.net(x * self.scale)
-
-
 class ClipModel(nn.Module):
-    """Frame encoder, temporal module (TRN or single frame) and two heads."""
+    """Frame encoder (an MLP over descriptors), temporal module (TRN or the middle frame)
+    and two heads."""
 
     def __init__(self, cfg: ClipConfig):
         super().__init__()
         self.cfg = cfg
-        self.frames = FrameEncoder(cfg)
         f = cfg.feature
-        self.scales = list(range(2, MAX_SCALE + 1)) if cfg.kind == "trn" else []
+        self.frames = nn.Sequential(nn.Linear(cfg.n_inputs, f), nn.ReLU())
+        self.scales = list(range(2, cfg.max_scale + 1)) if cfg.kind == "trn" else []
         self.relations = nn.ModuleList(
-            nn.Sequential(nn.Linear(k * f, 128), nn.ReLU(), nn.Linear(128, f), nn.ReLU())
+            nn.Sequential(nn.Linear(k * f, cfg.hidden), nn.ReLU(), nn.Linear(cfg.hidden, f),
+                          nn.ReLU())
             for k in self.scales)
-        self.drop = nn.Dropout(0.3)
+        self.drop = nn.Dropout(cfg.dropout)
         self.action_head = nn.Linear(f, cfg.n_actions)
         self.step_head = nn.Linear(f, cfg.n_steps)
 
@@ -109,7 +101,7 @@ class ClipModel(nn.Module):
         per_frame = self.frames(clips.flatten(0, 1)).view(b, FRAMES, -1)
         out = torch.zeros_like(per_frame[:, 0])
         for k, g in zip(self.scales, self.relations, strict=True):
-            subs = _subsets(k)
+            subs = _subsets(k, self.cfg.subsets)
             out = out + sum(g(per_frame[:, list(s)].flatten(1)) for s in subs) / len(subs)
         return out
 
@@ -118,37 +110,53 @@ class ClipModel(nn.Module):
         return self.action_head(h), self.step_head(h)
 
 
+def windows(length: int, fps: int, hop: float | None = None) -> list[tuple[int, int]]:
+    """[a, b) frame windows of `CLIP_SECONDS` every `hop` s (default: back to back)."""
+    size = max(1, round(CLIP_SECONDS * fps))
+    step = max(1, round((hop or CLIP_SECONDS) * fps))
+    return [(a, a + size) for a in range(0, length - size + 1, step)]
+
+
+def clip_rows(a: int, b: int) -> np.ndarray:
+    """The `FRAMES` frames of window [a, b), evenly spaced (relative rows)."""
+    return np.linspace(a, b - 1, FRAMES).round().astype(np.int64)
+
+
 @dataclass
 class ClipSet:
-    """Clips as tensors: inputs (N, FRAMES, descriptor width), their action and step
-    texts."""
+    """Clips: the store rows of their frames (N, FRAMES), the episode of each, and their
+    action and step names."""
 
-    inputs: torch.Tensor
+    rows: np.ndarray
+    episodes: list[str]
     actions: list[str]
     steps: list[str]
 
 
-def clip_inputs(vectors: np.ndarray, a: int, b: int) -> np.ndarray:
-    """(`FRAMES`, width): the descriptors of `FRAMES` evenly spaced frames of [a, b)."""
-    return vectors[np.linspace(a, b - 1, FRAMES).round().astype(int)]
+def step_class(step_text: str) -> str:
+    """``[Grab] <cup> (1)`` -> ``[Grab] <cup>``."""
+    import re
+
+    return re.sub(r"\s*\(\d+\)", "", step_text).strip()
 
 
-TRAIN_HOP = 1.0
-"""Seconds between the starts of training clips (overlapping: twice the clips)."""
-
-
-def clip_set(episodes: list[Episode], descriptors: Descriptors, hop: float | None = None
-             ) -> ClipSet:
-    """Every labelled clip of the episodes (every `hop` s; default non-overlapping)."""
-    inputs, actions, steps = [], [], []
+def clip_set(episodes: list, step: np.ndarray, hop: float | None = None) -> ClipSet:
+    """Every clip of the episodes (`store.StoredEpisode`) whose middle frame shows a step,
+    every `hop` s (default back to back), labelled with that step."""
+    rows, keys, actions, steps = [], [], [], []
     for ep in episodes:
-        for a, b, label in ep.clips(hop=hop):
-            inputs.append(clip_inputs(descriptors[ep.key], a, b))
+        shown = step[ep.start:ep.start + ep.length]
+        for a, b in windows(ep.length, ep.fps, hop):
+            middle = int(shown[(a + b) // 2])
+            if middle < 0:
+                continue
+            label = step_class(ep.steps[middle])
+            rows.append(ep.start + clip_rows(a, b))
+            keys.append(ep.key)
             actions.append(label.split("]")[0].strip("["))
             steps.append(label)
-    width = next(iter(descriptors.values())).shape[1] if descriptors else 0
-    stacked = np.stack(inputs) if inputs else np.zeros((0, FRAMES, width), np.float32)
-    return ClipSet(torch.from_numpy(stacked.astype(np.float32)), actions, steps)
+    stacked = np.stack(rows) if rows else np.zeros((0, FRAMES), np.int64)
+    return ClipSet(stacked, keys, actions, steps)
 
 
 @dataclass
@@ -162,120 +170,76 @@ class Labels:
     def build(cls, data: ClipSet) -> Labels:
         return cls(sorted(set(data.actions)), sorted(set(data.steps)))
 
-    def ids(self, names: list[str], table: list[str]) -> torch.Tensor:
+    def ids(self, names: list[str], table: list[str]) -> np.ndarray:
         index = {n: i for i, n in enumerate(table)}
-        return torch.tensor([index.get(n, -100) for n in names])
+        return np.array([index.get(n, -100) for n in names], np.int64)
 
 
-def class_weights(ids: torch.Tensor, n: int) -> torch.Tensor:
-    """(n,) inverse class frequencies normalised to mean 1 over the classes present: the
-    loss then matches the metric (mean per-class accuracy) rather than favouring walking."""
-    counts = torch.bincount(ids[ids >= 0], minlength=n).float()
-    weights = torch.where(counts > 0, 1.0 / counts.clamp(min=1), torch.zeros_like(counts))
-    return weights * (counts > 0).sum() / weights.sum().clamp(min=1e-9)
-
-
-def clip_score(model: ClipModel, data: ClipSet, labels: Labels) -> float:
-    """Mean of the action and step mean per-class accuracies (%): what chooses the epoch."""
-    actions, steps = predict_clips(model, data, labels)
-    return (mean_class_accuracy(actions, data.actions)
-            + mean_class_accuracy(steps, data.steps)) / 2
-
-
-@dataclass
-class ClipTraining:
-    """A trained clip model, the epoch kept and each epoch's validation score."""
-
-    model: ClipModel
-    best_epoch: int | None
-    val_scores: list[float]
-
-
-def train_clip_model(cfg: ClipConfig, data: ClipSet, labels: Labels, val: ClipSet | None = None,
-                     device: str = "cpu") -> ClipTraining:
-    """Class-weighted cross-entropy on both heads (`fit_two_heads`); with `val`, the weights
-    of the epoch scoring best on it (`clip_score`) are kept. Same seed, same weights."""
+def train_clip_model(cfg: ClipConfig, features: np.ndarray, data: ClipSet, labels: Labels,
+                     val: ClipSet | None = None, device: str = "cpu",
+                     checkpoint: Path | None = None) -> tuple[ClipModel, FitResult]:
+    """Class-weighted cross-entropy on both heads over the clips' descriptors (`features`:
+    (store rows, width)); with `val`, the epoch scoring best on it (mean of the two
+    heads' mean per-class accuracy) is kept. Resumes from `checkpoint`."""
     torch.manual_seed(cfg.seed)
     model = ClipModel(cfg).to(device)
-    score = (lambda: clip_score(model, val, labels)) if val is not None and val.steps else None
-    best_epoch, scores = fit_two_heads(
-        model, model, data.inputs, labels.ids(data.actions, labels.actions),
-        labels.ids(data.steps, labels.steps), cfg, score, device)
-    return ClipTraining(model.eval(), best_epoch, scores)
-
-
-class TrainingConfig(Protocol):
-    """What `fit_two_heads` reads of a model's config (`ClipConfig`, `FrameCNNConfig`)."""
-
-    n_actions: int
-    n_steps: int
-    epochs: int
-    batch_size: int
-    lr: float
-    seed: int
-
-
-def fit_two_heads(model: nn.Module, heads: Callable[[torch.Tensor], tuple[torch.Tensor, ...]],
-                  inputs: torch.Tensor, y_a: torch.Tensor, y_s: torch.Tensor, cfg: TrainingConfig,
-                  score: Callable[[], float] | None, device: str, min_batch: int = 1
-                  ) -> tuple[int | None, list[float]]:
-    """Train `model` (already seeded and on `device`) with Adam on the action and step
-    heads' class-weighted cross-entropy (`class_weights`; label -100 is ignored), in
-    shuffled batches of ``cfg.batch_size`` (smaller than `min_batch` skipped) for
-    ``cfg.epochs`` epochs. With `score`, the weights of the best-scoring epoch are loaded
-    back. Returns that epoch (None without `score`) and each epoch's score."""
-    opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
+    y_a = labels.ids(data.actions, labels.actions)
+    y_s = labels.ids(data.steps, labels.steps)
     w_a = class_weights(y_a, cfg.n_actions).to(device)
     w_s = class_weights(y_s, cfg.n_steps).to(device)
-    rng = random.Random(cfg.seed)
-    order = list(range(len(y_s)))
-    scores: list[float] = []
-    best: tuple[float, int, dict] | None = None
-    for epoch in range(cfg.epochs):
-        model.train()
-        rng.shuffle(order)
-        for i in range(0, len(order), cfg.batch_size):
-            batch = torch.tensor(order[i:i + cfg.batch_size])
-            if len(batch) < min_batch:
-                continue
-            logit_a, logit_s = heads(inputs[batch].to(device))
-            loss = (F.cross_entropy(logit_a, y_a[batch].to(device), w_a, ignore_index=-100)
-                    + F.cross_entropy(logit_s, y_s[batch].to(device), w_s, ignore_index=-100))
+
+    def step(opt: torch.optim.Optimizer, rng: np.random.Generator) -> float:
+        losses = []
+        for batch in batches(len(y_s), cfg.batch_size, rng):
+            x = torch.from_numpy(features[data.rows[batch]].astype(np.float32)).to(device)
+            la, ls = model(x)
+            loss = (F.cross_entropy(la, torch.from_numpy(y_a[batch]).to(device), w_a,
+                                    ignore_index=-100)
+                    + F.cross_entropy(ls, torch.from_numpy(y_s[batch]).to(device), w_s,
+                                      ignore_index=-100))
             opt.zero_grad()
             loss.backward()
             opt.step()
-        if score is not None:
-            scores.append(score())
-            if best is None or scores[-1] > best[0]:
-                best = (scores[-1], epoch, copy.deepcopy(model.state_dict()))
-    if best is not None:
-        model.load_state_dict(best[2])
-    return (best[1] if best else None), scores
+            losses.append(float(loss.detach()))
+        return float(np.mean(losses)) if losses else 0.0
+
+    score = None
+    if val is not None and val.steps:
+        def score() -> float:
+            actions, steps = predict_clips(model, features, val, labels)
+            return (mean_class_accuracy(actions, val.actions)
+                    + mean_class_accuracy(steps, val.steps)) / 2
+    result = fit(model, step, epochs=cfg.epochs, lr=cfg.lr, seed=cfg.seed, score=score,
+                 checkpoint=checkpoint, config=cfg.to_dict())
+    return model, result
 
 
 @torch.no_grad()
-def predict_clips(model: ClipModel, data: ClipSet, labels: Labels,
-                  batch_size: int = 128) -> tuple[list[str], list[str]]:
+def predict_clips(model: ClipModel, features: np.ndarray, data: ClipSet, labels: Labels,
+                  batch_size: int = 512) -> tuple[list[str], list[str]]:
     """Predicted action and step names of every clip."""
     model.eval()
     device = next(model.parameters()).device
     actions: list[str] = []
     steps: list[str] = []
     for i in range(0, len(data.steps), batch_size):
-        logit_a, logit_s = model(data.inputs[i:i + batch_size].to(device))
-        actions += [labels.actions[j] for j in logit_a.argmax(1).tolist()]
-        steps += [labels.steps[j] for j in logit_s.argmax(1).tolist()]
+        x = torch.from_numpy(features[data.rows[i:i + batch_size]].astype(np.float32))
+        la, ls = model(x.to(device))
+        actions += [labels.actions[j] for j in la.argmax(1).tolist()]
+        steps += [labels.steps[j] for j in ls.argmax(1).tolist()]
     return actions, steps
 
 
 @torch.no_grad()
-def clip_features(model: ClipModel, inputs: torch.Tensor) -> torch.Tensor:
-    """(N, feature) clip features (no dropout)."""
+def clip_features(model: ClipModel, features: np.ndarray, rows: np.ndarray,
+                  batch_size: int = 512) -> torch.Tensor:
+    """(len(rows), feature) clip features (no dropout) of clips given by frame rows."""
     model.eval()
     device = next(model.parameters()).device
-    if len(inputs) == 0:
-        return torch.zeros(0, model.cfg.feature)
-    return model.features(inputs.to(device)).cpu()
+    out = [model.features(torch.from_numpy(features[rows[i:i + batch_size]]
+                                           .astype(np.float32)).to(device)).cpu()
+           for i in range(0, len(rows), batch_size)]
+    return torch.cat(out) if out else torch.zeros(0, model.cfg.feature)
 
 
 def random_retrieval(train: list[str], n: int, seed: int) -> list[str]:
