@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from collections.abc import AsyncIterator, Iterable
 from contextlib import asynccontextmanager
@@ -11,12 +12,24 @@ from fastapi import FastAPI
 
 from homesim.limits import BODY_TIMEOUT_S
 from homesim.serve import homes, programs, renders, writer
-from homesim.serve.errors import CatchBugs, SafeJSONResponse, install_error_handlers
+from homesim.serve.errors import ApiError, CatchBugs, SafeJSONResponse, install_error_handlers
 from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
 from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit, LargeBodyGate
 from homesim.serve.pool import ProgramPool, WriterPool
 from homesim.serve.static import default_static_dir, mount_editor
-from homesim.serve.workers import warm_up
+from homesim.serve.workers import worker_context
+
+
+def warm_up() -> None:
+    """Start the fork server now (it imports `PRELOAD`, a second or two), not on the
+    first request that needs a worker; and look for the renderer (imports mujoco).
+    Here, not in `workers`, which the routers' modules import."""
+    with contextlib.suppress(ApiError):  # no renderer: POST /api/render answers 501
+        programs.keyframe_renderer()
+    if worker_context().get_start_method() == "forkserver":
+        from multiprocessing import forkserver
+
+        forkserver.ensure_running()
 
 
 @asynccontextmanager

@@ -63,21 +63,6 @@ def limit_memory(memory: int) -> None:
         resource.setrlimit(resource.RLIMIT_DATA, (memory, memory))
 
 
-def warm_up() -> None:
-    """Start the fork server now (it imports `PRELOAD`, a second or two), not on the
-    first request that needs a worker; and look for the renderer (imports mujoco)."""
-    from homesim.serve.errors import ApiError
-    from homesim.serve.programs import keyframe_renderer
-
-    with contextlib.suppress(ApiError):  # no renderer: POST /api/render answers 501
-        keyframe_renderer()
-    context = worker_context()
-    if context.get_start_method() == "forkserver":
-        from multiprocessing import forkserver
-
-        forkserver.ensure_running()
-
-
 def busy(what: str, retry_after: int = RETRY_AFTER_S) -> ApiError:
     """The 503 answer when a queue is full."""
     return ApiError(503, "busy", f"the server is busy: {what}; retry in {retry_after} s",
