@@ -7,8 +7,8 @@ are the development set (looked at while tuning), the next 20 the fresh set (onl
 measured). Homes: built-in scene1, scene3, scene5 and generated seeds 0-4 for development;
 scene2, scene4 and generated seeds 5-9 fresh (dev programs #21, 156, 387, 425, 80, 256,
 204, 373, 388, 441, 55, 252, 335, 279, 340, 11, 288, 241, 322, 205; fresh #348, 473, 307,
-421, 242, 218, 98, 31, 472, 60, 456, 70, 207, 86, 504, 90, 286, 464, 277, 72). Interpenetration is reported on both (all five
-built-in homes and generated seeds 0-9).
+421, 242, 218, 98, 31, 472, 60, 456, 70, 207, 86, 504, 90, 286, 464, 277, 72).
+Interpenetration is reported on both (all five built-in homes and generated seeds 0-9).
 """
 
 from __future__ import annotations

@@ -492,8 +492,12 @@ def animation_for(key: str) -> Animation:
     return MOTIONS[ACTIONS[key].motion]
 
 
-def _target(rec: StepRecord) -> int | None:
-    return rec.nodes[0] if rec.nodes else None
+def _target(anim: Animator, rec: StepRecord) -> int | None:
+    """The node a step acts on; None without one, or when it is a part of the agent's
+    body (nothing to walk to or look at: `_at_body` acts there)."""
+    if not rec.nodes or anim.props.is_body_part(rec.nodes[0]):
+        return None
+    return rec.nodes[0]
 
 
 @animation("idle")
@@ -504,7 +508,7 @@ def idle(anim: Animator, rec: StepRecord) -> None:
 
 @animation("walk", "run")
 def walk(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     anim.walk(anim.props.box_of(target), run=rec.step.action.motion == "run")
@@ -513,7 +517,7 @@ def walk(anim: Animator, rec: StepRecord) -> None:
 @animation("find")
 def find(anim: Animator, rec: StepRecord) -> None:
     """Walk to the object, or only look for it when it is already at hand."""
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is not None and anim.within_reach(target, 1.0):
         anim.look(anim.props.box_of(target).center)
     else:
@@ -522,7 +526,7 @@ def find(anim: Animator, rec: StepRecord) -> None:
 
 @animation("look", "point")
 def look(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     anim.look(anim.props.box_of(target).center, point=rec.step.action.motion == "point")
@@ -530,7 +534,7 @@ def look(anim: Animator, rec: StepRecord) -> None:
 
 @animation("sit")
 def sit(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     anim.sit(anim.props.box_of(target))
@@ -538,7 +542,7 @@ def sit(anim: Animator, rec: StepRecord) -> None:
 
 @animation("lie")
 def lie(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return rest(anim, rec)
     anim.lie(anim.props.box_of(target))
@@ -560,7 +564,7 @@ def stand_up(anim: Animator, rec: StepRecord) -> None:
 def use_held(anim: Animator, rec: StepRecord) -> None:
     """Drink or eat: bring the held object to the mouth; read: hold it before the eyes.
     An object not held is touched where it is."""
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     props = anim.props
@@ -593,7 +597,7 @@ def _face_spot(anim: Animator, obj: int, action: str) -> np.ndarray:
 @animation("let_go")
 def let_go(anim: Animator, rec: StepRecord) -> None:
     """Drop a held object: it falls to the floor in front of the agent."""
-    obj = _target(rec)
+    obj = _target(anim, rec)
     props = anim.props
     side = None if obj is None else props.side_holding(obj)
     if obj is None or side is None:
@@ -624,6 +628,8 @@ def reach(anim: Animator, rec: StepRecord) -> None:
     nodes, ch = rec.nodes, rec.changes
     if not nodes:
         return idle(anim, rec)
+    if anim.props.is_body_part(nodes[0]):
+        return _at_body(anim, nodes[0])
     if len(nodes) > 1:  # put or pour: go to the destination
         anim.walk_if_far(nodes[1])
     elif nodes[0] not in anim.props.held.values():
@@ -635,6 +641,53 @@ def reach(anim: Animator, rec: StepRecord) -> None:
         _swing(anim, nodes[0], states[nodes[0]][1])
         return
     _touch(anim, nodes[0], states, nodes)
+
+
+BODY_POINTS: dict[str, tuple[float, float, float]] = {
+    "teeth": (0.9, 0.0, -0.45), "face": (0.9, 0.0, 0.0), "eye": (0.85, 0.0, 0.2),
+    "hair": (0.2, 0.0, 1.0), "hand": (0.0, 0.0, 0.0), "arm": (0.0, 0.0, 0.0),
+    "leg": (0.0, 0.0, 0.0), "feet": (0.0, 0.0, 0.0),
+}
+"""A body part's word -> where a hand acts on it: (forward, left, up) from the head's
+centre in head radii (hands, arms, legs and feet: see `_body_point`)."""
+
+
+def _body_point(anim: Animator, node: int, side: str) -> np.ndarray:
+    """Where the `side` hand (or what it holds) acts on a part of the agent's body: at
+    the mouth for teeth, on the face, on the head's top for hair; before the chest where
+    the other hand is for hands and arms; at the knee for legs and feet."""
+    cls = anim.graph.node(node).class_name.lower()
+    word = next((w for w in BODY_POINTS if w in cls), "hand")
+    pose, ik = anim.pose, anim.ik
+    if word in ("hand", "arm"):
+        other = "l" if side == "r" else "r"
+        return ik.hand(pose, other) + np.array([0.0, 0.0, 0.03])
+    if word in ("leg", "feet"):
+        return ik.site(pose, f"j:{'l' if side == 'l' else 'r'}_knee")
+    fwd = np.array([math.cos(pose.yaw), math.sin(pose.yaw), 0.0])
+    left = np.array([-fwd[1], fwd[0], 0.0])
+    r = HEAD_RADIUS * anim.shape.height
+    f, lt, up = BODY_POINTS[word]
+    return ik.site(pose, "j:head") + r * (f * fwd + lt * left + up * np.array([0, 0, 1.0]))
+
+
+def _at_body(anim: Animator, node: int) -> None:
+    """A step on a part of the agent's body (wash the teeth, comb the hair): the hand
+    holding a tool brings it there (the tool just before the point), else a free hand
+    touches it; the agent does not walk. The step's object in the timeline is the tool,
+    else the body part (drawn as the agent)."""
+    props = anim.props
+    side = next(iter(props.held), None) or props.free_side()
+    point = _body_point(anim, node, side)
+    tool = props.held.get(side)
+    grip = props.grip.get(side) if tool is not None else None
+    if tool is not None:
+        fwd = np.array([math.cos(anim.pose.yaw), math.sin(anim.pose.yaw), 0.0])
+        point = point + (float(max(props.half_of(tool)[:2])) + 0.01) * fwd
+    sign = 1.0 if side == "l" else -1.0
+    bent = {f"{side}_sh_pitch": -1.0, f"{side}_elbow": -2.0, f"{side}_sh_roll": 0.3 * sign}
+    anim.reach(side, point, 0.7, step=False, hold=0.8, grip=grip, seed=bent,
+               nodes=(tool, node) if tool is not None else (node,))
 
 
 def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> None:

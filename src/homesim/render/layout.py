@@ -18,6 +18,7 @@ import numpy as np
 
 from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
+from homesim.world.classes import class_row
 from homesim.world.floor import FloorModel
 from homesim.world.graph import EnvironmentGraph, Node
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
@@ -27,19 +28,7 @@ WALL_THICKNESS = 0.1
 PANEL_THICKNESS = 0.04
 """Metres of a hinged front inside its box: the door leaf and, in front of it, the handle."""
 LEAF_THICKNESS = 0.025
-HINGED_CLASSES = frozenset({
-    "fridge", "cabinet", "kitchencabinet", "kitchencabinets", "closet", "microwave",
-    "washingmachine", "dishwasher", "stove", "oven", "bathroomcabinet", "closetdrawer",
-    "garbagecan", "nightstand", "dresser",
-})
-"""Classes drawn as a hollow carcass with a hinged front door when they can open."""
-SCREEN_CLASSES = frozenset({"tv", "computer", "laptop", "television"})
-LAMP_CLASSES = frozenset({"ceilinglamp", "tablelamp", "walllamp", "floorlamp", "lamp",
-                          "desklamp", "lightbulb"})
 SKIP_CATEGORIES = frozenset({"Rooms", "Characters"})
-ENCLOSURES = frozenset({"stall", "shower", "showerstall"})
-"""Furniture that surrounds other objects (a toilet stall): drawn as three walls, open at
-the front and the top."""
 SEAT_HEIGHT = 0.45
 """Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
 
@@ -258,10 +247,25 @@ def _window(panel: Box, axis: int, sign: float) -> Shape:
     return Shape("box", c, half, "glass_dark")
 
 
-_WINDOWED = frozenset({"microwave", "stove", "oven", "washingmachine"})
-_CARCASS_ROLE = {"fridge": "white", "washingmachine": "white", "dishwasher": "white",
-                 "stove": "metal", "oven": "metal", "microwave": "black", "garbagecan": "metal"}
-"""Material of a hinged object's body; others are wood."""
+_CARCASS_ROLE = {"white": "white", "metal": "metal", "dark": "black"}
+"""A hinged object's family (class table) -> the material of its body; others are wood."""
+
+
+def render_kind(class_name: str) -> str:
+    """How render shapes a class beyond its model (the class table's ``render``: hinged,
+    screen, lamp, room_lamp, enclosure; empty for the rest)."""
+    row = class_row(class_name)
+    return "" if row is None else row.render
+
+
+def _tagged(class_name: str, tag: str) -> bool:
+    row = class_row(class_name)
+    return row is not None and tag in row.tags
+
+
+def _family(class_name: str) -> str:
+    row = class_row(class_name)
+    return "" if row is None else row.family
 
 
 def _seat(box: Box, axis: int, sign: float) -> list[Box]:
@@ -397,9 +401,10 @@ def _kind(node: Node, box: Box) -> str:
         return "wall"
     if cls in ("doorjamb", "door"):
         return cls
-    if cls in HINGED_CLASSES and CAN_OPEN in node.properties:
+    kind = render_kind(cls)
+    if kind == "hinged" and CAN_OPEN in node.properties:
         return "hinged"
-    if cls in ENCLOSURES:
+    if kind == "enclosure":
         return "enclosure"
     if SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
         return "seat"
@@ -469,12 +474,12 @@ def _door_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
     axis, sign = home.front(node, box)
     part.boxes, part.hinge = _hollow(box, axis, sign)
-    role = _CARCASS_ROLE.get(node.class_name, "wood")
+    role = _CARCASS_ROLE.get(_family(node.class_name), "wood")
     part.shapes = _slab_shapes(part.boxes, role)
     h = part.hinge
     h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), role),
                 _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
-    if node.class_name in _WINDOWED:
+    if _tagged(node.class_name, "windowed"):
         h.shapes.append(_window(h.panel, axis, sign))
     if node.class_name in ("stove", "oven"):  # the top gives way to the hot plates
         part.shapes = [Shape(s.kind, s.center - [0, 0, 0.004], s.half, s.role)
@@ -521,10 +526,10 @@ def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     """The class's model; screens get their panel, lamps light."""
     part.boxes.append(_flat(box))
-    cls = node.class_name
-    front = _facing_seat(node, box, home) if cls in SCREEN_CLASSES else home.front(node, box)
+    kind = render_kind(node.class_name)
+    front = _facing_seat(node, box, home) if kind == "screen" else home.front(node, box)
     part.shapes = home.model(node, _flat(box), front)
-    if cls in SCREEN_CLASSES:
+    if kind == "screen":
         screen = next((s for s in part.shapes if s.role == "screen"), None)
         if screen is None:
             screen = _screen(box, front)
@@ -534,7 +539,7 @@ def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
         part.shapes = [s if s.role != "screen" else Shape(s.kind, s.center, s.half,
                                                          "screen_dark", s.axis)
                        for s in part.shapes]
-    if cls in LAMP_CLASSES or node.category == "Lamps":
+    if kind in ("lamp", "room_lamp") or node.category == "Lamps":
         part.lamp = True
     return True
 

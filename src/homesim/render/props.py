@@ -13,13 +13,12 @@ from collections.abc import Iterator
 import numpy as np
 
 from homesim.errors import ExecutionError
-from homesim.render.layout import Box, Part, lights_on_by_switch, to_mujoco
+from homesim.render.layout import Box, Part, lights_on_by_switch, render_kind, to_mujoco
 from homesim.render.navigation import Grid
 from homesim.render.scene import SceneModel
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.vocab import ON, S_OFF, S_ON
+from homesim.world.vocab import BODY_PART, ON, S_OFF, S_ON
 
-_CEILING_LAMPS = ("ceilinglamp", "walllamp")
 HANDLE_HEIGHT = 1.0
 """Metres: where a hand takes a door or a tall appliance's front (lower fronts: their top)."""
 HANDLE_OUT = 0.02
@@ -58,7 +57,7 @@ class Props:
         light switch is on."""
         on = set(self.lit)
         for n, p in self.parts():
-            if p.lamp and p.class_name in _CEILING_LAMPS:
+            if p.lamp and render_kind(p.class_name) == "room_lamp":
                 room = self.graph.room_of(n)
                 if self.switch_rooms.get(room, True):
                     on.add(n)
@@ -77,6 +76,13 @@ class Props:
         if node_id not in self.boxes:
             raise ExecutionError(f"node {node_id} has no 3D box to walk to")
         return self.boxes[node_id]
+
+    def is_body_part(self, node_id: int) -> bool:
+        """Whether a node is a part of the agent's body without a box of its own (teeth,
+        hair): the animation acts at the body."""
+        if node_id in self.boxes or node_id not in self.graph.nodes:
+            return False
+        return BODY_PART in self.graph.node(node_id).properties
 
     def half_of(self, node_id: int) -> np.ndarray:
         return self.boxes[node_id].half if node_id in self.boxes else np.full(3, 0.05)

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from homesim.world.classes import class_row, classes_where
 from homesim.world.procedural.geometry import (
     DOOR_REACH,
     SLACK,
@@ -24,34 +25,6 @@ from homesim.world.procedural.plan import HEIGHT, Plan
 from homesim.world.procedural.stats import class_info, kind_objects
 from homesim.world.procedural.structure import INWARD, door_rects, side_box
 
-WALL_MOUNTED = frozenset({"lightswitch", "powersocket", "wallpictureframe", "walllamp",
-                          "wallshelf", "towelrack", "clock", "wallphone", "kitchencabinets",
-                          "stovefan", "bathroomcabinet"})
-CEILING_MOUNTED = frozenset({"ceilinglamp"})
-FLOOR_STANDING = frozenset({"coffeetable", "bathroomcounter", "kitchencounter", "closet",
-                            "bookshelf", "cabinet", "garbagecan", "computer"})
-REQUIRED: dict[str, tuple[str, ...]] = {
-    # Classes real programs use most, always present in rooms of these kinds.
-    "living_room": ("sofa", "tvstand", "tv", "coffeetable", "desk", "chair", "computer",
-                    "cpuscreen", "keyboard", "mouse", "remotecontrol", "bookshelf", "book",
-                    "lightswitch", "powersocket", "ceilinglamp"),
-    "kitchen": ("fridge", "stove", "kitchencounter", "sink", "faucet", "kitchencabinets",
-                "dishwasher", "microwave", "coffeemaker", "toaster", "kitchentable", "chair",
-                "plate", "waterglass", "dishwashingliquid", "lightswitch", "ceilinglamp",
-                "cookingpot", "fryingpan", "dishbowl", "cutleryfork", "cutleryknife"),
-    "bedroom": ("bed", "nightstand", "tablelamp", "pillow", "closet", "lightswitch",
-                "ceilinglamp", "book"),
-    "kids_bedroom": ("bed", "nightstand", "lightswitch", "ceilinglamp", "toy"),
-    "bathroom": ("toilet", "bathroomcounter", "sink", "faucet", "washingmachine", "towelrack",
-                 "towel", "toothbrush", "toothpaste", "barsoap", "lightswitch", "ceilinglamp"),
-    "dining_room": ("kitchentable", "chair", "plate", "lightswitch", "ceilinglamp"),
-    "home_office": ("desk", "chair", "computer", "cpuscreen", "keyboard", "mouse",
-                    "lightswitch", "ceilinglamp"),
-    "entrance_hall": ("closet", "lightswitch", "ceilinglamp"),
-}
-ANCHORS = {"chair": ("desk", "kitchentable"), "bench": ("kitchentable",),
-           "coffeetable": ("sofa",), "nightstand": ("bed",), "computer": ("desk",)}
-CENTRE = frozenset({"kitchentable", "coffeetable", "rug"})
 CAP = {"floor": 3, "wall": 4, "ceiling": 2}
 KEEP_OUT = 1.0
 """Depth (m) of the free zone in front of a door."""
@@ -67,19 +40,30 @@ class Entry:
 
 
 def mount_of(cls: str, fitted: str) -> str:
-    if cls in WALL_MOUNTED:
-        return "wall"
-    if cls in CEILING_MOUNTED:
-        return "ceiling"
-    if cls in FLOOR_STANDING:
-        return "floor"
+    """Where a class goes: its class-table row's ``mount`` when it has one, else as
+    fitted from the built-in homes (but what they hang on a wall or ceiling without a
+    mount of its own stands on or in furniture)."""
+    row = class_row(cls)
+    if row is not None and row.mount:
+        return row.mount
     return "item" if fitted in ("wall", "ceiling") else fitted
 
 
+def _tagged(cls: str, tag: str) -> bool:
+    row = class_row(cls)
+    return row is not None and tag in row.tags
+
+
+def anchors_of(cls: str) -> tuple[str, ...]:
+    """The classes a class stands beside (the class table's ``beside``)."""
+    row = class_row(cls)
+    return () if row is None else row.beside
+
+
 def draw_entries(rng: random.Random, kind: str) -> list[Entry]:
-    """What a room of this kind holds: each fitted class with its probability, the
-    `REQUIRED` ones always; counts drawn from those seen."""
-    required = set(REQUIRED.get(kind, ()))
+    """What a room of this kind holds: each fitted class with its probability, those the
+    class table requires in this kind always; counts drawn from those seen."""
+    required = classes_where(required=kind)
     out = []
     for obj in kind_objects(kind):
         cls = obj["class"]
@@ -89,8 +73,7 @@ def draw_entries(rng: random.Random, kind: str) -> list[Entry]:
         count = rng.choice(obj["counts"])
         if mount in CAP:
             count = min(count, CAP[mount])
-        if cls in ("rug", "tv", "sofa", "bed", "fridge", "stove", "toilet", "desk",
-                   "computer", "kitchentable", "tvstand", "dishwasher", "washingmachine"):
+        if _tagged(cls, "single"):
             count = 1
         out.append(Entry(cls, mount, count, obj["parents"]))
     return out
@@ -181,7 +164,7 @@ class RoomFurnisher:
     def _floor_candidates(self, cls: str, w: float, h: float, d: float
                           ) -> Iterator[tuple[Box3, tuple[float, float]]]:
         rng, r = self.rng, self.interior
-        anchors = [k for k in self.fixtures if self.parts[k].cls in ANCHORS.get(cls, ())]
+        anchors = [k for k in self.fixtures if self.parts[k].cls in anchors_of(cls)]
         for t in range(TRIES):
             if anchors and t < TRIES // 2:
                 a = self.parts[rng.choice(anchors)].box
@@ -197,7 +180,7 @@ class RoomFurnisher:
                     z = a[2] - gap - d / 2 if side == "z0" else a[5] + gap + d / 2
                     yield box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (
                         (0.0, 1.0) if side == "z0" else (0.0, -1.0))
-            elif cls in CENTRE:
+            elif _tagged(cls, "centre"):
                 m = 0.6
                 x = rng.uniform(r[0] + m + w / 2, max(r[0] + m + w / 2, r[2] - m - w / 2))
                 z = rng.uniform(r[1] + m + d / 2, max(r[1] + m + d / 2, r[3] - m - d / 2))
@@ -316,7 +299,7 @@ def furnish_room(rng: random.Random, plan: Plan, parts: list[Part], room: int
         return -w * d
 
     floor = sorted((e for e in entries if e.mount == "floor"), key=lambda e: (
-        e.cls in ANCHORS, e.cls == "rug", area(e), e.cls))
+        bool(anchors_of(e.cls)), e.cls == "rug", area(e), e.cls))
     for e in floor:
         for _ in range(e.count):
             f.place_floor(e.cls)
