@@ -23,7 +23,9 @@ Columns (lists are space separated, except ``names``, separated by ``;``):
     required  room kinds whose generated rooms always have it
     beside    classes it stands beside in generated homes (a chair at a desk)
     tags      single (one per room), centre (stands in the room's middle), surface (a
-              last resort to put things on), windowed (its front has a glass pane)
+              last resort to put things on), windowed (its front has a glass pane),
+              across (stands facing its ``beside`` class across the floor: a sofa
+              facing the TV stand)
     names     what people call it (empty: its name with spaces)
     color     a fixed base colour, r g b in 0..1 (empty: chosen by family and seed)
 
@@ -44,7 +46,7 @@ FAMILIES = ("fabric", "wood", "dark", "white", "metal", "ceramic", "glass", "pap
             "plant", "decor", "lamp", "plastic", "structure", "room", "body", "person")
 RENDER_KINDS = ("", "hinged", "screen", "lamp", "room_lamp", "enclosure")
 MOUNTS = ("", "floor", "wall", "ceiling")
-TAGS = ("single", "centre", "surface", "windowed")
+TAGS = ("single", "centre", "surface", "windowed", "across")
 
 
 @dataclass(frozen=True, slots=True)

@@ -69,6 +69,9 @@ def draw_entries(rng: random.Random, kind: str) -> list[Entry]:
         cls = obj["class"]
         if cls not in required and rng.random() >= obj["p"]:
             continue
+        row = class_row(cls)
+        if row is not None and row.rooms and kind not in row.rooms and cls not in required:
+            continue  # furniture by room type: no sofa or nightstand in a kitchen
         mount = mount_of(cls, obj["mount"])
         count = rng.choice(obj["counts"])
         if mount in CAP:
@@ -166,7 +169,9 @@ class RoomFurnisher:
         rng, r = self.rng, self.interior
         anchors = [k for k in self.fixtures if self.parts[k].cls in anchors_of(cls)]
         for t in range(TRIES):
-            if anchors and t < TRIES // 2:
+            if anchors and t < TRIES // 2 and _tagged(cls, "across"):
+                yield self._across(self.parts[rng.choice(anchors)], w, h, d)
+            elif anchors and t < TRIES // 2:
                 a = self.parts[rng.choice(anchors)].box
                 side = rng.choice(("x0", "x1", "z0", "z1"))
                 gap = rng.uniform(0.05, 0.25)
@@ -192,6 +197,20 @@ class RoomFurnisher:
                     continue
                 start = rng.uniform(lo, hi - w)
                 yield side_box(r, side, start, start + w, d, 0.0, h), INWARD[side]
+
+    def _across(self, anchor: Part, w: float, h: float, d: float
+                ) -> tuple[Box3, tuple[float, float]]:
+        """A box w wide and d deep facing `anchor` (a sofa facing the TV stand) from
+        2-3 m in front of it, its front toward the anchor."""
+        a, n = anchor.box, anchor.normal or (0.0, 1.0)
+        gap = self.rng.uniform(1.9, 2.9)
+        if n[0]:  # the anchor faces along x: the box's width runs along z
+            x = (a[3] if n[0] > 0 else a[0]) + n[0] * (gap + d / 2)
+            z = (a[2] + a[5]) / 2 + self.rng.uniform(-0.3, 0.3)
+            return box3(x - d / 2, 0, z - w / 2, x + d / 2, h, z + w / 2), (-n[0], 0.0)
+        z = (a[5] if n[1] > 0 else a[2]) + n[1] * (gap + d / 2)
+        x = (a[0] + a[3]) / 2 + self.rng.uniform(-0.3, 0.3)
+        return box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (0.0, -n[1])
 
     def place_wall(self, cls: str) -> bool:
         info = class_info(cls)
@@ -287,6 +306,17 @@ def _spans(p: Part, side: str, fp: Rect) -> bool:
     return p.box[0] <= (fp[0] + fp[2]) / 2 <= p.box[3]
 
 
+def _rank(cls: str) -> int:
+    """Placing order: what a piece faces across the floor first (the TV stand), then that
+    piece (the sofa), then the rest, pieces standing beside others last."""
+    across = classes_where(tags="across")
+    if any(cls in anchors_of(a) for a in across):
+        return 0
+    if cls in across:
+        return 1
+    return 3 if anchors_of(cls) else 2
+
+
 def furnish_room(rng: random.Random, plan: Plan, parts: list[Part], room: int
                  ) -> list[Entry]:
     """Place the room's fixtures; return the entries left for `homesim.world.procedural.
@@ -299,7 +329,7 @@ def furnish_room(rng: random.Random, plan: Plan, parts: list[Part], room: int
         return -w * d
 
     floor = sorted((e for e in entries if e.mount == "floor"), key=lambda e: (
-        bool(anchors_of(e.cls)), e.cls == "rug", area(e), e.cls))
+        _rank(e.cls), e.cls == "rug", area(e), e.cls))
     for e in floor:
         for _ in range(e.count):
             f.place_floor(e.cls)
