@@ -2,11 +2,12 @@
 
 For each of the paper's 8 room kinds it records room sizes (x, z extents of the room's
 floor tiles, walls included: the outer size a generated room is drawn with) and the range
-of floor areas (the tiles' area: what a generated room's floor must stay within), and for each object class seen in rooms of its source kinds: how often a room
-holds it (``p``), how many when it does (``counts``), how it is held up (``mount``:
-``floor``, ``wall``, ``ceiling`` or ``item`` for things ON or INSIDE furniture, with the
-parent classes seen), and per class its median box size, height, category, properties,
-states and prefab. The four kinds the apartments lack are derived from kinds they have,
+of floor areas (the tiles' area: what a generated room's floor must stay within), and
+for each object class seen in rooms of its source kinds: how often a room holds it
+(``p``), how many when it does (``counts``), how it is held up (``mount``: ``floor``,
+``wall``, ``ceiling`` or ``item`` for things ON or INSIDE furniture, with the parent
+classes seen), and per class its median box size, height, category, properties, states
+and prefab. The four kinds the apartments lack are derived from kinds they have,
 restricted to a class list (``RECIPES``). Writes src/homesim/world/procedural/stats.json.
 
     python tools/fit_home_stats.py

@@ -47,7 +47,7 @@ def _local_points(kind: int, size: np.ndarray) -> np.ndarray:
     if kind in (_GEOM.mjGEOM_CAPSULE, _GEOM.mjGEOM_CYLINDER):
         r, half = size[0], size[1]
         ring = np.array([[r, 0, 0], [-r, 0, 0], [0, r, 0], [0, -r, 0]], float)
-        pts = [ring + [0, 0, z] for z in (-half, 0.0, half)]
+        pts = [ring + np.array([0.0, 0.0, z]) for z in (-half, 0.0, half)]
         if kind == _GEOM.mjGEOM_CAPSULE:
             pts.append(np.array([[0, 0, half + r], [0, 0, -half - r]], float))
         return np.concatenate(pts)
