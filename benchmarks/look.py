@@ -8,9 +8,10 @@ in total:
 
 (a) interpenetration: agent body parts (head, torso, forearm...: agent bodies) more than
     3 cm inside any object's geom (its oriented box as posed; `homesim.render.clearance`)
-    at every effect frame (the frame a hand arrives: grab, put, switch, swing) and at
-    every frame of Sit and Lie steps, leaving out a hand inside what it holds or acts on
-    then (goal 0);
+    at every effect frame (the frame a hand arrives: grab, put, switch, swing) and
+    through every Sit and Lie (from getting down onto the seat or bed to the end of the
+    step: `Timeline.rests`; the walk there is not counted), leaving out a hand inside
+    what it holds or acts on then (goal 0);
 (b) close-ups: interaction steps whose object covers >= 0.5 % of the frame at the effect
     and where the agent's body covers <= 40 % of it, drawn from the camera the recording
     uses then (the step's close-up, else the room camera the director picks), and whether
@@ -35,7 +36,6 @@ import numpy as np
 
 import homesim
 from _look_sets import HOMES, program_sets
-from homesim.program.actions import ACTIONS
 from homesim.render.api import prepare
 from homesim.render.clearance import Clearance
 from homesim.render.director import Director
@@ -77,10 +77,11 @@ def interpenetration(scene, tl, steps) -> list[tuple[int, str, str, float]]:
     state = SceneState(scene, tl, aim_cameras=False)
     held = held_per_frame(tl)
     frames: dict[int, tuple[int, dict[str, set[int]]]] = {}
-    for i, (a, b) in enumerate(tl.step_frames):
-        if ACTIONS[steps[i].action.key].motion in ("sit", "lie"):
-            for f in range(a, b + 1):
-                frames.setdefault(f, (i, {s: set(n) for s, n in held[f].items()}))
+    starts = [a for a, _ in tl.step_frames]
+    for a, b in tl.rests:  # getting down onto the seat or bed, and staying there
+        step = int(np.searchsorted(starts, a, side="right")) - 1
+        for f in range(a, b + 1):
+            frames.setdefault(f, (step, {s: set(n) for s, n in held[f].items()}))
     for it in tl.interactions:
         allowed = {s: set(n) for s, n in held[it.peak].items()}
         allowed.setdefault(it.side, set()).update(it.nodes)
@@ -186,10 +187,14 @@ def main() -> int:
     ap.add_argument("--no-closeups", action="store_true")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--show", type=int, default=12, help="offenders listed per home")
+    ap.add_argument("--only", type=int, nargs="+", default=None,
+                    help="only these programs (indices into the fetched programs)")
     ap.add_argument("--width", type=int, default=320)
     ap.add_argument("--height", type=int, default=240)
     args = ap.parse_args()
     programs = program_sets()[args.set][:args.programs]
+    if args.only:
+        programs = [(k, t) for k, t in programs if k in args.only]
     homes = args.homes or HOMES[args.set]
     pen, close, wrist, ran, failed = [], [], [], 0, 0
     for home in homes:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -22,6 +22,7 @@ import numpy as np
 from homesim.errors import ExecutionError
 from homesim.program.actions import ACTIONS
 from homesim.render.agent import AgentShape
+from homesim.render.clearance import Clearance
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK, Grasp
 from homesim.render.interact import (
@@ -32,7 +33,7 @@ from homesim.render.interact import (
     box_gap,
     hand_room_clear,
     palm_grasps,
-    surface_point,
+    touch_grasps,
 )
 from homesim.render.layout import SEAT_HEIGHT, Box, room_of_point
 from homesim.render.navigation import build_grid, plan_path
@@ -73,6 +74,28 @@ SWING_STAND = (0.45, 0.55, 0.65)
 """Metres from a handle of the standing points tried out of the front's way..."""
 MAX_SWING_SPOTS = 12
 """... at most this many (the nearest to the agent first)."""
+REST_GAP = 0.005
+"""Metres between the body and the seat or mattress it rests on."""
+REST_CLEAR = 0.01
+"""Metres: a sitting or lying pose whose body passes deeper than this into anything is
+tried after those that do not."""
+SIT_SHIFTS = (0.0, 0.04, 0.08, 0.12, 0.16)
+"""Metres the pelvis is moved toward a seat's front edge when the back would enter the
+backrest..."""
+SIT_TURNS = (0.0, 0.3, -0.3)
+"""... radians it is turned when the legs would enter what stands in front..."""
+SIT_KNEES = (1.22, 1.6)
+"""... and knee angles tried (the second draws the feet back under the seat)."""
+SIT_INSET = 0.35
+"""Metres from a seat's front edge to where the pelvis sits (less on a shallow seat)."""
+SIT_FRONT = 0.3
+"""Metres in front of a seat's front edge where the agent stands before sitting down..."""
+SIT_ABOVE = 0.18
+"""... and how high above the seated pose the pelvis passes over the front edge."""
+PILLOW_IN = 0.3
+"""Metres from a bed's head end to where the head lies."""
+LIE_NECKS = (0.3, 0.5, 0.7, 0.9)
+"""Neck bends (radians) tried until the head rests above the pillow."""
 
 Standing = Mapping[int, tuple[float, float]]
 """Step index -> (x, z) standing spot chosen by grounding (Unity frame = MuJoCo x, y)."""
@@ -128,6 +151,8 @@ class Timeline:
     attaches: list[Attach] = field(default_factory=list)  # objects taken (gap: hand-box)
     releases: list[Attach] = field(default_factory=list)  # put down (gap: how far it moved)
     interactions: list[Interaction] = field(default_factory=list)
+    rests: list[tuple[int, int]] = field(default_factory=list)
+    """(first, last) frames of each sit or lie: from getting down to the end of its step."""
 
     def __len__(self) -> int:
         return len(self.qpos)
@@ -147,7 +172,7 @@ class Animator:
         self.scene, self.graph, self.shape, self.fps = scene, graph, shape, fps
         self.rng = np.random.default_rng(seed)
         self.ik = ArmIK(scene)
-        self.planner = ReachPlanner(scene.layout, self.ik, shape)
+        self.planner = ReachPlanner(scene.layout, self.ik, shape, Clearance(scene))
         self.step_index = -1
         self.grid = build_grid(scene.layout)
         self.data = mujoco.MjData(scene.model)
@@ -160,6 +185,7 @@ class Animator:
             start = self.grid.point(self.grid.nearest_free(start))
         self.pose = standing_pose(shape, start)
         self.posture = "stand"
+        self._rest_from: int | None = None  # the frame the current step began to sit or lie
         self.reaching: frozenset[str] = frozenset()
         self.timeline = Timeline()
 
@@ -297,7 +323,7 @@ class Animator:
               at_peak=None, during=None, back: bool = True, step: bool = True,
               nodes: tuple[int, ...] = (), hold: float = 0.15,
               grip: np.ndarray | None = None, seed: Mapping[str, float] | None = None,
-              grasp_of: GraspOf | None = None) -> Reached:
+              grasp_of: GraspOf | None = None, acts_on: tuple[int, ...] = ()) -> Reached:
         """Reach `point` with a hand, call `at_peak()`, hold `hold` seconds and come back.
 
         Standing, the agent first steps toward the point until the hand can touch it
@@ -306,7 +332,9 @@ class Animator:
         `nodes`: the objects acted on, recorded as an `Interaction` of the step. `grip`:
         bring the point held at this offset from the hand (a held object's centre) to
         `point` rather than the hand. `seed`: joint angles the arm's IK starts from.
-        `grasp_of`: take hold with the palm as it says (`palm_grasp`), the wrist turning."""
+        `grasp_of`: take hold with the palm as it says (`palm_grasp`), the wrist turning.
+        `acts_on`: objects the hand may enter besides `nodes` (a door's handle)."""
+        self._plan_around(side, nodes + acts_on)
         if self.posture == "stand" and step:
             plan = self.planner.plan(self.pose.xy, side, point, grip, grasp_of)
             self.step_to(plan.pose.xy, point)
@@ -338,6 +366,17 @@ class Animator:
         if nodes:
             self.note_interaction(nodes, side, start, peak)
         return Reached(reached, rest, start, peak)
+
+    def _plan_around(self, side: str, nodes: tuple[int, ...]) -> None:
+        """Tell the reach planner where things are now and what the `side` hand may be
+        inside (what it acts on and holds). Held objects are set aside: they move with
+        the hand the planner is still choosing."""
+        data, props = self.ik.data, self.props
+        if self.scene.model.nmocap:
+            data.mocap_pos[:] = props.mocap
+            for n in props.held.values():
+                data.mocap_pos[self.scene.mocap[n]] = (0.0, 0.0, -50.0)
+        self.planner.hands_in = {side: set(nodes) | {n for n in props.held.values()}}
 
     def note_interaction(self, nodes: tuple[int, ...], side: str, start: int,
                          peak: int) -> None:
@@ -378,24 +417,126 @@ class Animator:
         """World position of a shoulder in the current pose."""
         return self.ik.site(self.pose, f"j:{side}_shoulder")
 
-    def sit(self, seat: Box) -> None:
+    def sit(self, node: int) -> None:
+        """Walk to a seat and sit on it, facing away from it: on the seat's drawn top,
+        as far back as the body clears the backrest (`_seated`)."""
+        seat = self.props.box_of(node)
         self.walk(seat, reach=0.5)
-        inset = np.minimum(seat.half[:2], 0.35)
-        spot = np.clip(self.pose.xy, seat.lo[:2] + inset, seat.hi[:2] - inset)
-        away = self.pose.xy - spot
-        yaw = math.atan2(away[1], away[0]) if np.hypot(*away) > 1e-3 else self.pose.yaw + math.pi
-        top = seat.hi[2]
-        height = SEAT_HEIGHT if top > 0.7 else top
-        self.turn_to(self.pose.xy + np.array([math.cos(yaw), math.sin(yaw)]))
-        self.move_to(sitting(self.shape, spot, yaw, height), 1.0)
+        spot, yaw = self._seat_spot(node, seat)
+        ahead = np.array([math.cos(yaw), math.sin(yaw)])
+        edge = float(abs(ahead @ seat.half[:2]))  # from the spot's axis to the front edge
+        front = spot + ahead * (max(edge - float(abs(ahead @ (spot - seat.center[:2]))), 0.0)
+                                + SIT_FRONT)
+        if self.planner.fits(front):
+            self.step_to(front, front + ahead)
+        else:
+            self.turn_to(self.pose.xy + ahead)
+        seated = self._seated(node, spot, yaw)
+        self._rest_from = len(self.timeline)
+        over = replace(seated, x=float(0.35 * self.pose.x + 0.65 * seated.x),
+                       y=float(0.35 * self.pose.y + 0.65 * seated.y),
+                       z=seated.z + SIT_ABOVE, joints={**seated.joints, "spine_pitch": 0.35})
+        self.move_to(over, 0.6)  # bending over the seat's front edge...
+        self.move_to(seated, 0.5)  # ... then down onto it
         self.posture = "sit"
 
-    def lie(self, bed: Box) -> None:
+    def _seat_spot(self, node: int, seat: Box) -> tuple[np.ndarray, float]:
+        """Where the pelvis goes on a seat and which way the agent faces: the seat's
+        front (`Part.front`: a chair faces its desk, a sofa its TV) `SIT_INSET` in from
+        its front edge, across from where the agent stands; else away from the seat's
+        middle toward the agent."""
+        inset = np.minimum(seat.half[:2], SIT_INSET)
+        spot = np.clip(self.pose.xy, seat.lo[:2] + inset, seat.hi[:2] - inset)
+        part = self.scene.layout.part(node)
+        if part is not None and part.front is not None:
+            axis, sign = part.front
+            spot[axis] = seat.center[axis] + sign * (seat.half[axis] - inset[axis])
+            yaw = (0.0 if sign > 0 else math.pi) if axis == 0 else math.copysign(math.pi / 2,
+                                                                                 sign)
+            return spot, yaw
+        away = self.pose.xy - spot
+        yaw = math.atan2(away[1], away[0]) if np.hypot(*away) > 1e-3 else self.pose.yaw + math.pi
+        return spot, yaw
+
+    def lie(self, node: int) -> None:
+        """Walk to a bed and lie on it on the back, the head on the pillow end (away from
+        its foot, the side facing the room) resting above what lies there."""
+        bed = self.props.box_of(node)
         self.walk(bed, reach=0.5)
-        along = 0 if bed.half[0] >= bed.half[1] else 1
-        yaw = 0.0 if along == 0 else math.pi / 2
-        self.move_to(lying(self.shape, bed.center[:2], yaw, bed.hi[2]), 1.4)
+        part = self.scene.layout.part(node)
+        axis, sign = part.front if part is not None and part.front else (
+            0 if bed.half[0] >= bed.half[1] else 1, 1.0)
+        yaw = (0.0 if sign > 0 else math.pi) if axis == 0 else (
+            math.pi / 2 if sign > 0 else -math.pi / 2)
+        self._rest_from = len(self.timeline)
+        self.move_to(self._lying_on(node, bed, axis, sign, yaw), 1.4)
         self.posture = "lie"
+
+    # -- resting on furniture ------------------------------------------------------------
+    def _top_at(self, node: int, xy: np.ndarray, below: float) -> float | None:
+        """The highest top lower than `below` (m) of the node's drawn shapes over `xy`."""
+        part = self.scene.layout.part(node)
+        if part is None:
+            return None
+        tops = [float(sh.center[2] + sh.half[2]) for sh in part.shapes
+                if np.all(np.abs(xy - sh.center[:2]) <= sh.half[:2])
+                and sh.center[2] + sh.half[2] < below]
+        return max(tops, default=None)
+
+    def _clash(self, pose: Pose) -> float:
+        """How deep (m) the body in `pose` passes into anything (objects where they are)."""
+        self._plan_around("r", ())
+        self.planner.hands_in = {}
+        return self.planner.inside(pose)
+
+    def _rested(self, pose: Pose, top: float, parts: tuple[str, ...]) -> Pose:
+        """`pose` raised or lowered so the lowest point of `parts` lies on `top`."""
+        write_qpos(self.ik.data.qpos, pose, self.scene.joint_qpos)
+        mujoco.mj_kinematics(self.scene.model, self.ik.data)
+        low = self.planner.clearance.lowest(self.ik.data, parts) if self.planner.clearance \
+            else pose.z
+        return replace(pose, z=pose.z + top + REST_GAP - low)
+
+    def _seated(self, node: int, spot: np.ndarray, yaw: float) -> Pose:
+        """Sitting on a seat near `spot` facing `yaw`: the pelvis and thighs on the seat's
+        top, moved toward its front edge and turned a little until the body clears the
+        backrest, arms and whatever stands in front (the least deep pose otherwise)."""
+        ahead = np.array([math.cos(yaw), math.sin(yaw)])
+        best: tuple[float, Pose] | None = None
+        for shift, turn, knee in itertools.product(SIT_SHIFTS, SIT_TURNS, SIT_KNEES):
+            xy = spot + shift * ahead
+            top = self._top_at(node, xy, SEAT_HEIGHT + 0.35) or SEAT_HEIGHT
+            pose = sitting(self.shape, xy, yaw + turn, top).with_joints(
+                l_knee=knee, r_knee=knee)
+            pose = self._rested(pose, top, ("agent", "l_thigh", "r_thigh"))
+            depth = self._clash(pose)
+            if best is None or depth < best[0] - 1e-3:
+                best = (depth, pose)
+            if depth <= REST_CLEAR:
+                break
+        assert best is not None
+        return best[1]
+
+    def _lying_on(self, node: int, bed: Box, axis: int, sign: float, yaw: float) -> Pose:
+        """Lying on the back along the bed, the head `PILLOW_IN` from its head end, the
+        back on the mattress, the neck bent until the head rests above the pillow."""
+        base = lying(self.shape, bed.center[:2], yaw, bed.hi[2])
+        head = self.ik.site(base, "j:head")[:2] - base.xy
+        end = bed.center[:2].copy()
+        end[axis] -= sign * (bed.half[axis] - PILLOW_IN)  # where the head goes
+        xy = end - head
+        top = self._top_at(node, xy, bed.hi[2] + 0.01) or float(bed.hi[2])
+        best: tuple[float, Pose] | None = None
+        for neck in LIE_NECKS:
+            pose = replace(base, x=float(xy[0]), y=float(xy[1])).with_joints(neck_pitch=neck)
+            pose = self._rested(pose, top, ("agent", "torso"))
+            depth = self._clash(pose)
+            if best is None or depth < best[0] - 1e-3:
+                best = (depth, pose)
+            if depth <= REST_CLEAR:
+                break
+        assert best is not None
+        return best[1]
 
     def look(self, target: np.ndarray, point: bool = False) -> None:
         """Turn (when standing) and tilt the head toward a point; point at it if asked."""
@@ -454,8 +595,11 @@ class Animator:
             spot = self.standing.get(i)
             self.step_index = i
             self.spot = None if spot is None else np.array(spot, float)
+            self._rest_from = None
             animation_for(rec.step.action.key)(self, rec)
             self.timeline.step_frames.append((first, len(self.timeline) - 1))
+            if self._rest_from is not None:
+                self.timeline.rests.append((self._rest_from, len(self.timeline) - 1))
             self.timeline.focus.append(rec.nodes[-1] if rec.nodes else -1)
         self.spot = None
         self.hold(0.3)
@@ -537,7 +681,7 @@ def sit(anim: Animator, rec: StepRecord) -> None:
     target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
-    anim.sit(anim.props.box_of(target))
+    anim.sit(target)
 
 
 @animation("lie")
@@ -545,7 +689,7 @@ def lie(anim: Animator, rec: StepRecord) -> None:
     target = _target(anim, rec)
     if target is None:
         return rest(anim, rec)
-    anim.lie(anim.props.box_of(target))
+    anim.lie(target)
 
 
 @animation("rest")
@@ -695,9 +839,13 @@ def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> No
     step's state changes (switching on...) happen when it arrives."""
     props = anim.props
     side = props.free_side()
-    point = surface_point(props.box_of(node), anim.shoulder(side))
-    anim.reach(side, point, 0.6, at_peak=lambda: props.apply_states(states),
-               nodes=nodes or (node,))
+    box = props.box_of(node)
+
+    def grasp_of(xy: np.ndarray) -> list[Grasp]:
+        return touch_grasps(box, xy)
+    anim.reach(side, grasp_of(anim.pose.xy)[0].point, 0.6,
+               at_peak=lambda: props.apply_states(states), nodes=nodes or (node,),
+               grasp_of=grasp_of)
 
 
 def _grab(anim: Animator, ch: Changes) -> bool:
@@ -773,7 +921,7 @@ def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
         spot = _beside_swing(anim, target, side, handle, start, goal)
         if spot is not None:
             anim.step_to(spot, handle)
-    done = anim.reach(side, handle, 0.5, back=False, hold=0.1)
+    done = anim.reach(side, handle, 0.5, back=False, hold=0.1, acts_on=(target,))
     pose, holding = done.pose, True
     n = max(1, round(SWING_SECONDS * anim.fps))
     for i in range(1, n + 1):

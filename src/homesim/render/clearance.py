@@ -123,6 +123,15 @@ class Clearance:
                     worst[part] = Penetration(part, node, float(depth[k]))
         return sorted(worst.values(), key=lambda p: -p.depth)
 
+    def lowest(self, data: mujoco.MjData, parts: Collection[str]) -> float:
+        """The lowest height (m) of the surface points of some body parts, as posed."""
+        low = np.inf
+        for g, pts, part in zip(self.agent_geoms, self.points, self.part_of, strict=True):
+            if part in parts:
+                world = data.geom_xpos[g] + pts @ data.geom_xmat[g].reshape(3, 3).T
+                low = min(low, float(world[:, 2].min()))
+        return low
+
     def _allowed(self, part: str, hands_in: dict[str, Collection[int]]) -> Collection[int]:
         for side, parts in self.hand_parts.items():
             if part in parts:

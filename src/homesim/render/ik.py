@@ -30,6 +30,9 @@ ORIENT_WEIGHT = (0.25, 0.12)
 position error in a grasp."""
 ORIENT_TOLERANCE = 0.1
 """Radians: a grasp's orientation is good enough below this (position first)."""
+MAX_LEAN = 0.9
+"""Radians: the spine bends forward at most this much in a reach (about 50 degrees; lower
+points are reached crouching)."""
 
 
 @dataclass(frozen=True)
@@ -75,6 +78,8 @@ class ArmIK:
                      for name in scene.joint_qpos}
         self._range = {name: tuple(m.jnt_range[m.joint(f"a:{name}").id])
                        for name in scene.joint_qpos}
+        lo, hi = self._range["spine_pitch"]
+        self._range["spine_pitch"] = (lo, min(hi, MAX_LEAN))
         self._jacp = np.zeros((3, m.nv))
 
     def hand(self, pose: Pose, side: str) -> np.ndarray:

@@ -31,6 +31,9 @@ LEAF_THICKNESS = 0.025
 SKIP_CATEGORIES = frozenset({"Rooms", "Characters"})
 SEAT_HEIGHT = 0.45
 """Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
+TABLES = ("desk", "kitchentable", "table", "coffeetable", "diningtable", "kitchencounter")
+AT_TABLE = 0.5
+"""Metres: a seat this near a table, desk or counter faces it."""
 
 
 @dataclass(frozen=True)
@@ -90,6 +93,8 @@ class Part:
     screen: Box | None = None  # a thin emissive panel: tv, computer
     lamp: bool = False
     is_on: bool = False
+    front: tuple[int, float] | None = None  # the side facing the room (axis, sign)
+    levels: list[float] = field(default_factory=list)  # inside: tops of floor and shelves
 
 
 @dataclass
@@ -332,9 +337,34 @@ class _Home:
         return self.rooms[room].center if room in self.rooms else fallback
 
     def front(self, node: Node, box: Box) -> tuple[int, float]:
-        """The side of a node's box that faces its room."""
+        """The side of a node's box that faces its room; a seat faces the screen it
+        FACES, else a table, desk or counter it stands at (within `AT_TABLE`)."""
         room = self.graph.room_of(node.id)
+        if SITTABLE in node.properties and node.class_name != "bed":
+            faced = self._faced(node, box, room)
+            if faced is not None:
+                return _front_axis(box, faced)
         return _front_axis(box, self.toward(room, box.center + np.array([0.0, 1.0, 0.0])))
+
+    def _faced(self, node: Node, box: Box, room: int | None) -> np.ndarray | None:
+        """The centre of what a seat faces: a screen it FACES, else the nearest table."""
+        graph = self.graph
+        for t in sorted(graph.targets(node.id, "FACING")):
+            if render_kind(graph.node(t).class_name) == "screen" and graph.room_of(t) == room:
+                b = to_mujoco(graph.node(t))
+                if b is not None:
+                    return b.center
+        near: tuple[float, np.ndarray] | None = None
+        for cls in TABLES:
+            for t in graph.nodes_of_class(cls):
+                b = to_mujoco(t)
+                if b is None or graph.room_of(t.id) != room:
+                    continue
+                gap = float(np.linalg.norm(np.maximum(np.abs(b.center[:2] - box.center[:2])
+                                                      - b.half[:2] - box.half[:2], 0.0)))
+                if gap <= AT_TABLE and (near is None or gap < near[0]):
+                    near = (gap, b.center)
+        return None if near is None else near[1]
 
     def model(self, node: Node, box: Box, front: tuple[int, float] | None = None
               ) -> list[Shape]:
@@ -476,6 +506,9 @@ def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
     part.boxes, part.hinge = _hollow(box, axis, sign)
     role = _CARCASS_ROLE.get(_family(node.class_name), "wood")
     part.shapes = _slab_shapes(part.boxes, role)
+    shelves, part.levels = _shelves(part.boxes, axis)
+    part.boxes += shelves
+    part.shapes += _slab_shapes(shelves, "glass" if role == "white" else role)
     h = part.hinge
     h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), role),
                 _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
@@ -486,6 +519,34 @@ def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
                        if s.center[2] - s.half[2] > box.center[2] else s for s in part.shapes]
         part.shapes += _burners(box)
     return True
+
+
+SHELF_GAP = 0.36
+"""Metres between the shelves inside a cabinet, fridge or closet (about)."""
+SHELF_THICKNESS = 0.015
+
+
+def _shelves(slabs: list[Box], front_axis: int) -> tuple[list[Box], list[float]]:
+    """Shelves inside a hollow carcass (its five slabs): boards spanning the inside every
+    `SHELF_GAP` or so, and the heights things rest at inside (the carcass floor's top,
+    each shelf's top)."""
+    lo = np.min([b.lo for b in slabs], axis=0)
+    hi = np.max([b.hi for b in slabs], axis=0)
+    floor = min(slabs, key=lambda b: b.center[2])  # the bottom slab
+    ceil = max(slabs, key=lambda b: b.center[2])
+    inner_lo, inner_hi = floor.hi[2], ceil.lo[2]
+    n = int((inner_hi - inner_lo) // SHELF_GAP)
+    if n < 2:
+        return [], [float(inner_lo)]
+    t = float(min(b.half[a] for b in slabs for a in range(3)) * 2)
+    boards, levels = [], [float(inner_lo)]
+    for k in range(1, n):
+        z = inner_lo + k * (inner_hi - inner_lo) / n
+        blo, bhi = lo + t, hi - t
+        blo[2], bhi[2] = z - SHELF_THICKNESS, z
+        boards.append(Box.from_bounds(blo, bhi))
+        levels.append(float(z))
+    return boards, levels
 
 
 def _burners(box: Box) -> list[Shape]:
@@ -508,7 +569,7 @@ def _enclosure(part: Part, node: Node, box: Box, home: _Home) -> bool:
 
 
 def _seat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    front = home.front(node, box)
+    part.front = front = home.front(node, box)
     part.boxes = _seat(box, *front)
     part.shapes = home.model(node, box, front)
     return True
@@ -528,6 +589,7 @@ def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     part.boxes.append(_flat(box))
     kind = render_kind(node.class_name)
     front = _facing_seat(node, box, home) if kind == "screen" else home.front(node, box)
+    part.front = front
     part.shapes = home.model(node, _flat(box), front)
     if kind == "screen":
         screen = next((s for s in part.shapes if s.role == "screen"), None)

@@ -108,6 +108,40 @@ def plate_on_wall(k: Kit) -> None:
         k.box([-k.w * 0.3, k.d * 0.3, -k.h * 0.3], [k.w * 0.3, k.d, k.h * 0.3], "black")
 
 
+@builder(variants=2)
+def speaker(k: Kit) -> None:
+    """A loudspeaker: a dark cabinet with a woofer and a tweeter on its front (0), or a
+    round grille (1)."""
+    k.box([-k.w, -k.d, k.bottom], [k.w, k.d - 0.006, k.h], "black")
+    r = min(k.w * 0.75, k.h * 0.3)
+    if k.v == 1:
+        k.rod([0, k.d - 0.003, 0], 1, min(k.w, k.h) * 0.85, 0.003, "fabric")
+        return
+    k.rod([0, k.d - 0.003, -k.h * 0.35], 1, r, 0.003, "metal")
+    k.rod([0, k.d - 0.003, k.h * 0.45], 1, r * 0.4, 0.003, "metal")
+
+
+@builder()
+def amplifier(k: Kit) -> None:
+    """An amplifier: a flat dark box, a display and two knobs on its front."""
+    k.box([-k.w, -k.d, k.bottom], [k.w, k.d - 0.006, k.h], "black")
+    k.box([-k.w * 0.3, k.d - 0.006, 0], [k.w * 0.3, k.d, k.h * 0.5], "screen")
+    for s in (-1, 1):
+        k.rod([s * k.w * 0.7, k.d - 0.003, 0], 1, min(k.h * 0.35, k.w * 0.12), 0.003, "chrome")
+
+
+@builder()
+def ceilingfan(k: Kit) -> None:
+    """A ceiling fan: a rod from the ceiling, a motor hub and four blades."""
+    h = k.h
+    hub = k.h - min(0.35, 2 * h * 0.7)
+    k.cyl(0, 0, 0.015, hub, k.h, "metal")
+    k.cyl(0, 0, min(k.w, k.d) * 0.12, hub - 0.06, hub + 0.04, "metal")
+    t = 0.006
+    k.box([-k.w, -0.06, hub - t], [k.w, 0.06, hub + t], "wood")
+    k.box([-0.06, -k.d, hub - t], [0.06, k.d, hub + t], "wood")
+
+
 @builder()
 def radio(k: Kit) -> None:
     k.box([-k.w, -k.d, k.bottom], [k.w, k.d - 0.01, k.h], "body")

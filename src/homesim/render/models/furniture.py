@@ -7,9 +7,42 @@ import numpy as np
 
 from homesim.render.models.kit import Kit, Shape, builder
 
+L_SOFA = 0.8
+"""Half metres: a sofa box at least 1.6 m deep as well as wide is an L-shaped sofa."""
+
 
 @builder(variants=3)
 def sofa(k: Kit) -> None:
+    """A sofa: legs, base, seat cushions, backrest, arms (variants 1, 2) and back pillows
+    (variants 0, 2); a box deep and wide (`L_SOFA`) is an L: a straight sofa along the
+    back and a chaise along one end (the end by the variant), the corner inside free."""
+    if k.w >= L_SOFA and k.d >= L_SOFA:
+        _l_sofa(k)
+        return
+    _straight_sofa(k)
+
+
+def _l_sofa(k: Kit) -> None:
+    depth = min(0.95, k.d * 0.6)  # of each wing
+    back = Kit(k.w, depth / 2, k.h, k.v)
+    _straight_sofa(back)
+    k.add(back, np.array([0.0, -k.d + depth / 2, 0.0]))
+    end = 1.0 if k.v % 2 else -1.0
+    wing_len = k.d - depth / 2
+    chaise = Kit(depth / 2, wing_len, k.h, k.v)  # a seat without back, toward the front
+    _chaise(chaise)
+    k.add(chaise, np.array([end * (k.w - depth / 2), k.d - wing_len, 0.0]))
+
+
+def _chaise(k: Kit) -> None:
+    b = k.bottom
+    seat = b + min(0.45, 1.2 * k.h)
+    k.legs(b + 0.06, 0.025, 0.04, "darkwood", square=True)
+    k.box([-k.w, -k.d, b + 0.06], [k.w, k.d, seat - 0.12], "fabric")
+    k.box([-k.w + 0.01, -k.d, seat - 0.12], [k.w - 0.01, k.d - 0.01, seat], "cushion")
+
+
+def _straight_sofa(k: Kit) -> None:
     w, d, b = k.w, k.d, k.bottom
     seat = b + min(0.45, 1.2 * k.h)
     leg = 0.06 if k.v != 2 else 0.12

@@ -39,14 +39,13 @@ def wineglass(k: Kit) -> None:
 
 @builder(variants=3)
 def plate(k: Kit) -> None:
-    """A round plate (0), one with a coloured rim (1), or a square one (2)."""
+    """A round plate, flat on the table whatever its box's height: plain (0), with a
+    coloured rim (1), or a deep one with a raised rim (2)."""
     r = min(k.w, k.d)
-    if k.v == 2:
-        k.box([-r, -r, k.bottom], [r, r, k.h], "white")
-        return
-    k.cyl(0, 0, r * 0.7 if k.v == 1 else r, k.bottom, k.h, "white")
-    if k.v == 1:
-        k.cyl(0, 0, r, k.h * 0.2, k.h, "body")
+    top = k.bottom + min(2 * k.h, 0.025 if k.v != 2 else 0.04)
+    k.cyl(0, 0, r * 0.7 if k.v else r, k.bottom, top - 0.006 if k.v else top, "white")
+    if k.v:
+        k.cyl(0, 0, r, k.bottom + 0.006, top, "body" if k.v == 1 else "white")
 
 
 @builder(variants=3)
@@ -222,6 +221,24 @@ def slab(k: Kit) -> None:
 
 
 @builder(variants=3)
+def pillow(k: Kit) -> None:
+    """A pillow or cushion lying flat at the bottom of its box (however its box stands):
+    a soft slab with a seam (0), a plain one (1), or a round cushion (2)."""
+    flat = min(k.h, 0.07, 0.3 * max(k.w, k.d))
+    w = max(k.w, k.d) if k.h > flat * 2 and k.w < k.h else k.w
+    w = min(w, k.w)
+    z = k.bottom + flat
+    if k.v == 2:
+        r = min(k.w, k.d)
+        k.ell([0, 0, z], [r, r, flat], "cushion")
+        return
+    k.ell([0, 0, z], [w, k.d, flat], "cushion")
+    if k.v == 0:
+        k.box([-w * 0.8, -k.d * 0.02, z - flat * 0.1], [w * 0.8, k.d * 0.02, z + flat * 0.1],
+              "fabric")
+
+
+@builder(variants=3)
 def rounded(k: Kit) -> None:
     """Soft things (pillows, sponges, buns): an ellipsoid (0), a cushion with a seam (1),
     or a roll (2)."""
@@ -277,8 +294,51 @@ def slippers(k: Kit) -> None:
 
 @builder()
 def toy(k: Kit) -> None:
-    k.box([-k.w, -k.d, k.bottom], [k.w * 0.2, k.d * 0.2, k.h * 0.2], "body")
-    k.ell([k.w * 0.5, k.d * 0.5, k.h * 0.5], [k.w * 0.5, k.d * 0.5, k.h * 0.5], "accent")
+    """Toy blocks: a stack of three coloured cubes and a ball."""
+    s = min(k.w, k.d, k.h) * 0.5
+    b = k.bottom
+    for i, (x, role) in enumerate(((-k.w + s, "body"), (-k.w + 3.1 * s, "accent"))):
+        k.box([x - s, -s, b], [x + s, s, b + 2 * s], role)
+        if i == 0:
+            k.box([x - s * 0.9, -s * 0.9, b + 2 * s], [x + s * 0.9, s * 0.9, b + 3.8 * s],
+                  "accent")
+    r = min(s, k.w * 0.3)
+    k.ell([k.w - r, k.d - r, b + r], [r, r, r], "white")
+
+
+@builder()
+def teddybear(k: Kit) -> None:
+    """A sitting teddy bear: body, head with ears and a snout, arms and legs."""
+    w, d, h, b = k.w, k.d, k.h, k.bottom
+    k.ell([0, -d * 0.1, b + h * 0.55], [w * 0.55, d * 0.5, h * 0.38], "fabric")  # body
+    head = b + h * 1.45
+    k.ell([0, 0, head], [w * 0.42, d * 0.42, h * 0.3], "fabric")
+    k.ell([0, d * 0.35, head - h * 0.06], [w * 0.16, d * 0.14, h * 0.1], "white")  # snout
+    for s in (-1, 1):
+        k.ell([s * w * 0.32, 0, head + h * 0.25], [w * 0.14, d * 0.08, h * 0.1], "fabric")
+        k.ell([s * w * 0.55, d * 0.1, b + h * 0.7], [w * 0.2, d * 0.2, h * 0.25], "fabric")
+        k.ell([s * w * 0.35, d * 0.45, b + h * 0.18], [w * 0.22, d * 0.4, h * 0.18], "fabric")
+
+
+@builder()
+def ball(k: Kit) -> None:
+    """A ball with a band (a sports ball)."""
+    r = min(k.w, k.d, k.h)
+    k.ell([0, 0, k.bottom + r], [r, r, r], "body")
+    k.ell([0, 0, k.bottom + r], [r * 1.01, r * 0.15, r * 1.01], "white")
+
+
+@builder()
+def spectacles(k: Kit) -> None:
+    """Glasses lying folded: two lenses in a dark frame, a bridge, the folded temples."""
+    w, d, b = k.w, k.d, k.bottom
+    r = min(w * 0.45, d * 0.9, 0.03)
+    top = b + min(2 * k.h, 0.012)
+    for s in (-1, 1):
+        k.cyl(s * w * 0.5, 0, r, b + 0.002, top - 0.002, "glass")
+        k.cyl(s * w * 0.5, 0, r * 1.12, b, b + 0.003, "black")
+    k.box([-w * 0.12, -0.003, top - 0.006], [w * 0.12, 0.003, top], "black")
+    k.box([-w * 0.95, -d, b], [w * 0.95, -d + 0.004, top], "black")
 
 
 @builder(variants=3)
