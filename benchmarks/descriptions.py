@@ -4,7 +4,7 @@
   figures were made with;
 - ``people``: the paraphrase grammar (`homesim.synth.describe`), `homesim synth`'s default;
   the same programs as ``templates`` (same seed);
-- ``real``: the 518 real descriptions (`homesim.knowledge.realdata`; needs
+- ``real``: the 518 real descriptions (`homesim.knowledge.datasets`; needs
   ``homesim data fetch``).
 
 The synthetic sets have as many descriptions as the real one (distinct-n falls as a set
@@ -29,8 +29,8 @@ REAL_COUNT = 518
 def real_descriptions() -> list[str]:
     """The real programs' descriptions, or [] without the data set."""
     try:
+        from homesim.knowledge.datasets import real_programs
         from homesim.knowledge.fetch import dataset_dir
-        from homesim.knowledge.realdata import real_programs
 
         return [rp.description for rp in real_programs(dataset_dir())]
     except HomesimError:

@@ -22,8 +22,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from homesim.knowledge.datasets import real_programs
 from homesim.knowledge.fetch import dataset_dir, verify
-from homesim.knowledge.realdata import real_programs
 from homesim.sim import execute
 from homesim.sim.compare import ASPECTS, aspect
 from reference import run_reference

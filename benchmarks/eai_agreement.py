@@ -78,7 +78,7 @@ def perturb(pairs: list[tuple[str, list[str]]], how: str, context: TaskContext,
 
 def build_plans(contexts: dict[str, TaskContext], sample: int, seed: int) -> list[dict]:
     """Gold plans for all, perturbed plans for `sample` programs (seeded)."""
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     programs = {p.id: p.program for p in real_programs()}
     plans = []

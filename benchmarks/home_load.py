@@ -166,8 +166,8 @@ def _ref_edge(raw: Any, nodes: Mapping[int, Node], where: str) -> tuple[int, str
 def dataset_graphs() -> list[dict[str, Any]]:
     """The stored initial and final graphs of the real programs, or [] without the data."""
     try:
+        from homesim.knowledge.datasets import real_programs
         from homesim.knowledge.fetch import dataset_dir
-        from homesim.knowledge.realdata import real_programs
 
         return [d for rp in real_programs(dataset_dir()) for d in rp.graph_dicts()]
     except HomesimError:

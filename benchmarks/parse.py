@@ -23,8 +23,9 @@ from collections.abc import Callable
 from homesim import limits
 from homesim.errors import ArityError, ProgramError, UnknownActionError
 from homesim.program.actions import lookup_action, suggest_action
-from homesim.program.model import ObjectRef, Step, normalize_name
+from homesim.program.model import ObjectRef, Step
 from homesim.program.parse import parse_program, parse_step
+from homesim.program.syntax import normalize_name
 
 _ACTION = re.compile(r"\s*\[([^\[\]]*)\]")
 _NAME = re.compile(r"\s*<([^<>]*)>")

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.knowledge.realdata import real_programs
+from homesim.knowledge.datasets import real_programs
 from homesim.program.model import Program
 
 

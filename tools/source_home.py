@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from collections import Counter, defaultdict
 
-from homesim.ground.kbtypes import class_names_for
 from homesim.knowledge import load_kb, real_programs
+from homesim.knowledge.kbtypes import class_names_for
 from homesim.world import home_names, load_home
 
 

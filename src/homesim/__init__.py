@@ -18,11 +18,17 @@ from homesim.errors import (
     UnknownActionError,
 )
 from homesim.ground import Run, prepare, prepare_and_ground, run_program, unground
+from homesim.knowledge.objects import load_kb as _load_kb
 from homesim.program import Bindings, ObjectRef, Program, Step, parse_program
 from homesim.sim import ExecutionResult, execute
+from homesim.version import __version__ as __version__
 from homesim.world import EnvironmentGraph, load_home
+from homesim.world.classes import use_default_kb as _use_default_kb
 
-__version__ = "0.1.0"
+# Homes and the simulator ask the object knowledge base through a protocol of their own
+# layer (homesim.world.classes); here, at the top, the package's knowledge base is plugged
+# in. Python runs this file before any homesim.* module, so every caller finds it.
+_use_default_kb(_load_kb)
 
 __all__ = [
     "ArityError",

@@ -65,7 +65,7 @@ def test_eai_tasks_in_the_env_agree_with_plan_scoring(real_data):
     exactly when `homesim eval plans` says the program as a plan succeeds."""
     from homesim.goals.contexts import load_contexts
     from homesim.goals.plans import gold_plan, score_plan
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     ids = ["27_2", "1003_2", "115_2", "407_1"]
     contexts = load_contexts(ids)

@@ -30,3 +30,29 @@ def test_bad_options_are_one_line(tmp_path, capsys):
     assert "unknown modality 'normals'" in capsys.readouterr().err
     assert main(["dataset", "verify", str(tmp_path)]) == 2
     assert "not a homesim data set" in capsys.readouterr().err
+
+
+def test_a_plan_from_the_command_line_verifies_part_by_part(tmp_path, capsys):
+    import json
+
+    from homesim.render.gl import gl_available
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    program = tmp_path / "p.txt"
+    program.write_text("Watch TV\nI turn on the TV.\n\n[Walk] <television> (1)\n")
+    plan = tmp_path / "plan.json"
+    plan.write_text(json.dumps({"parts": [
+        {"name": "train", "role": "train", "homes": ["scene1"], "share": 0.5},
+        {"name": "test", "role": "test", "homes": ["scene2"], "agents": ["male2"],
+         "share": 0.5}], "rows": [{"row": "all", "parts": ["test"]}]}))
+    out = tmp_path / "data"
+    args = ["dataset", "generate", "--out", str(out), "--programs", str(program), "--n", "2",
+            "--width", "32", "--height", "24", "--fps", "2", "--plan", str(plan),
+            "--workers", "0"]
+    assert main([*args, "--agents", "male1"]) == 2
+    assert "leave out --homes and --agents" in capsys.readouterr().err
+    assert main(args) == 0
+    assert capsys.readouterr().out.count("ok: 1 episodes (0 failed)") == 2
+    assert main(["dataset", "verify", str(out)]) == 0
+    assert capsys.readouterr().out.count("checksums match") == 2

@@ -1,7 +1,7 @@
 import random
 
 from homesim.dataset.randomize import movable_objects, move_character, move_objects
-from homesim.ground.kbtypes import default_kb
+from homesim.knowledge.kbtypes import default_kb
 from homesim.world.floor import FloorModel
 from homesim.world.homes import load_home
 from homesim.world.vocab import CLOSE, INSIDE

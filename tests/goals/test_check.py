@@ -64,7 +64,7 @@ def test_action_goals_count_in_order(trajectory):
 def test_every_gold_program_meets_its_goals(real_data):
     """The annotated programs themselves satisfy their goal sets and formulas."""
     from homesim.goals.eai import load_eai_goals
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     goals = load_eai_goals(real_data)
     programs = {p.id: p for p in real_programs(real_data)}

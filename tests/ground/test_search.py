@@ -5,11 +5,11 @@ import pytest
 
 from homesim.errors import GroundingError
 from homesim.ground import ground, prepare, prepare_and_ground, unground
-from homesim.ground.standing import FloorPlan
 from homesim.program import parse_program
 from homesim.sim import execute
 from homesim.world import load_home
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.standing import FloorPlan
 from tests.conftest import tiny_home_dict
 
 WATCH = ("[Walk] <television> (1)\n[SwitchOn] <television> (1)\n[Walk] <couch> (1)\n"
@@ -223,7 +223,7 @@ def test_nearest_point_is_the_exact_minimum_of_square_distance():
     import random
 
     from homesim.ground.search import _Points
-    from homesim.ground.standing import square_distance
+    from homesim.world.standing import square_distance
 
     rng = random.Random(0)
     for _ in range(2000):

@@ -89,7 +89,7 @@ def test_unreadable_files_are_data_errors(tmp_path):
 
 
 def test_real_stored_graphs_read_alike(real_data):
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     items = real_programs()[::60]
     reader = GraphPairReader()

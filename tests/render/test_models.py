@@ -14,7 +14,7 @@ from homesim.render.models import (
     model_name,
     variant_of,
 )
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 from homesim.world.homes import load_home
 
 HOMES = ["scene1", "scene2", "scene3", "scene4", "scene5"]
@@ -144,7 +144,7 @@ def test_screens_and_lamps_come_from_their_models():
 
 
 def test_every_model_the_class_table_names_is_registered():
-    from homesim.world.classes import class_table
+    from homesim.world.class_table import class_table
 
     named = {row.model for row in class_table().values() if row.model}
     assert sorted(named - set(BUILDERS)) == []

@@ -7,7 +7,7 @@ FACING agreement are measured too (docs/simulator.md explains where CLOSE differ
 
 import pytest
 
-from homesim.knowledge.realdata import real_programs
+from homesim.knowledge.datasets import real_programs
 from homesim.sim import execute
 from homesim.sim.compare import CORE_ASPECTS, compare_graphs
 

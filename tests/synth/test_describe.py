@@ -13,7 +13,7 @@ from homesim.synth.describe import Thing, clauses, commute, describe, names_for
 from homesim.synth.phrasebook import EXTRAS, LEADS, PHRASINGS
 from homesim.synth.textstats import text_stats
 from homesim.world import load_home
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 from homesim.world.vocab import HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 OBVIOUS = {"WALK", "RUN", "FIND", "STANDUP"}

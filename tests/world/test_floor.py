@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from homesim.ground.standing import FloorPlan
 from homesim.world.floor import AGENT_SIZE, FloorModel, doorways
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.standing import FloorPlan
 
 
 def _box(x0, z0, x1, z1, y0=0.0, y1=1.0):

@@ -8,8 +8,9 @@ import weakref
 import pytest
 
 from homesim.errors import HomesimError
-from homesim.ground import prepare_and_ground, standing, unground
+from homesim.ground import prepare_and_ground, unground
 from homesim.sim import execute
+from homesim.world import standing
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_builtin, load_home
 from homesim.world.vocab import CLOSE
@@ -45,7 +46,7 @@ def _run(home: EnvironmentGraph, program, seed: int) -> tuple:
 
 @pytest.fixture(scope="module")
 def programs(real_data):
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     return [unground(rp.program) for rp in real_programs(real_data)[::60]]
 

@@ -34,7 +34,7 @@ from gymnasium import spaces
 from homesim.agents.goal import Goal, StateGoal, TraceGoal
 from homesim.agents.observation import CHARSET, MAX_TEXT, observe
 from homesim.errors import HomesimError
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.model import Step
 from homesim.sim.execute import StepRecord, run_step
 from homesim.sim.state import SimState

@@ -13,6 +13,7 @@ from rich.progress import (
     Progress,
     ProgressColumn,
     Task,
+    TaskID,
     TextColumn,
     TimeRemainingColumn,
 )
@@ -48,7 +49,7 @@ def generate(
                                       "a run with the same options).")],
     programs: Annotated[str, typer.Option(
         help="'synth' (the grammar) or a program file, folder or JSONL data set.")] = "synth",
-    n: Annotated[int, typer.Option(help="Episodes.")] = 200,
+    n: Annotated[int, typer.Option(help="Episodes (with --plan: of all parts).")] = 200,
     seed: Annotated[int, typer.Option(help="Seed of every random choice.")] = 0,
     width: Annotated[int, typer.Option(help="Image width (even).")] = 320,
     height: Annotated[int, typer.Option(help="Image height (even).")] = 240,
@@ -58,7 +59,13 @@ def generate(
     gt_stride: Annotated[int, typer.Option(
         help="Keep depth, class, instance and flow every k-th frame.")] = 1,
     homes: Annotated[str | None, typer.Option(
-        help="Homes to draw from, comma separated (default: scene1..5, gen-0..4).")] = None,
+        help="Homes to draw from, comma separated: built-in names, gen-N or graph files "
+             "(.json, .json.gz); default scene1..5, gen-0..4.")] = None,
+    agents: Annotated[str | None, typer.Option(
+        help="Agents to draw from, comma separated (default: all four).")] = None,
+    plan: Annotated[str | None, typer.Option(
+        help="Make a plan's parts (train, val, tests; 'paper' or a plan file) in "
+             "OUT/<part>, each with its own homes, agents and share of --n.")] = None,
     shard_size: Annotated[int, typer.Option(help="Episodes per shard.")] = 8,
     workers: Annotated[int, typer.Option(
         help="Local Ray workers (CPUs); 0 runs in this process without Ray.")] = 2,
@@ -70,34 +77,73 @@ def generate(
 
     Killed and run again with the same options, it continues and gives the same bytes as
     a run that never stopped. An episode that fails is recorded with its reason."""
-    from homesim.dataset import DatasetConfig, generate_dataset
-    from homesim.dataset.spec import DEFAULT_HOMES
+    from homesim.dataset import DatasetConfig
+    from homesim.dataset.spec import AGENT_NAMES, DEFAULT_HOMES
 
+    if plan is not None and (homes or agents):
+        raise HomesimError("--plan gives each part its homes and agents: leave out --homes "
+                           "and --agents")
     config = DatasetConfig(programs=programs, n=n, seed=seed, width=width, height=height,
                            fps=fps, modalities=_split(modalities), gt_stride=gt_stride,
                            homes=_split(homes) if homes else DEFAULT_HOMES,
+                           agents=_split(agents) if agents else AGENT_NAMES,
                            shard_size=shard_size)
     t0 = time.perf_counter()
-    bar = Progress(TextColumn("episodes"), BarColumn(), MofNCompleteColumn(), _Rate(t0),
-                   TextColumn("{task.fields[failed]} failed"), TimeRemainingColumn(),
-                   console=console)
-    with bar:
-        task = bar.add_task("episodes", total=n, made=0, failed=0)
+    if plan is None:
+        summaries = {"": _generate_one(config, out, workers, ray_address, t0)}
+    else:
+        summaries = _generate_plan(plan, config, out, workers, ray_address, t0)
+    seconds = time.perf_counter() - t0
+    for part, summary in summaries.items():
+        console.print(
+            f"[green]ok[/]: {summary.ok} episodes ({summary.failed} failed), {summary.frames} "
+            f"frames, {summary.disk_bytes / 1e6:.1f} MB ({summary.bytes_per_frame / 1e3:.1f} "
+            f"KB per frame) in {summary.shards} shards in {out / part if part else out}")
+    console.print(f"{seconds:.0f} s")
+
+
+def _bar(t0: float) -> Progress:
+    return Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                    _Rate(t0), TextColumn("{task.fields[failed]} failed"),
+                    TimeRemainingColumn(), console=console)
+
+
+def _advance(bar: Progress, task: TaskID, done: int, total: int, outcome) -> None:
+    fields = bar.tasks[task].fields
+    if outcome is not None:
+        fields["made"] += 1
+        fields["failed"] += 0 if outcome.ok else 1
+    bar.update(task, completed=done, total=total)
+
+
+def _generate_one(config, out: Path, workers: int, ray_address: str | None, t0: float):
+    from homesim.dataset import generate_dataset
+
+    with _bar(t0) as bar:
+        task = bar.add_task("episodes", total=config.n, made=0, failed=0)
 
         def progress(done: int, total: int, outcome) -> None:
-            fields = bar.tasks[task].fields
-            if outcome is not None:
-                fields["made"] += 1
-                fields["failed"] += 0 if outcome.ok else 1
-            bar.update(task, completed=done, total=total)
+            _advance(bar, task, done, total, outcome)
 
-        summary = generate_dataset(config, out, workers=workers, ray_address=ray_address,
-                                   progress=progress)
-    seconds = time.perf_counter() - t0
-    console.print(
-        f"[green]ok[/]: {summary.ok} episodes ({summary.failed} failed), {summary.frames} "
-        f"frames, {summary.disk_bytes / 1e6:.1f} MB ({summary.bytes_per_frame / 1e3:.1f} KB "
-        f"per frame) in {summary.shards} shards in {out}; {seconds:.0f} s")
+        return generate_dataset(config, out, workers=workers, ray_address=ray_address,
+                                progress=progress)
+
+
+def _generate_plan(name: str, config, out: Path, workers: int, ray_address: str | None,
+                   t0: float) -> dict:
+    from homesim.dataset.plan import generate_plan, load_plan
+
+    plan = load_plan(name)
+    with _bar(t0) as bar:
+        tasks: dict[str, TaskID] = {}
+
+        def progress(part: str, done: int, total: int, outcome) -> None:
+            if part not in tasks:
+                tasks[part] = bar.add_task(part, total=total, made=0, failed=0)
+            _advance(bar, tasks[part], done, total, outcome)
+
+        return generate_plan(plan, config.n, out, config, seed=config.seed, workers=workers,
+                             ray_address=ray_address, progress=progress)
 
 
 @app.command()
@@ -127,18 +173,27 @@ def replay(
 
 
 @app.command()
-def verify(root: Annotated[Path, typer.Argument(help="Data set folder.")]) -> None:
+def verify(root: Annotated[Path, typer.Argument(help="Data set folder, or a plan folder "
+                                                   "(every part is verified).")]) -> None:
     """Check every shard's checksum, every episode's checksum and frame counts, and the
     manifest."""
+    from homesim.dataset.plan import read_plan
     from homesim.dataset.verify import verify_dataset
 
-    report = verify_dataset(root)
-    for p in report.problems[:20]:
-        console.print(f"[red]problem[/]: {p}", markup=True)
-    if report.problems:
-        raise HomesimError(f"{root}: {len(report.problems)} problems")
-    console.print(f"[green]ok[/]: {report.shards} shards, {report.episodes} episodes "
-                  f"({report.ok} made), {report.frames} frames; checksums match")
+    plan = read_plan(root)
+    folders = [root] if plan is None else [plan.folder(p.name) for p in plan.plan.parts]
+    problems = 0
+    for folder in folders:
+        report = verify_dataset(folder)
+        for p in report.problems[:20]:
+            console.print(f"[red]problem[/]: {p}", markup=True)
+        problems += len(report.problems)
+        if not report.problems:
+            console.print(f"[green]ok[/]: {folder}: {report.shards} shards, "
+                          f"{report.episodes} episodes ({report.ok} made), {report.frames} "
+                          "frames; checksums match")
+    if problems:
+        raise HomesimError(f"{root}: {problems} problems")
 
 
 @app.command()

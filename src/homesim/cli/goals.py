@@ -85,7 +85,7 @@ def _task_goals(task: str) -> TaskGoals:
 
 def _task_home(task: str) -> EnvironmentGraph:
     """The stored initial graph of program `task`, the home its goals refer to."""
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     key = _task_key(task)
     found = [p for p in real_programs() if p.id == key]

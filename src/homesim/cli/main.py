@@ -15,10 +15,10 @@ from typing import Annotated
 import typer
 from rich.markup import escape
 
-from homesim import __version__
 from homesim.cli import data, dataset, goals, homes, learn, render, run, serve, synth
 from homesim.cli.common import console, err_console
 from homesim.errors import HomesimError
+from homesim.version import __version__
 
 app = typer.Typer(
     name="homesim",

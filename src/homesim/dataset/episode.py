@@ -27,12 +27,12 @@ from homesim.dataset.spec import FORMAT, DatasetConfig, EpisodeSpec
 from homesim.dataset.tarfiles import MemberHash, add_member, open_writer
 from homesim.errors import HomesimError
 from homesim.files import atomic_write
-from homesim.ground.kbtypes import default_kb
 from homesim.ground.pipeline import Run, run_program
+from homesim.knowledge.kbtypes import default_kb
 from homesim.program.parse import parse_program
 from homesim.render.video import H264Writer
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.homes import load_home
+from homesim.world.homes import open_home
 
 ARRAYS = ("camera", "intrinsics", "world_to_cam", "joints3d", "joints2d", "joints_visible",
           "cut", "step")
@@ -88,7 +88,7 @@ def build_home(spec: EpisodeSpec, home: str
                ) -> tuple[EnvironmentGraph, list[Move], Start | None]:
     """`home` with objects moved and the agent placed (from the spec's `placement_seed`)."""
     try:
-        graph = load_home(home)
+        graph = open_home(home)
     except HomesimError as e:
         raise EpisodeFailed("home", str(e)) from None
     rng = random.Random(spec.placement_seed)

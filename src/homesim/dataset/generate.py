@@ -45,6 +45,15 @@ class Summary:
         return self.disk_bytes / self.frames if self.frames else 0.0
 
 
+def check_homes(homes: Sequence[str]) -> None:
+    """Every home loads: a built-in name, ``gen-N`` or a graph file (``.json``,
+    ``.json.gz``; the errors of ``homesim run --graph``), before any episode is planned."""
+    from homesim.world.homes import open_home
+
+    for home in dict.fromkeys(homes):
+        open_home(home)
+
+
 def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
     """(id, text) of the config's programs: ``synth`` samples `n` from the grammar with the
     config's seed, drawing each in one of its homes; else a data set file (JSONL), a folder
@@ -76,6 +85,7 @@ def generate_dataset(config: DatasetConfig, out: str | Path, *, workers: int = 2
 
     ``workers=0`` makes episodes one by one in this process; otherwise each is a Ray task
     (Ray started here with `workers` CPUs, or the cluster at `ray_address`)."""
+    check_homes(config.homes)
     layout = Layout(out)
     layout.open(config)
     specs = plan_episodes(config, load_programs(config))

@@ -44,6 +44,17 @@ def read_json(path: Path) -> Any:
         raise DataError(f"{path}: cannot read ({e})") from None
 
 
+def _with_defaults(stored: Any) -> Any:
+    """A stored config with the options added since it was written at their defaults
+    (`--agents`), so that an older folder still resumes."""
+    if not isinstance(stored, dict):
+        return stored
+    try:
+        return DatasetConfig.from_dict(stored).to_dict()
+    except (HomesimError, TypeError, KeyError):
+        return stored
+
+
 class Layout:
     """Paths and steps of one data set folder."""
 
@@ -65,7 +76,7 @@ class Layout:
                 raise HomesimError(f"{self.root}: holds a data set in format "
                                    f"{stored.get('format')}, not {FORMAT}; use another --out "
                                    "folder")
-            old = stored.get("config")
+            old = _with_defaults(stored.get("config"))
             if old != config.to_dict():
                 diff = sorted(k for k in config.to_dict() if (old or {}).get(k) !=
                               config.to_dict()[k])

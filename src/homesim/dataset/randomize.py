@@ -11,8 +11,8 @@ from __future__ import annotations
 import random
 from dataclasses import dataclass
 
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for
 from homesim.ground.placement import place_box
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for
 from homesim.world.floor import FloorModel
 from homesim.world.graph import BoundingBox, Edge, EnvironmentGraph, Node
 from homesim.world.vocab import CLOSE, FACING, GRABBABLE, INSIDE, ON, S_CLOSED

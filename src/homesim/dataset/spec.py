@@ -60,9 +60,10 @@ class DatasetConfig:
     fps: int = 15
     modalities: tuple[str, ...] = MODALITIES
     gt_stride: int = 1  # dense maps (depth, class, instance, flow) every k-th frame
-    homes: tuple[str, ...] = DEFAULT_HOMES
+    homes: tuple[str, ...] = DEFAULT_HOMES  # names, or graph files (.json, .json.gz)
     shard_size: int = 8  # episodes per shard
     format: str = FORMAT
+    agents: tuple[str, ...] = AGENT_NAMES
 
     def __post_init__(self) -> None:
         unknown = [m for m in self.modalities if m not in MODALITIES]
@@ -73,18 +74,25 @@ class DatasetConfig:
             raise HomesimError("--n, --gt-stride and --shard-size must be at least 1")
         if not self.homes:
             raise HomesimError("no homes to choose from")
+        bad = [a for a in self.agents if a not in AGENT_NAMES]
+        if bad or not self.agents:
+            raise HomesimError(f"agent {bad[0] if bad else ''!r}: choose from "
+                               f"{', '.join(AGENT_NAMES)}")
         check_size(self.width, self.height, self.fps)
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)
         d["modalities"], d["homes"] = list(self.modalities), list(self.homes)
+        d["agents"] = list(self.agents)
         return d
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> DatasetConfig:
         names = {f.name for f in fields(cls)}
         d = {k: v for k, v in data.items() if k in names}
-        d["modalities"], d["homes"] = tuple(d["modalities"]), tuple(d["homes"])
+        for key in ("modalities", "homes", "agents"):
+            if key in d:
+                d[key] = tuple(d[key])
         return cls(**d)
 
     @property
@@ -137,7 +145,7 @@ def draw_spec(config: DatasetConfig, index: int, program_id: str, program: str
     """The random choices of episode `index` (its own stream; see the module docstring)."""
     rng = random.Random(f"homesim-episode-{config.seed}-{index}")
     home = rng.choice(config.homes)
-    agent = rng.choice(AGENT_NAMES)
+    agent = rng.choice(config.agents)
     seeds = [rng.randrange(2**31) for _ in range(3)]
     moves = rng.randint(0, MAX_MOVES)
     speed = round(rng.uniform(*SPEED_RANGE), 3)

@@ -2,7 +2,7 @@
 
 ``resources/task_state_LTL_formula_accurate.json`` (fetched by ``homesim data fetch``) maps
 ``scene_1 -> task title -> program id ("27_2") -> {vh_goal, tl_goal}``; homesim names the
-same program ``file27_2`` (`homesim.knowledge.realdata`).
+same program ``file27_2`` (`homesim.knowledge.datasets`).
 """
 
 from __future__ import annotations

@@ -4,7 +4,8 @@ Glossary:
     prepare: add the objects a program needs and the home lacks; set presupposed states.
     ground: bind each program object (``<cup> (1)``) to a node of the home.
     placement: where an added object may go (the placement knowledge base).
-    standing: free floor next to an object where the agent stands to act on it.
+    standing: free floor next to an object where the agent stands to act on it
+        (`homesim.world.standing`).
     run_program: the one pipeline every entry point uses (prepare, ground, execute).
     repair: insert the commonsense steps a program misses (walk to an object first, ...).
 """

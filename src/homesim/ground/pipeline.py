@@ -39,9 +39,9 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from homesim.errors import BindingError, GroundingError
-from homesim.ground.kbtypes import ObjectKnowledge, default_kb
 from homesim.ground.prepare import Prepared
 from homesim.ground.search import Grounding, ground, prepare_and_ground
+from homesim.knowledge.kbtypes import ObjectKnowledge, default_kb
 from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.program.parse import parse_program

@@ -38,13 +38,13 @@ from functools import lru_cache
 from typing import Any
 
 from homesim.errors import GroundingError
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.placement import place_box
-from homesim.ground.standing import FloorPlan, has_geometry, note_prepared
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.state import SimState
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
+from homesim.world.standing import FloorPlan, has_geometry, note_prepared
 from homesim.world.vocab import (
     BODY_PART,
     CAN_OPEN,
@@ -56,6 +56,7 @@ from homesim.world.vocab import (
     HAS_SWITCH,
     INSIDE,
     ON,
+    ROOM_NAMES,
     S_CLOSED,
     S_LYING,
     S_OFF,
@@ -67,10 +68,6 @@ from homesim.world.vocab import (
     SURFACES,
 )
 
-ROOM_NAMES = frozenset({
-    "bathroom", "bedroom", "kitchen", "livingroom", "living_room", "dining_room",
-    "home_office", "office", "garage", "hallway", "entrance_hall", "kids_bedroom"})
-"""Room classes of VirtualHome programs and homes: a home lacking one cannot get it."""
 DEFAULT_SIZE = (0.15, 0.15, 0.15)
 """Box size (m) for an added object whose class has no prefab dimensions."""
 

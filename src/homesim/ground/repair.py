@@ -43,8 +43,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.pipeline import Run, run_program
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.actions import ACTIONS, ActionSpec
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.world.graph import EnvironmentGraph

@@ -5,7 +5,7 @@ Grounding finds node ids for them under which every step executes:
 
 - one node per program object, different nodes for different objects (all-different);
 - candidates are the home's nodes of the object's class or of an equivalent class name
-  (``television`` -> ``tv``), see `homesim.ground.kbtypes.class_names_for`;
+  (``television`` -> ``tv``), see `homesim.knowledge.kbtypes.class_names_for`;
 - the search walks the program step by step on one `SimState`; a step's unbound objects
   are bound when it is reached, trying candidates in order of preference, and the step
   is run by the simulator (its preconditions prune); on failure the state is rolled back
@@ -17,7 +17,7 @@ Grounding finds node ids for them under which every step executes:
 - backjumping: a failed step blames the objects of the step and those the character is
   close to, faces, sits on or holds; choices of other objects are skipped over;
 - with geometry, each interaction also needs free floor next to its object for the agent
-  to stand on (`homesim.ground.standing`); the chosen spots come with the result.
+  to stand on (`homesim.world.standing`); the chosen spots come with the result.
 
 >>> from homesim.program import parse_program
 >>> from homesim.world import load_home
@@ -39,14 +39,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from homesim.errors import GroundingError
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.ground.prepare import Prepared, first_use, instances_of, prepare
-from homesim.ground.standing import FloorPlan, Spot, has_geometry
+from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.standing import FloorPlan, Spot, has_geometry
 from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 Key = tuple[str, int]

@@ -29,6 +29,7 @@ from typing import Any, overload
 
 from homesim.errors import DataError, HomesimError
 from homesim.files import atomic_write
+from homesim.knowledge.fetch import dataset_dir, verify
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program, parse_steps
 from homesim.world.graph import EnvironmentGraph
@@ -178,6 +179,24 @@ def read_program_file(path: Path) -> Program:
     return _check(parse_program(_read_text(path), source=str(path)), str(path))
 
 
+def real_programs(directory: Path | None = None, check: bool = False) -> list[ActivityProgram]:
+    """The real program data set (fetched by `homesim.knowledge.fetch`): all its programs,
+    sorted by id, each with its stored graphs; `check` verifies checksums first.
+
+    Ids are file stems, e.g. ``file1003_2`` (script 1003, second annotation); refs are
+    grounded (``<computer> (1.417)``).
+    """
+    directory = directory or dataset_dir()
+    if check:
+        verify(directory)
+    programs_dir = directory / "programs"
+    if not programs_dir.is_dir():
+        raise DataError(f"{directory}: the real data set is not here; run 'homesim data fetch'")
+    return [ActivityProgram(path.stem, read_program_file(path), str(path),
+                            directory / "graphs" / f"{path.stem}.json")
+            for path in sorted(programs_dir.glob("*.txt"))]
+
+
 class ActivityDataset(Sequence[ActivityProgram]):
     """An ordered, read-only collection of `ActivityProgram` values.
 
@@ -291,8 +310,6 @@ class ActivityDataset(Sequence[ActivityProgram]):
     @classmethod
     def real(cls, directory: Path | None = None) -> ActivityDataset:
         """The fetched eai-eval data set: 518 programs, each with its stored graphs."""
-        from homesim.knowledge.realdata import real_programs
-
         return cls(real_programs(directory), "eai-eval-1.0.5")
 
     @classmethod

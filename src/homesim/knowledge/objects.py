@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Literal
 
 from homesim.errors import DataError
-from homesim.program.model import normalize_name
+from homesim.program.syntax import normalize_name
 
 FORMAT = "homesim-objects/1"
 

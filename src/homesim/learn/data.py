@@ -38,7 +38,7 @@ def ungrounded(program: Program) -> tuple[Program, dict[tuple[str, int], int]]:
 
 def real_examples(directory: Path | None = None) -> list[Example]:
     """The 518 real programs as examples (needs ``homesim data fetch``)."""
-    from homesim.knowledge.realdata import real_programs
+    from homesim.knowledge.datasets import real_programs
 
     return [rp.ungrounded() for rp in real_programs(directory)]
 

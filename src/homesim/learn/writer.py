@@ -162,7 +162,7 @@ def examples_key(examples: list[Example]) -> str:
     versions of homesim and scikit-learn."""
     import sklearn
 
-    from homesim import __version__
+    from homesim.version import __version__
 
     h = hashlib.sha256(f"{FORMAT} {__version__} {sklearn.__version__}".encode())
     for e in examples:

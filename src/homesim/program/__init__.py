@@ -9,8 +9,9 @@ from homesim.program.actions import (
     lookup_action,
 )
 from homesim.program.bindings import Bindings
-from homesim.program.model import ObjectRef, Program, Step, normalize_name
+from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program, parse_step, parse_steps
+from homesim.program.syntax import normalize_name
 
 __all__ = [
     "ACTIONS",

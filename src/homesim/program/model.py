@@ -17,11 +17,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 
 from homesim.program.actions import ActionSpec
-
-
-def normalize_name(name: str) -> str:
-    """Canonical object class name: lower case, words joined by underscores."""
-    return "_".join(name.strip().lower().split())
+from homesim.program.syntax import read_step, read_text
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,11 +79,11 @@ class Step:
         object.__setattr__(self, "nodes", tuple(ref.node for ref in self.args))
 
     @classmethod
-    def parse(cls, line: str) -> Step:
-        """Parse one step line; raises `ProgramError` on a malformed line."""
-        from homesim.program.parse import parse_step
-
-        return parse_step(line)
+    def parse(cls, line: str, lineno: int = 1, source: str | None = None) -> Step:
+        """Parse one step line; raises `ProgramError` (naming `lineno` and `source`) on a
+        malformed line."""
+        action, refs = read_step(line, lineno, source)
+        return cls(action, tuple(ObjectRef(name, instance, node) for name, instance, node in refs))
 
     def __str__(self) -> str:
         return " ".join([f"[{self.action.name}]", *map(str, self.args)])
@@ -125,9 +121,8 @@ class Program:
     @classmethod
     def parse(cls, text: str, source: str | None = None) -> Program:
         """Parse a program text (steps only, or the ActivityPrograms file format)."""
-        from homesim.program.parse import parse_program
-
-        return parse_program(text, source=source)
+        title, description, lines = read_text(text, source)
+        return cls(tuple(Step.parse(line, n, source) for n, line in lines), title, description)
 
     def __str__(self) -> str:
         body = "\n".join(str(s) for s in self.steps)

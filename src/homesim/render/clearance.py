@@ -11,7 +11,7 @@ inside: what it holds, and what it acts on at the moment of the effect.
 
 from __future__ import annotations
 
-from collections.abc import Collection
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -92,7 +92,7 @@ class Clearance:
         return {s: frozenset(p for p in parts if p.startswith(f"{s}_") and p[2:] in (
             "hand", "fingers", "fingertips", "thumb")) for s in ("l", "r")}
 
-    def penetrations(self, data: mujoco.MjData, hands_in: dict[str, Collection[int]],
+    def penetrations(self, data: mujoco.MjData, hands_in: Mapping[str, Collection[int]],
                      tolerance: float = 0.0) -> list[Penetration]:
         """Per body part, the deepest point inside an object's geom deeper than
         `tolerance` (metres), as `data` is posed (kinematics done). `hands_in`: per side
@@ -132,7 +132,7 @@ class Clearance:
                 low = min(low, float(world[:, 2].min()))
         return low
 
-    def _allowed(self, part: str, hands_in: dict[str, Collection[int]]) -> Collection[int]:
+    def _allowed(self, part: str, hands_in: Mapping[str, Collection[int]]) -> Collection[int]:
         for side, parts in self.hand_parts.items():
             if part in parts:
                 return hands_in.get(side, ())

@@ -18,7 +18,7 @@ import numpy as np
 
 from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 from homesim.world.floor import FloorModel
 from homesim.world.graph import EnvironmentGraph, Node
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
@@ -356,9 +356,9 @@ class _Home:
                     return b.center
         near: tuple[float, np.ndarray] | None = None
         for cls in TABLES:
-            for t in graph.nodes_of_class(cls):
-                b = to_mujoco(t)
-                if b is None or graph.room_of(t.id) != room:
+            for table in graph.nodes_of_class(cls):
+                b = to_mujoco(table)
+                if b is None or graph.room_of(table.id) != room:
                     continue
                 gap = float(np.linalg.norm(np.maximum(np.abs(b.center[:2] - box.center[:2])
                                                       - b.half[:2] - box.half[:2], 0.0)))

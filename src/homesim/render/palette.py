@@ -1,12 +1,12 @@
 """A fixed colour per object class, so the same class looks the same in every video: the
-class table's ``color`` (`homesim.world.classes`), else a stable hue from the name."""
+class table's ``color`` (`homesim.world.class_table`), else a stable hue from the name."""
 
 from __future__ import annotations
 
 import colorsys
 import zlib
 
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 
 RGBA = tuple[float, float, float, float]
 

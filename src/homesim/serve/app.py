@@ -40,7 +40,7 @@ def create_app(static_dir: Path | None = None,
         allowed_hosts: Host header names served (default: loopback names; ``*``: any).
         render_jobs: the render queue (default: one with the limits of `homesim.limits`).
     """
-    from homesim import __version__
+    from homesim.version import __version__
 
     app = FastAPI(title="homesim editor API", version=__version__, lifespan=_lifespan,
                   default_response_class=SafeJSONResponse,

@@ -32,17 +32,15 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from homesim.errors import BindingError
 from homesim.program.bindings import unbound_error
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.effects import EFFECTS
 from homesim.sim.state import Changes, SimState
+from homesim.world.classes import ClassKnowledge, class_names_for, default_kb
 from homesim.world.graph import EnvironmentGraph
-
-if TYPE_CHECKING:
-    from homesim.ground.kbtypes import ObjectKnowledge
 
 
 @dataclass(frozen=True, slots=True)
@@ -164,12 +162,12 @@ def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
 
 def binding_problems(program: Program, graph: EnvironmentGraph,
                      bindings: Mapping[tuple[str, int], int] | None = None,
-                     kb: ObjectKnowledge | None = None) -> list[BindingError]:
+                     kb: ClassKnowledge | None = None) -> list[BindingError]:
     """Every object ref of `program` that names no node of `graph`, or one of another class.
 
     A ref names the node `bindings` gives it, else its node id (``<tv> (1.410)``).
     Classes match as grounding matches them: by the knowledge base's equivalent names
-    (``television`` and ``tv``, see `homesim.ground.kbtypes.class_names_for`).
+    (``television`` and ``tv``, see `homesim.world.classes.class_names_for`).
     One error per object, at the first step that uses it, in step order.
     """
     def class_of(node: int) -> str | None:
@@ -183,7 +181,7 @@ _NONE: Mapping[tuple[str, int], int] = {}
 
 
 def _problems(program: Program, given: Mapping[tuple[str, int], int],
-              class_of: Callable[[int], str | None], kb: ObjectKnowledge | None,
+              class_of: Callable[[int], str | None], kb: ClassKnowledge | None,
               stop: bool) -> list[BindingError]:
     problems: list[BindingError] = []
     first: dict[tuple[str, int], int | None] = {}  # each object's node at its first use
@@ -213,12 +211,11 @@ def _problems(program: Program, given: Mapping[tuple[str, int], int],
     return problems
 
 
-def _class_names(name: str, kb: ObjectKnowledge | None
-                 ) -> tuple[ObjectKnowledge, list[str]]:
-    """The knowledge base (loaded if None) and the home classes `name` may stand for."""
-    # Imported here: grounding's view of the knowledge base sits above the simulator.
-    from homesim.ground.kbtypes import class_names_for, default_kb
-
+def _class_names(name: str, kb: ClassKnowledge | None
+                 ) -> tuple[ClassKnowledge, list[str]]:
+    """The knowledge base (the default one if None) and the home classes `name` may stand
+    for. The simulator sits below the knowledge base; it asks through the protocol of
+    `homesim.world.classes`, which the package's knowledge base answers."""
     kb = kb or default_kb()
     return kb, class_names_for(name, kb)
 
@@ -250,7 +247,7 @@ def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
 
 def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
             bindings: Mapping[tuple[str, int], int] | None = None, *,
-            reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
+            reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Execute `program` on `graph`; the graph is not changed.
 
     Args:
@@ -261,7 +258,8 @@ def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
             win over node ids the refs carry.
         reference: read the program as the reference simulator does: a ref without a
             node id names node N by its instance ``(N)``, and nothing is checked.
-        kb: the knowledge base for equivalent class names (default: `load_kb()`).
+        kb: the knowledge base for equivalent class names (default: the package's,
+            `homesim.world.classes.default_kb`).
 
     Returns:
         An `ExecutionResult`; `executable` is False at the first step whose preconditions
@@ -277,7 +275,7 @@ def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
 
 def execute_on(program: Program, st: SimState, trace: bool = False,
                bindings: Mapping[tuple[str, int], int] | None = None, *,
-               reference: bool = False, kb: ObjectKnowledge | None = None) -> ExecutionResult:
+               reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Like `execute`, but continue from an existing state (which it modifies)."""
     if not reference:
         base_nodes, new_nodes = st._base_nodes, st._new_nodes

@@ -44,7 +44,7 @@ from homesim.synth.phrasebook import (
     PHRASINGS,
     STARTERS,
 )
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 
 
 @dataclass(frozen=True)

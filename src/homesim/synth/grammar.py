@@ -34,7 +34,7 @@ from homesim.sim.state import SimState
 from homesim.synth import templates
 from homesim.synth.describe import Act, Thing, describe
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.homes import load_home
+from homesim.world.homes import open_home
 from homesim.world.vocab import (
     CAN_OPEN,
     FACING,
@@ -74,7 +74,7 @@ class Expansion:
 
 @cache
 def _home(name: str) -> EnvironmentGraph:
-    return load_home(name)
+    return open_home(name)
 
 
 class _Context:

@@ -1,5 +1,5 @@
 """The words of `homesim.synth.describe`: phrasings per step pattern, joins, openers (what
-people call each object class is the class table's ``names``, `homesim.world.classes`).
+people call each object class is the class table's ``names``, `homesim.world.class_table`).
 
 Phrasings are verb phrases in the base form, so they serve both voices (``grab the cup``,
 ``I grab the cup``). Slots name the objects: ``{x}`` may become a pronoun (``it``) when

@@ -1,7 +1,7 @@
 """The floor model of a home: where the agent may stand and walk.
 
 One model for everything that puts the agent on the floor: grounding chooses standing
-spots with it (`homesim.ground.standing`), the renderer walks the agent on its raster
+spots with it (`homesim.world.standing`), the renderer walks the agent on its raster
 (`homesim.world.walkgrid`, used by `homesim.render.navigation`), and generated homes are
 checked against that raster (`homesim.world.procedural.checks`).
 

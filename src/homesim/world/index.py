@@ -7,8 +7,8 @@ whether CLOSE is symmetric. The data is the `homesim.sim.state.SimState` overlay
 run writes. An index is computed in full when its graph is built and never written after,
 so any number of threads may read one home (e.g. a home cached by `load_home`) at once.
 
-Caches that other packages keep per home live in those packages, keyed by the graph (the
-floor plans of `homesim.ground.standing`); nothing outside `homesim.world` adds to an index.
+Caches kept per home (the floor plans of `homesim.world.standing`) live apart from the
+index, keyed by the graph; nothing adds to an index once it is built.
 
 Speed notes: the maps are plain dicts, not read-only proxies, because the simulator reads
 them in its inner loop; they are never written once built. The edge index is built in one
@@ -21,12 +21,9 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
+from homesim.world.node import Node
 from homesim.world.vocab import BODY_PART, CHARACTER_CLASS, CLOSE, RELATIONS
-
-if TYPE_CHECKING:
-    from homesim.world.graph import Node
 
 Index = dict[str, dict[int, frozenset[int]]]
 """relation -> node id -> the ids at the other end."""

@@ -72,4 +72,8 @@ PROPERTIES: frozenset[str] = frozenset(
 )
 
 ROOM_CATEGORY = "Rooms"
+ROOM_NAMES = frozenset({
+    "bathroom", "bedroom", "kitchen", "livingroom", "living_room", "dining_room",
+    "home_office", "office", "garage", "hallway", "entrance_hall", "kids_bedroom"})
+"""Room classes of VirtualHome programs and homes: a home lacking one cannot get it."""
 CHARACTER_CLASS = "character"

@@ -4,7 +4,7 @@ A model is a list of `Shape` (box, cylinder, capsule, ellipsoid), each with a ma
 `role` (``body`` takes the class colour; ``wood``, ``fabric``, ``metal``, ``glass``,
 ``screen``, ``glow``... take the home's materials, see `homesim.render.materials`).
 Builders (`kit`) draw in a local frame fitted to the node's box and are registered by
-name (`builder`); the class table (`homesim.world.classes`) names each class's builder.
+name (`builder`); the class table (`homesim.world.class_table`) names each class's builder.
 `fit_model` turns a model into the MuJoCo frame, every shape kept inside the box
 (clamped), so depth and segmentation stay exact against the graph's boxes. Builders
 registered with variants draw several; `variant_of` picks one from the seed.

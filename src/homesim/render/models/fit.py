@@ -8,7 +8,7 @@ import zlib
 import numpy as np
 
 from homesim.render.models.kit import BUILDERS, VARIANTS, Builder, Kit, Shape
-from homesim.world.classes import class_row
+from homesim.world.class_table import class_row
 
 _WORDS: tuple[tuple[str, str], ...] = (
     ("food", "generic_food"), ("cloth", "clothes_flat"), ("lamp", "tablelamp"),

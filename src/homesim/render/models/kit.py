@@ -3,7 +3,7 @@ box's local frame) and the registry of builders by name (`builder`, `BUILDERS`).
 
 A builder draws in a local frame fitted to the node's box: x across the front, y towards
 the front (the side facing the room), z up, origin at the box centre, half sizes
-``(w, d, h)``. The class table (`homesim.world.classes`, column ``model``) names the
+``(w, d, h)``. The class table (`homesim.world.class_table`, column ``model``) names the
 builder of each class; a builder registered with ``variants=n`` draws n variants
 (`Kit.v`).
 """

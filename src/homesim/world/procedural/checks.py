@@ -103,7 +103,7 @@ def _support(graph: EnvironmentGraph) -> list[str]:
 def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
     """Rooms cut off from the rest, and fixtures the agent cannot walk to, on the floor
     model that grounding and the renderer use (`homesim.world.floor`)."""
-    from homesim.ground.standing import FloorPlan
+    from homesim.world.standing import FloorPlan
 
     doors = [n for n in graph if n.class_name == "door"]
     out = _connected(graph, doors)

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homesim.world.classes import class_row, classes_where
+from homesim.world.class_table import class_row, classes_where
 from homesim.world.procedural.geometry import (
     DOOR_REACH,
     SLACK,

@@ -6,7 +6,7 @@ import random
 from pathlib import Path
 
 from homesim.errors import GraphError
-from homesim.ground.kbtypes import ObjectKnowledge, default_kb
+from homesim.world.classes import ClassKnowledge, default_kb
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.procedural.checks import check_home
 from homesim.world.procedural.furnish import RoomFurnisher, furnish_room
@@ -22,7 +22,7 @@ checks (none has needed a second one on seeds 0-99)."""
 
 
 def generate_home(seed: int, rooms: list[str] | None = None,
-                  kb: ObjectKnowledge | None = None) -> EnvironmentGraph:
+                  kb: ClassKnowledge | None = None) -> EnvironmentGraph:
     """A procedurally generated home; same seed and rooms -> the same graph (and bytes).
 
     `rooms` lists room kinds (`homesim.world.procedural.KINDS`); by default the four core
@@ -40,7 +40,7 @@ def generate_home(seed: int, rooms: list[str] | None = None,
     raise GraphError(f"seed {seed}: no valid home in {ATTEMPTS} attempts ({problem})")
 
 
-def _draw(rng: random.Random, kinds: list[str], kb: ObjectKnowledge, seed: int
+def _draw(rng: random.Random, kinds: list[str], kb: ClassKnowledge, seed: int
           ) -> EnvironmentGraph:
     from homesim.world.procedural.build import to_graph
 

@@ -17,7 +17,7 @@ CELL = 0.2
 AGENT_HALF = 0.3
 """Clearance (m) kept around obstacles: the renderer's walking agent has a 0.25 m radius
 (`homesim.render.navigation.AGENT_RADIUS`, on a 0.1 m grid), wider than grounding's
-0.4 m square (`homesim.ground.standing.AGENT_SIZE`)."""
+0.4 m square (`homesim.world.standing.AGENT_SIZE`)."""
 DOOR_REACH = 0.6
 """Cells whose centre is this near (m) a doorway count as at the door."""
 SLACK = 0.03
@@ -26,7 +26,7 @@ SLACK = 0.03
 
 def blocks(box: tuple[float, float, float, float, float, float]) -> bool:
     """Whether a box (x0, y0, z0, x1, y1, z1) is in the agent's way: it reaches into the
-    body's height (0.08-1.5 m: grounding's 0.1-1.5 m, `homesim.ground.standing`, and the
+    body's height (0.08-1.5 m: grounding's 0.1-1.5 m, `homesim.world.standing`, and the
     renderer's legs from 0.08 m, `homesim.render.navigation.LEG_LEVEL`); sockets too."""
     return box[1] < 1.5 and box[4] > 0.08
 

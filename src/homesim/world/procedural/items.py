@@ -5,15 +5,15 @@ from __future__ import annotations
 
 import random
 
-from homesim.ground.kbtypes import ObjectKnowledge, class_names_for
-from homesim.world.classes import classes_where
+from homesim.world.class_table import classes_where
+from homesim.world.classes import ClassKnowledge, class_names_for
 from homesim.world.procedural.furnish import Entry
 from homesim.world.procedural.parts import Part, box3, overlap3
 from homesim.world.procedural.stats import class_info
 
 
 def place_items(rng: random.Random, parts: list[Part], room: int, entries: list[Entry],
-                kb: ObjectKnowledge) -> None:
+                kb: ClassKnowledge) -> None:
     """Put every item of `entries` on or in something of the room (in up to 3 passes,
     so a faucet finds the sink placed before it); an item with no possible parent is
     left out."""
@@ -55,7 +55,7 @@ class _Room:
         self.held.setdefault(part.support[0], []).append(k)
 
 
-def _candidates(here: _Room, e: Entry, kb: ObjectKnowledge, final: bool
+def _candidates(here: _Room, e: Entry, kb: ClassKnowledge, final: bool
                 ) -> list[tuple[int, str, int]]:
     """(part, relation, weight) for each part of the room that may hold the item, in part
     order per parent class."""
@@ -85,7 +85,7 @@ def _may_hold(parent: str, relation: str) -> bool:
     return relation != "ON" or not ("SITTABLE" in props or "LIEABLE" in props)
 
 
-def _place(rng: random.Random, here: _Room, e: Entry, kb: ObjectKnowledge,
+def _place(rng: random.Random, here: _Room, e: Entry, kb: ClassKnowledge,
            final: bool) -> bool:
     options = _candidates(here, e, kb, final)
     if not options:

@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from homesim.ground.standing import AGENT_SIZE, FloorPlan, has_geometry
 from homesim.world import load_home
+from homesim.world.standing import AGENT_SIZE, FloorPlan, has_geometry
 
 
 def test_has_geometry():
@@ -78,7 +78,7 @@ def test_huge_finite_boxes_ground_or_fail_clearly_never_overflow(cls, monkeypatc
 
 
 def test_square_distance_is_inf_instead_of_overflow():
-    from homesim.ground.standing import square_distance
+    from homesim.world.standing import square_distance
 
     assert square_distance((1.0, 5.0, 2.0), (4.0, 0.0, 6.0)) == 25.0
     assert square_distance((1e308, 0.0, 0.0), (-1e308, 0.0, 0.0)) == float("inf")
