@@ -60,10 +60,10 @@ def test_hand_room_asks_rays_out_of_the_taken_face():
 
 def test_a_touch_lays_the_palm_on_the_face_toward_the_agent():
     switch = Box(np.array([1.0, 0.0, 1.3]), np.array([0.01, 0.05, 0.06]))  # on a wall at x=1
-    face, _ = touch_grasps(switch, np.array([0.4, 0.0]))
+    face, *_ = touch_grasps(switch, np.array([0.4, 0.0]))
     np.testing.assert_allclose(face.palm, [1.0, 0.0, 0.0])  # into the switch, fingers up
     np.testing.assert_allclose(face.fingers, [0.0, 0.0, 1.0])
     assert face.point[0] < switch.center[0]  # on the near face
     low = Box(np.array([1.0, 0.0, 0.3]), np.array([0.2, 0.2, 0.2]))  # a cat on the floor
-    first, _ = touch_grasps(low, np.array([0.4, 0.0]))
+    first, *_ = touch_grasps(low, np.array([0.4, 0.0]))
     np.testing.assert_allclose(first.palm, [0.0, 0.0, -1.0])  # the palm on its back

@@ -375,7 +375,8 @@ class Animator:
         if self.scene.model.nmocap:
             data.mocap_pos[:] = props.mocap
             for n in props.held.values():
-                data.mocap_pos[self.scene.mocap[n]] = (0.0, 0.0, -50.0)
+                if n in self.scene.mocap:
+                    data.mocap_pos[self.scene.mocap[n]] = (0.0, 0.0, -50.0)
         self.planner.hands_in = {side: set(nodes) | {n for n in props.held.values()}}
 
     def note_interaction(self, nodes: tuple[int, ...], side: str, start: int,
@@ -433,12 +434,24 @@ class Animator:
             self.turn_to(self.pose.xy + ahead)
         seated = self._seated(node, spot, yaw)
         self._rest_from = len(self.timeline)
-        over = replace(seated, x=float(0.35 * self.pose.x + 0.65 * seated.x),
-                       y=float(0.35 * self.pose.y + 0.65 * seated.y),
-                       z=seated.z + SIT_ABOVE, joints={**seated.joints, "spine_pitch": 0.35})
+        over = replace(seated, z=seated.z + SIT_ABOVE,
+                       joints={**seated.joints, "spine_pitch": 0.35})
         self.move_to(over, 0.6)  # bending over the seat's front edge...
         self.move_to(seated, 0.5)  # ... then down onto it
         self.posture = "sit"
+
+    def _seat_edge(self, node: int, seat: Box, spot: np.ndarray, axis: int,
+                   sign: float) -> float:
+        """Where the seat's drawn top begins, coming in from the box's front face along
+        `axis` across from `spot` (an L sofa's box is empty in front of its back seat)."""
+        front = seat.center[axis] + sign * seat.half[axis]
+        xy = spot.copy()
+        for d in np.arange(0.0, 2 * seat.half[axis], 0.05):
+            xy[axis] = front - sign * d
+            top = self._top_at(node, xy, SEAT_HEIGHT + 0.35)
+            if top is not None and top > 0.2:
+                return float(xy[axis])
+        return float(front)
 
     def _seat_spot(self, node: int, seat: Box) -> tuple[np.ndarray, float]:
         """Where the pelvis goes on a seat and which way the agent faces: the seat's
@@ -450,7 +463,7 @@ class Animator:
         part = self.scene.layout.part(node)
         if part is not None and part.front is not None:
             axis, sign = part.front
-            spot[axis] = seat.center[axis] + sign * (seat.half[axis] - inset[axis])
+            spot[axis] = self._seat_edge(node, seat, spot, axis, sign) - sign * inset[axis]
             yaw = (0.0 if sign > 0 else math.pi) if axis == 0 else math.copysign(math.pi / 2,
                                                                                  sign)
             return spot, yaw

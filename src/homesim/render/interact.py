@@ -118,9 +118,12 @@ def touch_grasps(box: Box, from_xy: np.ndarray, inset: float = 0.004) -> list[Gr
     palm = np.zeros(3)
     palm[axis] = np.sign(u[axis] or 1.0)
     face = Grasp(point, palm, np.array([0.0, 0.0, 1.0]))
-    top = Grasp(np.r_[box.center[:2], box.hi[2] - min(inset, box.half[2])],
-                np.array([0.0, 0.0, -1.0]), np.r_[u, 0.0])
-    return [top, face] if box.hi[2] < TOUCH_TOP else [face, top]
+    at = np.r_[box.center[:2], box.hi[2] - min(inset, box.half[2])]
+    down = np.array([0.0, 0.0, -1.0])
+    top = Grasp(at, down, np.r_[u, 0.0])
+    across = [Grasp(at, down, np.array([-u[1] * s, u[0] * s, 0.0])) for s in (1.0, -1.0)]
+    first = [top, face] if box.hi[2] < TOUCH_TOP else [face, top]
+    return first + across  # the fingers along a wall behind it
 
 
 def _side_grasp(box: Box, side: str, u: np.ndarray, inset: float) -> Grasp:

@@ -109,6 +109,7 @@ class Layout:
     start: np.ndarray  # the character's start position on the floor (x, y)
     walk: FloorModel | None = None
     """Where the agent may walk: the floor model grounding uses (MuJoCo x, y = Unity x, z)."""
+    room_of_part: dict[int, int] = field(default_factory=dict)  # node id -> room id
 
     def part(self, node_id: int) -> Part | None:
         return next((p for p in self.parts if p.node_id == node_id), None)
@@ -403,8 +404,9 @@ def build_layout(graph: EnvironmentGraph, seed: int = 0) -> Layout:
             part.hinge.is_open = S_OPEN in node.states
         part.is_on = S_ON in node.states
         parts.append(part)
+    rooms_of = {p.node_id: r for p in parts if (r := graph.room_of(p.node_id)) is not None}
     return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
-                  _room_floors(home.tiles), _start(graph), FloorModel(graph))
+                  _room_floors(home.tiles), _start(graph), FloorModel(graph), rooms_of)
 
 
 def _start(graph: EnvironmentGraph) -> np.ndarray:
@@ -447,8 +449,31 @@ Shaper = Callable[[Part, Node, Box, _Home], bool]
 """Fills a part's boxes and shapes (hinge, screen, lamp); False drops the part."""
 
 
-def _slab_shapes(boxes: list[Box], role: str) -> list[Shape]:
-    return [Shape("box", b.center.copy(), np.maximum(b.half, 1e-3), role) for b in boxes]
+def _slab_shapes(boxes: list[Box], role: str, piece: float = 0.0) -> list[Shape]:
+    """Box shapes of slabs; with `piece` > 0, each cut into pieces at most that long
+    along x and y (and 1.25 m up): MuJoCo lights per vertex, so a room light's pool of
+    light falls off across a floor or wall only where it has vertices."""
+    out = []
+    for b in boxes:
+        for c, h in _pieces(b, piece) if piece > 0 else [(b.center, b.half)]:
+            out.append(Shape("box", c.copy(), np.maximum(h, 1e-3), role))
+    return out
+
+
+LIT_PIECE = 1.25
+"""Metres: floors and walls are drawn in pieces this long for the lights' falloff."""
+
+
+def _pieces(b: Box, piece: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    counts = [max(1, int(np.ceil(2 * b.half[a] / piece - 1e-6))) for a in range(3)]
+    size = 2 * b.half / np.array(counts)
+    out = []
+    for i in range(counts[0]):
+        for j in range(counts[1]):
+            for k in range(counts[2]):
+                lo = b.lo + size * np.array([i, j, k])
+                out.append((lo + size / 2, size / 2))
+    return out
 
 
 def _room_role(kind: str, node: Node, home: _Home) -> str:
@@ -458,8 +483,9 @@ def _room_role(kind: str, node: Node, home: _Home) -> str:
 
 def _flat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
     part.boxes.append(_flat(box))
-    role = "ceiling" if node.class_name == "ceiling" else _room_role("floor", node, home)
-    part.shapes = _slab_shapes(part.boxes, role)
+    ceiling = node.class_name == "ceiling"
+    role = "ceiling" if ceiling else _room_role("floor", node, home)
+    part.shapes = _slab_shapes(part.boxes, role, 0.0 if ceiling else LIT_PIECE)
     return True
 
 
@@ -467,7 +493,7 @@ def _wall(part: Part, node: Node, box: Box, home: _Home) -> bool:
     room = home.graph.room_of(node.id)
     for slab in _wall_slabs(box, [] if room is None else home.tiles.get(room, [])):
         part.boxes.extend(_cut_doorways(slab, home.jambs))
-    part.shapes = _slab_shapes(part.boxes, _room_role("wall", node, home))
+    part.shapes = _slab_shapes(part.boxes, _room_role("wall", node, home), LIT_PIECE)
     return True
 
 

@@ -10,9 +10,11 @@ Columns (lists are space separated, except ``names``, separated by ``;``):
               never draws as an object (body parts)
     size      body (a part of the agent: never an object of its own), person, structure
               (rooms, walls, floors, doors, windows), large, medium, small
-    family    palette and material family: fabric, wood, dark (electronics), white
-              (appliances, porcelain), metal, ceramic, glass, paper, food, plant, decor,
-              lamp, plastic, structure, room, body, person
+    family    palette and material family: fabric (sofas, beds), accent (cushions, rugs,
+              curtains, towels: the home's accent colour), wood, dark (electronics),
+              white (appliances, porcelain), metal, ceramic, glass, paper, food, plant,
+              decor, lamp, plastic, structure, room, body, person; a home's theme
+              (`homesim.render.palette`) colours each family
     render    how render shapes it beyond its model: hinged (a carcass with a hinged front
               when it can open), screen (lights up when on), lamp (lit by its own
               switch), room_lamp (lit by the room's light switch), enclosure (walls open
@@ -27,7 +29,8 @@ Columns (lists are space separated, except ``names``, separated by ``;``):
               across (stands facing its ``beside`` class across the floor: a sofa
               facing the TV stand)
     names     what people call it (empty: its name with spaces)
-    color     a fixed base colour, r g b in 0..1 (empty: chosen by family and seed)
+    color     a fixed base colour, r g b in 0..1, for what keeps its colour in every home
+              (an apple; empty: the theme colours it by family and seed)
 
 A contract test checks that every class the knowledge base or a built-in home names has
 a row, that every model is registered and that the values come from these lists.
@@ -42,8 +45,8 @@ from functools import lru_cache
 from importlib import resources
 
 SIZES = ("body", "person", "structure", "large", "medium", "small")
-FAMILIES = ("fabric", "wood", "dark", "white", "metal", "ceramic", "glass", "paper", "food",
-            "plant", "decor", "lamp", "plastic", "structure", "room", "body", "person")
+FAMILIES = ("fabric", "accent", "wood", "dark", "white", "metal", "ceramic", "glass", "paper",
+            "food", "plant", "decor", "lamp", "plastic", "structure", "room", "body", "person")
 RENDER_KINDS = ("", "hinged", "screen", "lamp", "room_lamp", "enclosure")
 MOUNTS = ("", "floor", "wall", "ceiling")
 TAGS = ("single", "centre", "surface", "windowed", "across")

@@ -169,7 +169,7 @@ class RoomFurnisher:
         rng, r = self.rng, self.interior
         anchors = [k for k in self.fixtures if self.parts[k].cls in anchors_of(cls)]
         for t in range(TRIES):
-            if anchors and t < TRIES // 2 and _tagged(cls, "across"):
+            if anchors and t < TRIES - 10 and _tagged(cls, "across"):
                 yield self._across(self.parts[rng.choice(anchors)], w, h, d)
             elif anchors and t < TRIES // 2:
                 a = self.parts[rng.choice(anchors)].box
@@ -191,25 +191,36 @@ class RoomFurnisher:
                 z = rng.uniform(r[1] + m + d / 2, max(r[1] + m + d / 2, r[3] - m - d / 2))
                 yield box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (0.0, 1.0)
             else:
-                side = rng.choice(("x0", "x1", "z0", "z1"))
+                side = rng.choice(self._facing_sides(cls, anchors))
                 lo, hi = (r[1], r[3]) if side[0] == "x" else (r[0], r[2])
                 if hi - lo < w:
                     continue
                 start = rng.uniform(lo, hi - w)
                 yield side_box(r, side, start, start + w, d, 0.0, h), INWARD[side]
 
+    def _facing_sides(self, cls: str, anchors: list[int]) -> tuple[str, ...]:
+        """The walls a piece may stand against: for one that faces its anchor across the
+        floor (`across`), the wall facing the anchor when it has one; else any."""
+        if anchors and _tagged(cls, "across"):
+            n = self.parts[anchors[0]].normal
+            back = [side for side, inward in INWARD.items()
+                    if n is not None and inward == (-n[0], -n[1])]
+            if back:
+                return tuple(back)
+        return ("x0", "x1", "z0", "z1")
+
     def _across(self, anchor: Part, w: float, h: float, d: float
                 ) -> tuple[Box3, tuple[float, float]]:
         """A box w wide and d deep facing `anchor` (a sofa facing the TV stand) from
-        2-3 m in front of it, its front toward the anchor."""
+        1.3-3.2 m in front of it, its front toward the anchor."""
         a, n = anchor.box, anchor.normal or (0.0, 1.0)
-        gap = self.rng.uniform(1.9, 2.9)
+        gap = self.rng.uniform(1.3, 3.2)
         if n[0]:  # the anchor faces along x: the box's width runs along z
             x = (a[3] if n[0] > 0 else a[0]) + n[0] * (gap + d / 2)
-            z = (a[2] + a[5]) / 2 + self.rng.uniform(-0.3, 0.3)
+            z = (a[2] + a[5]) / 2 + self.rng.uniform(-0.8, 0.8)
             return box3(x - d / 2, 0, z - w / 2, x + d / 2, h, z + w / 2), (-n[0], 0.0)
         z = (a[5] if n[1] > 0 else a[2]) + n[1] * (gap + d / 2)
-        x = (a[0] + a[3]) / 2 + self.rng.uniform(-0.3, 0.3)
+        x = (a[0] + a[3]) / 2 + self.rng.uniform(-0.8, 0.8)
         return box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (0.0, -n[1])
 
     def place_wall(self, cls: str) -> bool:

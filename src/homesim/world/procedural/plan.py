@@ -101,6 +101,7 @@ FALLBACK: dict[str, tuple[str, ...]] = {
 rooms: any other day room first, then the rest)."""
 DAY_ROOMS = frozenset({"living_room", "kitchen", "dining_room", "entrance_hall"})
 """Rooms that may also share a door with a neighbour of this set (beside their tree door)."""
+HUBS = frozenset({"living_room", "entrance_hall"})
 PLACE_ORDER = ("entrance_hall", "living_room", "dining_room", "kitchen", "bedroom",
                "kids_bedroom", "home_office", "bathroom")
 MIN_SIDE = 2.6
@@ -113,7 +114,8 @@ def _size(rng: random.Random, kind: str) -> tuple[float, float]:
     """A room's outer width and depth: a floor of its kind in the built-in homes, a little
     jittered, its interior area kept within the kind's range."""
     w, d = rng.choice(kind_sizes(kind))
-    w, d = max(MIN_SIDE, w * rng.uniform(0.8, 1.1)), max(MIN_SIDE, d * rng.uniform(0.8, 1.1))
+    lo_f = 0.95 if kind in HUBS else 0.8  # a hub has many doors: it keeps its size
+    w, d = max(MIN_SIDE, w * rng.uniform(lo_f, 1.1)), max(MIN_SIDE, d * rng.uniform(lo_f, 1.1))
     lo, hi = kind_area(kind)
     area = (w - 2 * WALL) * (d - 2 * WALL)
     if not lo <= area <= hi:
