@@ -308,19 +308,47 @@ def _is_leaf(box: Box) -> bool:
 
 
 def _door(box: Box, jambs: list[Box]) -> Hinge | None:
-    """A room door hinged on one edge of its leaf: the node's box when it is a leaf, else
-    the leaf of the nearest door frame."""
-    if not _is_leaf(box):
-        if not jambs:
-            return None
-        box = door_leaf(min(jambs, key=lambda j: float(np.hypot(*(j.center[:2]
-                                                                   - box.center[:2])))))
-    along = 0 if box.half[0] >= box.half[1] else 1
-    pivot = box.center.copy()
-    pivot[along] = box.lo[along]
+    """A room door hinged on one edge of its leaf: the node's box when it is a leaf (it
+    opens on its +90 degree side), else the leaf of the nearest door frame, hinged on the
+    end and opening to the side that keep it, open, inside the node's box (the box of
+    its swing, `homesim.world.doors.door_swing`; VirtualHome's placeholders as far as
+    they can)."""
+    if _is_leaf(box):
+        return _leaf_hinge(box, 0, 1.0)
+    if not jambs:
+        return None
+    leaf = door_leaf(min(jambs, key=lambda j: float(np.hypot(*(j.center[:2]
+                                                               - box.center[:2])))))
+    end, side = max(((e, s) for e in (0, 1) for s in (1.0, -1.0)),
+                    key=lambda c: _overlap(_swung(leaf, *c), box))
+    return _leaf_hinge(leaf, end, side)
+
+
+def _leaf_hinge(leaf: Box, end: int, side: float) -> Hinge:
+    """A hinge on end `end` (0: the low end along the leaf, 1: the high end) of a closed
+    leaf, opening 90 degrees about +z with sign `side`."""
+    along = 0 if leaf.half[0] >= leaf.half[1] else 1
+    pivot = leaf.center.copy()
+    pivot[along] = leaf.lo[along] if end == 0 else leaf.hi[along]
     offset = np.zeros(3)
-    offset[along] = box.half[along]
-    return Hinge(pivot, Box(offset, box.half.copy()), np.pi / 2, False)
+    offset[along] = leaf.half[along] if end == 0 else -leaf.half[along]
+    return Hinge(pivot, Box(offset, leaf.half.copy()), side * np.pi / 2, False)
+
+
+def _swung(leaf: Box, end: int, side: float) -> Box:
+    """The box of a leaf hinged at `end` once swung open by `side` * 90 degrees."""
+    h = _leaf_hinge(leaf, end, side)
+    c, s = np.cos(h.open_angle), np.sin(h.open_angle)
+    off = h.panel.center
+    center = h.pivot + np.array([c * off[0] - s * off[1], s * off[0] + c * off[1], off[2]])
+    half = h.panel.half[[1, 0, 2]]  # a quarter turn swaps the horizontal extents
+    return Box(center, half)
+
+
+def _overlap(a: Box, b: Box) -> float:
+    """Volume of the intersection of two boxes."""
+    d = np.minimum(a.hi, b.hi) - np.maximum(a.lo, b.lo)
+    return float(np.prod(np.maximum(d, 0.0)))
 
 
 @dataclass

@@ -122,7 +122,7 @@ def _tint(rgb: RGB, toward_white: float) -> RGB:
 
 def _muted(class_name: str, seed: int) -> RGB:
     """A calm colour per class and seed (hue from the name, low saturation)."""
-    h = zlib.crc32(f"{class_name}:{seed}".encode("utf-8"))
+    h = zlib.crc32(f"{class_name}:{seed}".encode())
     r, g, b = colorsys.hsv_to_rgb((h % 360) / 360.0, 0.25 + ((h >> 9) % 30) / 100.0,
                                   0.5 + ((h >> 17) % 35) / 100.0)
     return (round(r, 3), round(g, 3), round(b, 3))
