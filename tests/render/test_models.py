@@ -133,7 +133,7 @@ def test_hinged_fronts_are_inside_their_box_and_doors_swing_inside_theirs():
         if part.class_name == "door":  # open, the leaf still lies in the door's box
             c, s = np.cos(h.open_angle), np.sin(h.open_angle)
             off = h.panel.center
-            opened = Box(h.pivot + [c * off[0] - s * off[1], s * off[0] + c * off[1], off[2]],
+            opened = Box(h.pivot + np.array([c * off[0] - s * off[1], s * off[0] + c * off[1], off[2]]),
                          h.panel.half[[1, 0, 2]])
             assert np.all(opened.lo >= box.lo - tol) and np.all(opened.hi <= box.hi + tol)
     assert kinds["door"] >= 2 and kinds["fridge"] == 1
