@@ -90,8 +90,8 @@ def render(
                   f"written to {out} in {result.seconds:.1f} s "
                   f"({result.num_frames / result.seconds:.1f} frames/s)")
     if preview:
-        rec = r.load_recording(out)
-        rgb = rec.rgb()
+        rec = r.load_recording(out)  # streamed: only each step's last frame is kept
+        rgb = rec.rgb_frames(s.end_frame for s in rec.steps)
         frames = [(f"{s.index + 1}. {s.step}", rgb[s.end_frame]) for s in rec.steps]
         path = r.contact_sheet(frames, out / "preview.png", columns=3,
                                title=prog.title or None)
