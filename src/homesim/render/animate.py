@@ -92,6 +92,8 @@ SIT_FRONT = 0.3
 """Metres in front of a seat's front edge where the agent stands before sitting down..."""
 SIT_ABOVE = 0.18
 """... and how high above the seated pose the pelvis passes over the front edge."""
+READ_AT = (0.32, 0.12)
+"""Metres in front of and below the eyes where a read object's centre is held."""
 PILLOW_IN = 0.3
 """Metres from a bed's head end to where the head lies."""
 LIE_NECKS = (0.3, 0.5, 0.7, 0.9)
@@ -739,12 +741,9 @@ def use_held(anim: Animator, rec: StepRecord) -> None:
 def _face_spot(anim: Animator, obj: int, action: str) -> np.ndarray:
     """Where a held object's centre goes to be drunk or eaten (its rim at the lips) or
     read (before the eyes)."""
-    pose = anim.pose
-    head = anim.ik.site(pose, "j:head")
-    fwd = np.array([math.cos(pose.yaw), math.sin(pose.yaw), 0.0])
-    up = np.array([0.0, 0.0, 1.0])
-    if action == "READ":
-        return head + 0.35 * fwd - 0.2 * up
+    head, fwd, up = anim.ik.head_frame(anim.pose)  # the face's forward and up (lying too)
+    if action == "READ":  # held open before the eyes, a little below them
+        return head + READ_AT[0] * fwd - READ_AT[1] * up
     head_r = HEAD_RADIUS * anim.shape.height
     half = anim.props.half_of(obj)
     mouth = head + 0.9 * head_r * fwd - 0.45 * head_r * up

@@ -95,6 +95,14 @@ class ArmIK:
         return (self.data.site_xpos[site].copy(),
                 self.data.xmat[body].reshape(3, 3).copy())
 
+    def head_frame(self, pose: Pose) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The head's centre and its forward and up directions (world) for a pose: a
+        lying agent's face looks up."""
+        write_qpos(self.data.qpos, pose, self.scene.joint_qpos)
+        mujoco.mj_kinematics(self.model, self.data)
+        rot = self.data.xmat[self.model.body("a:head").id].reshape(3, 3)
+        return self.data.site("j:head").xpos.copy(), rot[:, 0].copy(), rot[:, 2].copy()
+
     def site(self, pose: Pose, name: str) -> np.ndarray:
         """World position of a named site (``j:head``...) for a pose."""
         write_qpos(self.data.qpos, pose, self.scene.joint_qpos)
