@@ -140,7 +140,8 @@ def _hand_seen(scene, renderer, d, cam, ids, side) -> bool:
     return bool(np.any([int(scene.model.geom_bodyid[g]) in arm for g in window[window >= 0]]))
 
 
-def wrist_gaps(scene, tl, graph) -> list[float]:
+def wrist_gaps(scene, tl, graph) -> list[tuple[float, str]]:
+    """(wrist-to-box distance, what) of each object taken, when it is taken."""
     state = SceneState(scene, tl, aim_cameras=False)
     out = []
     for a in tl.attaches:
@@ -148,7 +149,9 @@ def wrist_gaps(scene, tl, graph) -> list[float]:
         box = to_mujoco(graph.node(a.node))
         if a.node in scene.mocap:
             box = Box(tl.mocap[a.frame][scene.mocap[a.node]], box.half)
-        out.append(box_gap(box, d.site(f"j:{a.side}_wrist").xpos))
+        what = (f"{graph.node(a.node).class_name} (palm {a.gap * 100:.1f} cm, box "
+                f"{np.round(2 * box.half * 100).astype(int).tolist()} cm)")
+        out.append((box_gap(box, d.site(f"j:{a.side}_wrist").xpos), what))
     return out
 
 
@@ -198,7 +201,7 @@ def main() -> int:
     homes = args.homes or HOMES[args.set]
     pen, close, wrist, ran, failed = [], [], [], 0, 0
     for home in homes:
-        h_pen, h_close, h_wrist, h_ran = [], [], [], 0
+        h_pen, h_close, h_wrist, h_ran, h_far = [], [], [], 0, []
         for k, text in programs:
             m = measure(text, home, args)
             if m is None:
@@ -207,7 +210,8 @@ def main() -> int:
             h_ran += 1
             h_pen += [(k, *p) for p in m["pen"]]
             h_close += m["close"]
-            h_wrist += m["wrist"]
+            h_wrist += [w for w, _ in m["wrist"]]
+            h_far += [f"#{k} {what}: {w * 100:.1f} cm" for w, what in m["wrist"] if w > WRIST]
         good = sum(_good(c) for c in h_close)
         parts = _by_part(h_pen)
         print(f"{home}: programs run {h_ran}/{len(programs)}; parts > 3 cm inside objects "
@@ -215,6 +219,8 @@ def main() -> int:
               f"largest wrist gap {max(h_wrist, default=0) * 100:.2f} cm", flush=True)
         for (k, step, part, cls), depth in list(parts.items())[:args.show]:
             print(f"    #{k} step {step + 1}: {part} {depth * 100:.1f} cm inside {cls}")
+        for far in h_far:
+            print(f"    wrist: {far}")
         for c in h_close:
             if not _good(c):
                 share = "-" if c["share"] is None else f"{c['share'] * 100:.2f} %"

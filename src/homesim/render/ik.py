@@ -30,19 +30,21 @@ ORIENT_WEIGHT = (0.25, 0.12)
 position error in a grasp."""
 ORIENT_TOLERANCE = 0.1
 """Radians: a grasp's orientation is good enough below this (position first)."""
-MAX_LEAN = 0.9
-"""Radians: the spine bends forward at most this much in a reach (about 50 degrees; lower
-points are reached crouching)."""
+MAX_LEAN = 1.1
+"""Radians: the spine bends forward at most this much in a reach (about 63 degrees; lower
+points are reached crouching). Reaching across a table needs about 1.1."""
 
 
 @dataclass(frozen=True)
 class Grasp:
     """How a hand takes an object: the palm's contact site (``{side}_palm``) at `point`,
-    the palm facing `palm` and the fingers pointing along `fingers` (world unit vectors)."""
+    the palm facing `palm` and the fingers pointing along `fingers` (world unit vectors);
+    `box` (lo, hi corners), when given, is the object's: the wrist must end near it."""
 
     point: np.ndarray
     palm: np.ndarray
     fingers: np.ndarray
+    box: tuple[np.ndarray, np.ndarray] | None = None
 
 
 def wrist_joints(side: str) -> tuple[str, ...]:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -58,6 +58,9 @@ HAND_ROOM = 0.05
 CLEAR = 0.02
 """Metres: a reach pose whose body passes deeper than this into anything but what the
 hand takes (or holds) is tried after those that do not."""
+WRIST = 0.02
+"""Metres: a grasp holds when the palm touches the object and the wrist is this near its
+box (a palm touching with only its edge, the hand turned away, does not)."""
 
 GraspOf = Callable[[np.ndarray], list[Grasp]]
 """Ways a hand may take an object, best first, for the agent standing at a floor point."""
@@ -95,7 +98,8 @@ def palm_grasps(box: Box, side: str, from_xy: np.ndarray,
     out = both[::-1] if 2.0 * box.half[2] <= FLAT or box.hi[2] <= KNEE else both
     # the palm on the top with the fingers across, where the far side is against a wall
     across = np.array([-u[1], u[0]]) * (1.0 if side == "l" else -1.0)
-    return [*out, _top_grasp(box, across, inset), _top_grasp(box, -across, inset)]
+    grasps = [*out, _top_grasp(box, across, inset), _top_grasp(box, -across, inset)]
+    return [replace(g, box=(box.lo, box.hi)) for g in grasps]
 
 
 def _toward(box: Box, from_xy: np.ndarray) -> np.ndarray:
@@ -174,10 +178,15 @@ class ReachPlan:
     pose: Pose
     gap: float  # metres
     inside: float = 0.0
+    wrist: float = 0.0  # metres from the wrist to the object's box (grasps)
 
     @property
     def clear(self) -> bool:
         return self.inside <= CLEAR
+
+    @property
+    def touches(self) -> bool:
+        return self.gap <= TOUCH and self.wrist <= WRIST
 
 
 class ReachPlanner:
@@ -224,7 +233,7 @@ class ReachPlanner:
             plan = self._reach_from(xy, side, grasp.point, None, grasp)
             if best is None or _better(plan, best):
                 best = plan
-            if plan.gap <= TOUCH and plan.clear:
+            if plan.touches and plan.clear:
                 break
         assert best is not None
         return best
@@ -237,15 +246,20 @@ class ReachPlanner:
         best: ReachPlan | None = None
         for drop in CROUCH if point[2] < LOW else CROUCH[:1]:
             low = crouched(base, self.shape, drop)
+            wrist = 0.0
             if grasp is not None:
                 reached, gap = self.ik.grasp(low, side, grasp)
+                if grasp.box is not None:
+                    lo, hi = grasp.box
+                    w = self.ik.site(reached, f"j:{side}_wrist")
+                    wrist = float(np.linalg.norm(w - np.clip(w, lo, hi)))
             else:
                 reached, _ = self.ik.reach(low, side, point, grip)
                 gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
-            plan = ReachPlan(reached, gap, self.inside(reached) if gap <= TOUCH else 0.0)
+            plan = ReachPlan(reached, gap, self.inside(reached) if gap <= TOUCH else 0.0, wrist)
             if best is None or _better(plan, best):
                 best = plan
-            if gap <= TOUCH and plan.clear:
+            if plan.touches and plan.clear:
                 break
         assert best is not None
         return best
@@ -261,14 +275,14 @@ class ReachPlanner:
         dist = float(np.hypot(*d))
         tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
         best = self.reach_from(start_xy, side, point, grip, grasp_of)
-        touching = best if best.gap <= TOUCH and best.clear else None
+        touching = best if best.touches and best.clear else None
         for xy in tries:
             if touching is not None and _lean(touching) <= COMFORT_LEAN:
                 return touching
             if not self.fits(xy):
                 break
             plan = self.reach_from(xy, side, point, grip, grasp_of)
-            if (plan.gap <= TOUCH and plan.clear
+            if (plan.touches and plan.clear
                     and (touching is None or _lean(plan) < _lean(touching))):
                 touching = plan
             if _better(plan, best):
@@ -279,7 +293,7 @@ class ReachPlanner:
             plan = self.reach_from(xy, side, point, grip, grasp_of)
             if _better(plan, best):
                 best = plan
-            if plan.gap <= TOUCH and plan.clear:
+            if plan.touches and plan.clear:
                 break
         return best
 
@@ -298,9 +312,9 @@ class ReachPlanner:
 
 
 def _better(a: ReachPlan, b: ReachPlan) -> bool:
-    """Whether reach `a` beats `b`: touching first, then the body clear (else less deep
-    in things), then the hand nearer its point."""
-    ta, tb = a.gap <= TOUCH, b.gap <= TOUCH
+    """Whether reach `a` beats `b`: touching first (the wrist near a grasped object too),
+    then the body clear (else less deep in things), then the hand nearer its point."""
+    ta, tb = a.touches, b.touches
     if ta != tb:
         return ta
     if ta and (a.clear != b.clear or not a.clear):
