@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from homesim.render.counters import COUNTERS, carve, strips
 from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
 from homesim.world.class_table import class_row
@@ -432,6 +433,7 @@ def build_layout(graph: EnvironmentGraph, seed: int = 0) -> Layout:
             part.hinge.is_open = S_OPEN in node.states
         part.is_on = S_ON in node.states
         parts.append(part)
+    _carve_counters(parts, graph)
     rooms_of = {p.node_id: r for p in parts if (r := graph.room_of(p.node_id)) is not None}
     return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
                   _room_floors(home.tiles), _start(graph), FloorModel(graph), rooms_of)
@@ -470,6 +472,8 @@ def _kind(node: Node, box: Box) -> str:
         return "seat"
     if GRABBABLE in node.properties:
         return "movable"
+    if cls in COUNTERS:
+        return "counter"
     return "solid"
 
 
@@ -638,6 +642,53 @@ def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
     return True
 
 
+def _counter(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    """A counter: strips along the walls of its room when its box is an L or a U (see
+    `homesim.render.counters`), each drawn as the counter model facing the room."""
+    room = home.graph.room_of(node.id)
+    tiles = home.tiles.get(room, []) if room is not None else []
+    if not tiles:
+        return _solid(part, node, box, home)
+    room_lo = np.min([t.lo for t in tiles], axis=0)
+    room_hi = np.max([t.hi for t in tiles], axis=0)
+    for lo, hi, front in strips(box.lo, box.hi, room_lo, room_hi):
+        strip = Box.from_bounds(lo, hi)
+        part.boxes.append(strip)
+        part.shapes += home.model(node, strip, front)
+    part.front = home.front(node, box)
+    return True
+
+
+def _carve_counters(parts: list[Part], graph: EnvironmentGraph) -> None:
+    """Cut each counter's shapes around the furniture and appliances standing in its box
+    (a dishwasher under it, scene 5's table in the corner of its U)."""
+    boxes = {n.id: b for n in graph if (b := to_mujoco(n)) is not None}
+    for part in parts:
+        if part.class_name not in COUNTERS or part.node_id not in boxes:
+            continue
+        cb = boxes[part.node_id]
+        room = graph.room_of(part.node_id)
+        holes = []
+        for other in parts:
+            b = boxes.get(other.node_id)
+            if (b is None or other is part or other.class_name in ("floor", "ceiling", "wall")
+                    or other.movable is not None or graph.room_of(other.node_id) != room):
+                continue
+            inside = np.prod(np.maximum(np.minimum(b.hi, cb.hi) - np.maximum(b.lo, cb.lo), 0))
+            if inside >= 0.5 * np.prod(2 * b.half) and np.prod(2 * b.half) > 1e-3:
+                holes.append((b.lo - 0.01, b.hi + 0.01))
+        if holes:
+            part.shapes = carve(part.shapes, holes)
+            part.boxes = [Box((a + c) / 2, (c - a) / 2) for bx in part.boxes
+                          for a, c in _box_pieces(bx, holes)]
+
+
+def _box_pieces(box: Box, holes: list[tuple[np.ndarray, np.ndarray]]
+                ) -> list[tuple[np.ndarray, np.ndarray]]:
+    shapes = carve([Shape("box", box.center, box.half, "body")], holes)
+    return [(s.center - s.half, s.center + s.half) for s in shapes]
+
+
 def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     """The class's model; screens get their panel, lamps light."""
     part.boxes.append(_flat(box))
@@ -684,7 +735,7 @@ def _screen(box: Box, front: tuple[int, float]) -> Shape:
 _SHAPERS: dict[str, Shaper] = {
     "floor": _flat_part, "ceiling": _flat_part, "wall": _wall, "doorjamb": _doorjamb,
     "door": _door_part, "hinged": _hinged, "enclosure": _enclosure, "seat": _seat_part,
-    "movable": _movable, "solid": _solid,
+    "movable": _movable, "solid": _solid, "counter": _counter,
 }
 
 

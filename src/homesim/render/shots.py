@@ -215,11 +215,13 @@ def _positions(scene: SceneModel, room: int | None, subject: np.ndarray) -> list
     blockers = [b for p in scene.layout.parts
                 if p.class_name not in ("floor", "ceiling", "wall", "doorjamb")
                 for b in p.boxes]
+    centers = np.array([b.center for b in blockers]).reshape(-1, 3)
+    reach = np.array([b.half for b in blockers]).reshape(-1, 3) + 0.1
 
     def fits(pos: np.ndarray) -> bool:
         return (floor is not None and float(np.linalg.norm(pos - subject)) >= MIN_RANGE
                 and bool(np.all(np.abs(pos[:2] - floor.center[:2]) <= floor.half[:2] - 0.2))
-                and not any(np.all(np.abs(pos - b.center) < b.half + 0.1) for b in blockers))
+                and not bool(np.any(np.all(np.abs(pos - centers) < reach, axis=1))))
 
     out = []
     base = None
