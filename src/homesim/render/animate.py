@@ -79,10 +79,10 @@ REST_GAP = 0.005
 REST_CLEAR = 0.01
 """Metres: a sitting or lying pose whose body passes deeper than this into anything is
 tried after those that do not."""
-SIT_SHIFTS = (0.0, 0.04, 0.08, 0.12, 0.16)
+SIT_SHIFTS = (0.0, 0.04, 0.08, 0.12, 0.16, -0.06, -0.12)
 """Metres the pelvis is moved toward a seat's front edge when the back would enter the
-backrest..."""
-SIT_TURNS = (0.0, 0.3, -0.3)
+backrest (or back, when the legs would enter a desk)..."""
+SIT_TURNS = (0.0, 0.3, -0.3, 0.6, -0.6)
 """... radians it is turned when the legs would enter what stands in front..."""
 SIT_KNEES = (1.22, 1.6)
 """... and knee angles tried (the second draws the feet back under the seat)."""

@@ -367,8 +367,8 @@ class _Home:
         return self.rooms[room].center if room in self.rooms else fallback
 
     def front(self, node: Node, box: Box) -> tuple[int, float]:
-        """The side of a node's box that faces its room; a seat faces the screen it
-        FACES, else a table, desk or counter it stands at (within `AT_TABLE`)."""
+        """The side of a node's box that faces its room; a seat faces the table, desk or
+        counter it stands at (within `AT_TABLE`), else a screen it FACES."""
         room = self.graph.room_of(node.id)
         if SITTABLE in node.properties and node.class_name != "bed":
             faced = self._faced(node, box, room)
@@ -377,13 +377,9 @@ class _Home:
         return _front_axis(box, self.toward(room, box.center + np.array([0.0, 1.0, 0.0])))
 
     def _faced(self, node: Node, box: Box, room: int | None) -> np.ndarray | None:
-        """The centre of what a seat faces: a screen it FACES, else the nearest table."""
+        """The centre of what a seat faces: the nearest table, desk or counter it stands
+        at, else a screen it FACES."""
         graph = self.graph
-        for t in sorted(graph.targets(node.id, "FACING")):
-            if render_kind(graph.node(t).class_name) == "screen" and graph.room_of(t) == room:
-                b = to_mujoco(graph.node(t))
-                if b is not None:
-                    return b.center
         near: tuple[float, np.ndarray] | None = None
         for cls in TABLES:
             for table in graph.nodes_of_class(cls):
@@ -394,7 +390,14 @@ class _Home:
                                                       - b.half[:2] - box.half[:2], 0.0)))
                 if gap <= AT_TABLE and (near is None or gap < near[0]):
                     near = (gap, b.center)
-        return None if near is None else near[1]
+        if near is not None:
+            return near[1]
+        for t in sorted(graph.targets(node.id, "FACING")):
+            if render_kind(graph.node(t).class_name) == "screen" and graph.room_of(t) == room:
+                b = to_mujoco(graph.node(t))
+                if b is not None:
+                    return b.center
+        return None
 
     def model(self, node: Node, box: Box, front: tuple[int, float] | None = None
               ) -> list[Shape]:

@@ -27,7 +27,9 @@ Columns (lists are space separated, except ``names``, separated by ``;``):
     tags      single (one per room), centre (stands in the room's middle), surface (a
               last resort to put things on), windowed (its front has a glass pane),
               across (stands facing its ``beside`` class across the floor: a sofa
-              facing the TV stand)
+              facing the TV stand), end (stands at an end of its ``beside`` class, not
+              before it: a computer tower beside the desk, out of the sitter's legs),
+              faced (what stands beside it stands before its front: a desk's chair)
     names     what people call it (empty: its name with spaces)
     color     a fixed base colour, r g b in 0..1, for what keeps its colour in every home
               (an apple; empty: the theme colours it by family and seed)
@@ -49,7 +51,7 @@ FAMILIES = ("fabric", "accent", "wood", "dark", "white", "metal", "ceramic", "gl
             "food", "plant", "decor", "lamp", "plastic", "structure", "room", "body", "person")
 RENDER_KINDS = ("", "hinged", "screen", "lamp", "room_lamp", "enclosure")
 MOUNTS = ("", "floor", "wall", "ceiling")
-TAGS = ("single", "centre", "surface", "windowed", "across")
+TAGS = ("single", "centre", "surface", "windowed", "across", "end", "faced")
 
 
 @dataclass(frozen=True, slots=True)

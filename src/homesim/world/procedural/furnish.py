@@ -172,16 +172,19 @@ class RoomFurnisher:
             if anchors and t < TRIES - 10 and _tagged(cls, "across"):
                 yield self._across(self.parts[rng.choice(anchors)], w, h, d)
             elif anchors and t < TRIES // 2:
-                a = self.parts[rng.choice(anchors)].box
-                side = rng.choice(("x0", "x1", "z0", "z1"))
+                anchor = self.parts[rng.choice(anchors)]
+                a = anchor.box
+                side = rng.choice(_ends(anchor) if _tagged(cls, "end") else
+                                  _front(anchor) if _tagged(anchor.cls, "faced") else
+                                  ("x0", "x1", "z0", "z1"))
                 gap = rng.uniform(0.05, 0.25)
                 if side[0] == "x":
-                    z = rng.uniform(a[2], a[5])
+                    z = _along(rng, a[2], a[5], w)
                     x = a[0] - gap - d / 2 if side == "x0" else a[3] + gap + d / 2
                     yield box3(x - d / 2, 0, z - w / 2, x + d / 2, h, z + w / 2), (
                         (1.0, 0.0) if side == "x0" else (-1.0, 0.0))
                 else:
-                    x = rng.uniform(a[0], a[3])
+                    x = _along(rng, a[0], a[3], w)
                     z = a[2] - gap - d / 2 if side == "z0" else a[5] + gap + d / 2
                     yield box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (
                         (0.0, 1.0) if side == "z0" else (0.0, -1.0))
@@ -302,6 +305,33 @@ class RoomFurnisher:
         part.states = tuple(class_info(part.cls)["states"])
         self.parts.append(part)
         self.fixtures.append(len(self.parts) - 1)
+
+
+def _along(rng: random.Random, lo: float, hi: float, width: float) -> float:
+    """Where along an anchor's side [lo, hi] a piece `width` wide goes: within the side
+    (its middle when it is the wider)."""
+    if hi - lo <= width:
+        return (lo + hi) / 2
+    return rng.uniform(lo + width / 2, hi - width / 2)
+
+
+def _front(anchor: Part) -> tuple[str, ...]:
+    """The side before a piece's front (a desk's chair stands there)."""
+    n = anchor.normal
+    if n is None:
+        return ("x0", "x1", "z0", "z1")
+    if n[0]:
+        return ("x1",) if n[0] > 0 else ("x0",)
+    return ("z1",) if n[1] > 0 else ("z0",)
+
+
+def _ends(anchor: Part) -> tuple[str, ...]:
+    """The sides at the ends of a piece (not its front or back): where a computer tower
+    stands beside its desk, out of the way of the legs of whoever sits at it."""
+    n = anchor.normal
+    if n is None:
+        return ("x0", "x1", "z0", "z1")
+    return ("z0", "z1") if n[0] else ("x0", "x1")
 
 
 def _side(normal: tuple[float, float] | None) -> str:
