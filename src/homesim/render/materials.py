@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import colorsys
 import io
+import zlib
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -198,7 +199,10 @@ class Look:
 
     def __post_init__(self) -> None:
         rng = np.random.default_rng([self.seed, 7])
-        self.theme = Theme.of(self.seed)
+        # the theme varies with the seed and the home (its rooms): two homes rendered with
+        # one seed do not share one look
+        home = zlib.crc32(repr(sorted(self.rooms.items())).encode()) % 100_000
+        self.theme = Theme.of(self.seed * 100_000 + home)
         self.wood = self.theme.wood
         self.fabric = self.theme.fabric
         self.books = [_BOOKS[int(i)] for i in rng.permutation(len(_BOOKS))[:4]]
