@@ -78,7 +78,7 @@ def interpenetration(scene, tl, steps) -> list[tuple[int, str, str, float]]:
     held = held_per_frame(tl)
     frames: dict[int, tuple[int, dict[str, set[int]]]] = {}
     starts = [a for a, _ in tl.step_frames]
-    for a, b in tl.rests:  # getting down onto the seat or bed, and staying there
+    for a, b in _rests(tl, steps):  # getting down onto the seat or bed, and staying there
         step = int(np.searchsorted(starts, a, side="right")) - 1
         for f in range(a, b + 1):
             frames.setdefault(f, (step, {s: set(n) for s, n in held[f].items()}))
@@ -92,6 +92,22 @@ def interpenetration(scene, tl, steps) -> list[tuple[int, str, str, float]]:
         d = state.apply(f)
         for p in clear.penetrations(d, allowed, DEPTH):
             out.append((step, p.part, names.get(p.node, str(p.node)), p.depth))
+    return out
+
+
+def _rests(tl, steps) -> list[tuple[int, int]]:
+    """The timeline's sit and lie frames; for code before `Timeline.rests` (issue 43),
+    each Sit or Lie step from the frame its pelvis starts to go down."""
+    if hasattr(tl, "rests"):
+        return tl.rests
+    from homesim.program.actions import ACTIONS
+
+    out = []
+    for i, (a, b) in enumerate(tl.step_frames):
+        if ACTIONS[steps[i].action.key].motion in ("sit", "lie"):
+            z = np.array([q[2] for q in tl.qpos[a:b + 1]])
+            down = np.flatnonzero(z < z[0] - 0.05)
+            out.append((a + int(down[0]) if len(down) else b, b))
     return out
 
 
