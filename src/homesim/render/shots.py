@@ -31,12 +31,12 @@ from homesim.render.scene import SceneModel
 
 MARGIN = 1.3
 """The frame spans this many times the angular extent of hand and object."""
-MIN_FOVY = 8.0
+MIN_FOVY = 6.0
 MAX_FOVY = 80.0
 """Degrees: the narrowest and widest close-up."""
 FRAMED = 5
-"""Hand positions sampled along the second half of the reach (to the effect) that the
-shot must contain."""
+"""Hand positions sampled along the last quarter of the reach (to the effect) that the
+shot must contain (the whole second half made small objects, a faucet, too small)."""
 DOLLY = (0.0, 0.3, 0.55)
 """Each room camera is also tried moved this share of the way toward the action (at its
 height, inside the room, out of furniture)..."""
@@ -56,9 +56,9 @@ being seen counts more."""
 SEEN_SHARE = 0.006
 """A candidate showing the object on less than this share of the drawing does not show
 it (a little above the 0.5 % the interactions benchmark counts as covered)."""
-MIN_RANGE = 1.5
+MIN_RANGE = 1.1
 """Metres: a camera is not moved closer than this to the action."""
-RING = (1.7, 2.4)
+RING = (1.3, 1.9)
 """Metres: besides the room cameras, positions this far around the action are tried
 (every 30 degrees)..."""
 RING_HEIGHTS = (1.35, 1.9)
@@ -276,13 +276,14 @@ def node_corners(scene: SceneModel, data: mujoco.MjData, node: int) -> np.ndarra
 
 def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
                    data: mujoco.MjData) -> np.ndarray:
-    """What the shot must contain: the hand as it comes to the object; the object at the
+    """What the shot must contain: the hand as it comes to the object (the last quarter of
+    its reach); the object at the
     effect, and at the start of the reach too unless it rides in a hand (a carried
     object's place then would only widen the view); of where it goes (a put's table,
     fridge), the part within `NEAR_DEST` of it."""
     site = scene.hand_sites[it.side]
     pts = []
-    for f in np.linspace((it.start + it.peak) / 2, it.peak, FRAMED).round().astype(int):
+    for f in np.linspace((it.start + 3 * it.peak) / 4, it.peak, FRAMED).round().astype(int):
         _pose(scene, timeline, int(f), data)
         pts.append(data.site_xpos[site].copy()[None])
     for f in (it.start, it.peak):

@@ -29,6 +29,9 @@ CAP = {"floor": 3, "wall": 4, "ceiling": 2}
 KEEP_OUT = 1.0
 """Depth (m) of the free zone in front of a door."""
 TRIES = 60
+ACROSS_SIDE = 1.5
+"""Metres a piece facing its anchor across the floor may stand to the side of it (a sofa
+still FACES the TV from there)."""
 
 
 @dataclass
@@ -220,10 +223,10 @@ class RoomFurnisher:
         gap = self.rng.uniform(1.3, 3.2)
         if n[0]:  # the anchor faces along x: the box's width runs along z
             x = (a[3] if n[0] > 0 else a[0]) + n[0] * (gap + d / 2)
-            z = (a[2] + a[5]) / 2 + self.rng.uniform(-0.8, 0.8)
+            z = (a[2] + a[5]) / 2 + self.rng.uniform(-ACROSS_SIDE, ACROSS_SIDE)
             return box3(x - d / 2, 0, z - w / 2, x + d / 2, h, z + w / 2), (-n[0], 0.0)
         z = (a[5] if n[1] > 0 else a[2]) + n[1] * (gap + d / 2)
-        x = (a[0] + a[3]) / 2 + self.rng.uniform(-0.8, 0.8)
+        x = (a[0] + a[3]) / 2 + self.rng.uniform(-ACROSS_SIDE, ACROSS_SIDE)
         return box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (0.0, -n[1])
 
     def place_wall(self, cls: str) -> bool:
