@@ -54,7 +54,7 @@ def _run_home(job: tuple[str, list[str], int]) -> tuple[str, dict]:
         for i, text in enumerate(texts):
             lib = run_program(parse_program(text), graph)
             api = client.post("/api/execute", json={"program": text, "home": home}).json()
-            old = run_program(parse_program(text), graph, prepare=False)
+            old = run_program(parse_program(text), graph, prepare=False, repair=False)
             counts["library"] += lib.executable
             counts["api"] += api["executable"]
             counts["ground_only"] += old.executable

@@ -4,7 +4,8 @@ For each seed: generate the home (time it, wall clock and CPU time of the proces
 shared machine the wall clock mostly measures waiting; load a built-in home as the
 reference in the same run), check it (`check_home`), generate again and compare bytes;
 then run the 518 real programs (ungrounded, as in benchmarks/grounding.py) through
-`homesim.run_program` and count the executable ones and the objects preparation added.
+`homesim.run_program` as written (``repair=False``; `benchmarks/repair.py` measures
+repair) and count the executable ones and the objects preparation added.
 The built-in homes (full, with boxes) are measured the same way for comparison. In the homes of
 `--render-seeds` (and the built-in ones), two typical real programs (the first that
 watches TV from the sofa, the first that grabs a glass to drink) are grounded and
@@ -93,7 +94,7 @@ def _measure(name: str, limit: int, render: bool) -> dict:
     programs = [unground(rp.program) for rp in real_programs()[:limit]]
     ok = added = 0
     for p in programs:
-        run = run_program(p, graph)
+        run = run_program(p, graph, repair=False)  # as written (benchmarks/repair.py: repaired)
         ok += run.executable
         added += len(run.prepared.added) if run.prepared else 0
     row["rate"] = ok / max(1, len(programs))  # --programs 0: time and check homes only

@@ -24,8 +24,8 @@ import torch
 
 from _timing import best_of
 from homesim.learn.data import split, synthetic_examples
-from homesim.learn.text2prog import Text2Prog
-from homesim.learn.train import TrainConfig, train_mle
+from homesim.learn.text.text2prog import Text2Prog
+from homesim.learn.text.train import TrainConfig, train_mle
 from homesim.sim import execute
 from homesim.synth import generate
 from homesim.synth.grammar import _home

@@ -19,7 +19,7 @@ import numpy as np
 
 from _timing import best_of
 from homesim.learn.data import real_examples
-from homesim.learn.median import Medians
+from homesim.learn.rerank.median import Medians
 from homesim.program.model import Program
 
 Job = tuple[list[Program], np.ndarray, Program]

@@ -29,7 +29,7 @@ from _timing import best_of
 from homesim.dataset.layout import Layout
 from homesim.dataset.read import EncodedEpisode
 from homesim.dataset.verify import iter_episodes
-from homesim.learn.videocache import VideoFormat, episode_rows, shard_episodes, small_video
+from homesim.learn.video.cache import VideoFormat, episode_rows, shard_episodes, small_video
 from homesim.render.video import decode_video
 
 

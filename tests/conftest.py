@@ -82,7 +82,7 @@ def small_writer(real_data):
     all 518 take half a minute)."""
     pytest.importorskip("sklearn")
     from homesim.learn.data import real_examples
-    from homesim.learn.writer import ProgramWriter
+    from homesim.learn.rerank.program_writer import ProgramWriter
 
     examples = [e for e in real_examples(real_data) if e.title in WRITER_ACTIVITIES]
     return ProgramWriter.fit(examples)

@@ -30,9 +30,12 @@ CASES = [
     ("scene1",  # a grounded ref with the equivalent name of its node's class
      "[Walk] <television> (1.410)\n[SwitchOn] <television> (1.410)\n",
      True, None, "executable: all 2 steps ran"),
-    ("scene1_trimmed",  # no tv can be switched on twice
+    ("scene1_trimmed",  # no tv can be grabbed: repair cannot help
+     "[Walk] <tv> (1)\n[Grab] <tv> (1)\n",
+     False, "grounding", "step 2 [Grab] <tv> (1): cannot be grounded: "),
+    ("scene1_trimmed",  # switched on twice: repair switches it off in between
      "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n[SwitchOn] <tv> (1)\n",
-     False, "grounding", "step 3 [SwitchOn] <tv> (1): cannot be grounded: "),
+     True, None, "executable: all 4 steps ran, 1 of them inserted by repair"),
     ("scene1",  # grounded, fails at a precondition
      "[Walk] <tv> (1.410)\n[Grab] <tv> (1.410)\n",
      False, "execution", "step 2 [Grab] <tv> (1.410): tv 410 cannot be grabbed"),
@@ -41,7 +44,7 @@ CASES = [
      False, "grounding", "step 1 [Walk] <tv> (1.352): <tv> (1) is node 352, a sofa, not a tv"),
 ]
 IDS = ["grounded", "prepared", "equivalent-name", "grounded-equivalent", "ungroundable",
-       "precondition", "wrong-class"]
+       "repaired", "precondition", "wrong-class"]
 
 
 @pytest.fixture(scope="module")
@@ -84,9 +87,12 @@ def test_every_entry_point_gives_the_same_verdict_and_message(
     assert _api(client, home, text) == library
     program = homesim.parse_program(text)
     example = Example("case", program, home=home)
-    assert reward_executable(program, example) == executable
+    # The learning reward and decoding judge the program as written (no repair).
+    as_written = homesim.run_program(program, home, repair=False).executable
+    assert as_written == (executable and "inserted by repair" not in message)
+    assert reward_executable(program, example) == as_written
     if not program.is_grounded:  # decoding builds ungrounded programs step by step
-        assert runs_greedily(program, example) == executable
+        assert runs_greedily(program, example) == as_written
 
 
 def test_the_issue_example_runs_everywhere(client):

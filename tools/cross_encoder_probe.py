@@ -67,8 +67,8 @@ def export(out: Path, seeds: int, vectors: Path) -> None:
 
 def export_run(out: Path, seed: int, vectors: Path) -> None:
     sys.path.insert(0, str(Path(__file__).parent))
-    from homesim.learn.experiment import RunSpec, load_run_splits
-    from homesim.learn.rerank import Bank, Query, _labelled
+    from homesim.learn.eval.experiment import RunSpec, load_run_splits
+    from homesim.learn.rerank.base import Bank, Query, labelled
     from rerank_dev import training_queries
 
     splits = load_run_splits(RunSpec("real", "stratified", seed), vectors)
@@ -82,7 +82,7 @@ def export_run(out: Path, seed: int, vectors: Path) -> None:
         query = Query(bank, example, allowed)
         if not query.candidates:
             continue
-        features, labels = _labelled(query)
+        features, labels = labelled(query)
         key = f"{kind}-{i}"
         arrays[f"{key}/features"], arrays[f"{key}/labels"] = features, labels
         rows.append({"key": key, "kind": kind, "fold": fold,
@@ -193,8 +193,8 @@ def score(model: _Model, rows: list[dict]) -> dict[str, list[float]]:
 def evaluate(data: Path, scores: Path) -> None:
     """Cross-validated and dev top-candidate LCS: trees, trees + score, the score alone."""
     sys.path.insert(0, str(Path(__file__).parent))
-    from homesim.learn.rerank import fit_trees
-    from rerank_dev import cross_validated, top_lcs
+    from homesim.learn.rerank.trees import fit_trees
+    from rerank_dev import CONFIG, cross_validated_each, top_lcs
 
     means = []
     for path in sorted(scores.glob("ce-stratified-*.json")):
@@ -212,10 +212,11 @@ def evaluate(data: Path, scores: Path) -> None:
         folds = [i % FOLDS for i, *_ in train]
         plain = [(f, t) for _, f, t, _ in train]
         more = [(np.column_stack([f, c]), t) for _, f, t, c in train]
-        row = [cross_validated(plain, folds), cross_validated(more, folds),
+        row = [float(cross_validated_each(plain, folds).mean()),
+               float(cross_validated_each(more, folds).mean()),
                float(np.mean([t[int(np.argmax(c))] for _, _, t, c in train])),
-               float(np.mean(top_lcs(fit_trees(plain), [(f, t) for _, f, t, _ in dev]))),
-               float(np.mean(top_lcs(fit_trees(more), [(np.column_stack([f, c]), t)
+               float(np.mean(top_lcs(fit_trees(plain, CONFIG), [(f, t) for _, f, t, _ in dev]))),
+               float(np.mean(top_lcs(fit_trees(more, CONFIG), [(np.column_stack([f, c]), t)
                                                        for _, f, t, c in dev]))),
                float(np.mean([t[int(np.argmax(c))] for _, _, t, c in dev]))]
         means.append(row)

@@ -20,8 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.learn.experiment import RunSpec, load_run_splits
-from homesim.learn.rerank import Bank
+from homesim.learn.eval.experiment import RunSpec, load_run_splits
+from homesim.learn.rerank.base import Bank
 
 BINS = (-1.0, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 1.01)
 

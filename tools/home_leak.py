@@ -47,15 +47,17 @@ def leaked_classes() -> None:
 def reading_the_home(seeds: int, vectors: Path) -> None:
     """Print the dev steps LCS of the reranker and the title-medoid, each with and without
     the executability check in the example's home."""
-    from homesim.learn.baselines import medoid_order
+    from homesim.learn.eval.baselines import medoid_order
+    from homesim.learn.eval.experiment import HOLDOUT, RunSpec, load_run_splits
     from homesim.learn.execution import executable
-    from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
-    from homesim.learn.rerank import CHECK_EXECUTABLE, Query, Reranker
+    from homesim.learn.rerank.base import Query
+    from homesim.learn.rerank.config import RerankConfig
+    from homesim.learn.rerank.reranker import Reranker
     from homesim.program.metrics import normalized_lcs, step_tokens
 
     def first_runnable(programs: list[Program], example) -> Program:
-        return next((p for p in programs[:CHECK_EXECUTABLE] if executable(p, example)),
-                    programs[0])
+        checked = programs[:RerankConfig().check_executable]
+        return next((p for p in checked if executable(p, example)), programs[0])
 
     rows = []
     for seed in range(seeds):

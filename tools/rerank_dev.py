@@ -27,30 +27,23 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.learn import baselines
 from homesim.learn.data import Example
-from homesim.learn.experiment import HOLDOUT, RunSpec, load_run_splits
-from homesim.learn.insertion import Known
-from homesim.learn.likelihood import folds as fold_of_each
-from homesim.learn.rerank import (
-    Bank,
-    Query,
-    Reranker,
-    _labelled,
-    cross_deleted,
-    cross_fitted_best,
-    cross_inserted,
-    design,
-    fit_editors,
-    fit_trees,
-    fold_knowledge,
-    has_copy,
-)
-from homesim.learn.splits import SPLITS
+from homesim.learn.eval import baselines
+from homesim.learn.eval.experiment import HOLDOUT, RunSpec, load_run_splits
+from homesim.learn.eval.splits import SPLITS
+from homesim.learn.rerank.base import Bank, Query, labelled
+from homesim.learn.rerank.config import RerankConfig
+from homesim.learn.rerank.editors import cross_deleted, cross_inserted, fit_editors
+from homesim.learn.rerank.folds import Known, fold_knowledge, has_copy
+from homesim.learn.rerank.folds import folds as fold_of_each
+from homesim.learn.rerank.reranker import Reranker
+from homesim.learn.rerank.trees import cross_fitted_best, design, fit_trees
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 
 Group = tuple[np.ndarray, np.ndarray]
+CONFIG = RerankConfig()
+"""The settings measured: the reranker's defaults, as the table fits it."""
 
 
 def top_lcs(trees, groups: list[Group]) -> list[float]:
@@ -61,7 +54,7 @@ def top_lcs(trees, groups: list[Group]) -> list[float]:
 def cross_validated_each(groups: list[Group], folds: list[int], random_state: int = 0
                          ) -> np.ndarray:
     """Each group's top-candidate LCS, its fold scored by trees fitted on the others."""
-    best = cross_fitted_best(groups, folds, random_state)
+    best = cross_fitted_best(groups, folds, CONFIG, random_state)
     return np.array([float(t[b]) for (_, t), b in zip(groups, best, strict=True)])
 
 
@@ -72,12 +65,12 @@ def edited_cross_validated(queries: list[Query], groups: list[Group], folds: lis
     editor of a fold fitted on the queries of the other folds without a copy in training,
     as `rerank.fit_editors` fits them (the deleter on programs the inserters of their own
     folds wrote)."""
-    best = cross_fitted_best(groups, folds)
+    best = cross_fitted_best(groups, folds, CONFIG)
     learns = [not has_copy(q.bank, q.example) for q in queries]
     written = cross_inserted([(q, known[f], q.candidates[b], f, ok) for q, f, b, ok
-                              in zip(queries, folds, best, learns, strict=True)])
+                              in zip(queries, folds, best, learns, strict=True)], CONFIG)
     deleted = cross_deleted([(q, known[f], f, ok) for q, f, ok
-                             in zip(queries, folds, learns, strict=True)], written)
+                             in zip(queries, folds, learns, strict=True)], written, CONFIG)
 
     def scored(programs: list[Program]) -> np.ndarray:
         return np.array([normalized_lcs(step_tokens(p), step_tokens(q.example.program))
@@ -97,7 +90,7 @@ def training_queries(bank: Bank, split: str, without_copies: bool = False
     query: folds by program for the stratified split, by activity for leave-activities-out,
     as the split hides them. `without_copies`: only the queries whose program has no copy
     elsewhere in training (as no test program of the stratified split has)."""
-    assigned = fold_of_each(bank.train, HOLDOUT[split])
+    assigned = fold_of_each(bank.train, HOLDOUT[split], CONFIG.folds)
     rows = [(i, e, ~bank.hidden(e, HOLDOUT[split]), assigned[i])
             for i, e in enumerate(bank.train)]
     if without_copies:
@@ -171,12 +164,12 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     cross-validated gap to the baseline; training cut to `train_fraction` (`subsample`)."""
     splits = load_run_splits(RunSpec("real", split, seed), vectors)
     train = subsample(splits.train, train_fraction, seed)
-    bank = Bank(train)
+    bank = Bank(train, CONFIG)
     groups, folds, base, alone, queries, indexed = [], [], [], [], [], []
     for i, example, allowed, fold in training_queries(bank, split, without_copies):
         query = Query(bank, example, allowed)
         if query.candidates:
-            groups.append(_labelled(query))
+            groups.append(labelled(query))
             folds.append(fold)
             base.append(baseline_on_query(query, split))
             alone.append(not has_copy(bank, example))
@@ -184,11 +177,11 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
             indexed.append((i, query))
     everything = np.ones(len(train), bool)
     dev_queries = [Query(bank, e, everything) for e in splits.dev]
-    dev = [_labelled(q) for q in dev_queries]
-    known = fold_knowledge(train, HOLDOUT[split])[1]
+    dev = [labelled(q) for q in dev_queries]
+    known = fold_knowledge(train, HOLDOUT[split], CONFIG)[1]
     inserted, deleted = edited_cross_validated(queries, groups, folds, known)
-    model = Reranker(bank, fit_trees(groups), None, *fit_editors(bank, HOLDOUT[split],
-                                                                  indexed, groups, True))
+    model = Reranker(bank, fit_trees(groups, CONFIG), *fit_editors(bank, HOLDOUT[split], indexed,
+                                                           groups, True))
     dev_inserted, dev_deleted = [], []
     for q, (f, _) in zip(dev_queries, dev, strict=True):
         chosen = q.candidates[int(np.argmax(model.trees.predict(design(f))))].program
@@ -203,7 +196,7 @@ def measure(split: str, seed: int, vectors: Path, without_copies: bool = False,
     base_lcs = np.array(base)
     scored_alone = np.array(alone) & ~np.isnan(base_lcs)
     return Measured([float(e.mean()) for e in each],
-                    [float(np.mean(top_lcs(fit_trees(groups, r), dev)))
+                    [float(np.mean(top_lcs(fit_trees(groups, CONFIG, r), dev)))
                      for r in range(tree_seeds)],
                     float(baseline_dev), [float(np.nanmean(e - base_lcs)) for e in each],
                     [float(e[scored_alone].mean()) for e in each],

@@ -1,5 +1,6 @@
 """How often the program writer names a description's activity right when no title is given
-(`homesim.learn.writer.ProgramWriter.guess_title`), leave-one-out over the real programs.
+(`homesim.learn.rerank.program_writer.ProgramWriter.guess_title`), leave-one-out over the
+real programs.
 
     .venv/bin/python tools/title_guess.py
 
@@ -12,13 +13,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from homesim.learn.writer import TITLE_TAU, real_writer, vote_titles
+from homesim.learn.rerank.program_writer import real_writer, vote_titles
 
 TAUS = (0.01, 0.02, 0.05, 0.1, 0.2)
 
 
 def main() -> None:
-    bank = real_writer().reranker.bank
+    writer = real_writer()
+    bank = writer.reranker.bank
     titles = np.array([e.title for e in bank.train])
     sims = bank.desc @ bank.desc.T
     same = np.array([[t == u for u in bank.tokens] for t in bank.tokens])
@@ -28,7 +30,7 @@ def main() -> None:
     print(f"nearest description's title: {np.mean(nearest == titles):.1%}")
     for tau in TAUS:
         voted = np.array(vote_titles(sims, list(titles), tau))
-        mark = "  (the writer's)" if tau == TITLE_TAU else ""
+        mark = "  (the writer's)" if tau == writer.title_tau else ""
         print(f"vote, tau {tau}: {np.mean(voted == titles):.1%}{mark}")
 
 

@@ -7,6 +7,8 @@ catch `HomesimError` and print that line; any other exception is a bug of ours.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from homesim.limits import EXCERPT_CHARS
 
 
@@ -97,14 +99,19 @@ class GroundingError(HomesimError):
         step: 1-based number of the step where the search failed (0 when no step applies).
         obj: the program object (``<cup> (1)``) that could not be placed or bound, if any.
         tried: what was tried, in words (classes, instances, destinations).
+        kind: the `homesim.sim.FailureKind` of the precondition the search could not
+            meet (``missing`` for an object the home lacks), when known.
     """
 
-    def __init__(self, message: str, step: int = 0, obj: str | None = None, tried: str = ""):
+    def __init__(self, message: str, step: int = 0, obj: str | None = None, tried: str = "",
+                 kind: str | None = None):
         self.step = step
         self.obj = obj
         self.tried = tried
-        self.bindings: dict[tuple[str, int], int] = {}
-        """The search's choices when it failed (program object -> node id), if any."""
+        self.kind = kind
+        self.bindings: Mapping[tuple[str, int], int] = {}
+        """The search's choices when it failed, if any: a `homesim.program.Bindings` (named
+        by its plain type here: this module sits below `homesim.program`)."""
         super().__init__(message)
 
 

@@ -30,6 +30,30 @@ MAX_DESCRIPTION_CHARS = 2000
 EXCERPT_CHARS = 80
 """Most characters of user text an error message quotes (then an ellipsis)."""
 
+# ------------------------------------------------------------------ goals and plans
+MAX_FORMULA_CHARS = 16 * 1024
+"""Longest goal formula (characters); EAI's longest is 667."""
+
+MAX_FORMULA_DEPTH = 32
+"""Deepest nesting of a goal formula: parentheses, 'not' and quantifiers, each a level
+(EAI's deepest is 4); the parser and the checker recurse once per level."""
+
+MAX_FORMULA_ATOMS = 256
+"""Most atoms in a goal formula (EAI's largest has 18); checking ``A then B then ...``
+costs about atoms x (steps + 1)² / 2 atom checks."""
+
+MAX_FORMULA_QUANTIFIERS = 2
+"""Most quantifiers nested in one another (EAI nests 2); each multiplies the checking
+cost by the number of nodes of the home."""
+
+MAX_PLAN_DEPTH = 8
+"""Deepest nesting of JSON arrays and objects in a plan file or in one plan's text (EAI's
+format needs 3: the list of records, a record, and in a plan its object and lists)."""
+
+MAX_PLAN_STEPS = MAX_STEPS
+"""Most steps one plan may have; a longer plan gets a ``format`` error, the others are
+scored."""
+
 # ------------------------------------------------------------------ graphs
 MAX_GRAPH_BYTES = 256 * 1024 * 1024
 """Largest environment graph file (bytes of JSON, after gunzip)."""

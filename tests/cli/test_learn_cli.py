@@ -69,7 +69,7 @@ def test_device_auto_is_cpu_without_cuda_and_cuda_is_refused(capsys):
 @pytest.fixture
 def writer_on_small_data(small_writer, monkeypatch):
     """`homesim learn write` answers with the small writer (not one fitted on all 518)."""
-    from homesim.learn import writer
+    from homesim.learn.rerank import program_writer as writer
 
     monkeypatch.setattr(writer, "real_writer", lambda: small_writer)
     return small_writer

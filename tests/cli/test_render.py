@@ -74,8 +74,13 @@ def test_a_program_that_cannot_be_grounded_is_one_line(tmp_path, graph_file, cap
 
 
 def test_a_grounded_program_naming_nodes_of_another_class_is_refused(tmp_path, capsys):
-    # the demo is grounded for scene1; node 410 of scene1_trimmed is a light
-    code = main(["render", "--out", str(tmp_path / "o"), "--home", "scene1_trimmed"])
+    # the demo file is grounded for scene1; node 410 of scene1_trimmed is a light
+    from homesim.examples import load_example
+
+    program = tmp_path / "demo.txt"
+    program.write_text(str(load_example("watch_tv")))
+    code = main(["render", str(program), "--out", str(tmp_path / "o"), "--home",
+                 "scene1_trimmed"])
     assert code == 2
     err = " ".join(capsys.readouterr().err.split())
     assert "step 1 [Walk] <tv> (1.410): <tv> (1) is node 410, a light, not a tv" in err

@@ -3,16 +3,10 @@ import json
 import pytest
 
 from homesim.dataset import DatasetConfig, generate_dataset
+from homesim.dataset.generate import generate_plan
 from homesim.dataset.layout import Layout
 from homesim.dataset.manifest import read_manifest
-from homesim.dataset.plan import (
-    PAPER,
-    Plan,
-    generate_plan,
-    load_plan,
-    part_configs,
-    read_plan,
-)
+from homesim.dataset.plan import PAPER, Plan, load_plan, part_configs, read_plan
 from homesim.errors import GraphError, HomesimError
 from homesim.world.homes import load_home
 from tests.dataset.conftest import tiny_config
@@ -84,10 +78,15 @@ def test_agents_are_drawn_from_the_option():
     assert DatasetConfig.from_dict(old).agents == DatasetConfig().agents
 
 
-def test_a_plan_is_made_in_its_parts_and_resumes(gl, program_file, tmp_path):
-    base = tiny_config(program_file)
-    out = tmp_path / "plan"
-    summaries = generate_plan(TINY, 4, out, base, workers=0)
+@pytest.fixture(scope="module")
+def tiny_plan(gl, program_file, tmp_path_factory):
+    out = tmp_path_factory.mktemp("plan") / "plan"
+    summaries = generate_plan(TINY, 4, out, tiny_config(program_file), workers=0)
+    return out, summaries
+
+
+def test_a_plan_is_made_in_its_parts_and_resumes(tiny_plan, program_file):
+    out, summaries = tiny_plan
     assert {k: s.ok for k, s in summaries.items()} == {"train": 2, "val": 1, "test": 1}
     for part in TINY.parts:
         rows = read_manifest(out / part.name / "episodes.parquet")
@@ -95,12 +94,45 @@ def test_a_plan_is_made_in_its_parts_and_resumes(gl, program_file, tmp_path):
         assert {r["home"] for r in rows} <= set(part.homes)
     folder = read_plan(out)
     assert folder is not None and folder.plan == TINY and folder.role("val") == "val"
-    assert read_plan(tmp_path) is None
+    assert read_plan(out / "train") is None
     before = (out / "plan.json").read_bytes()
+    base = tiny_config(program_file)
     generate_plan(TINY, 4, out, base, workers=0)  # all done: nothing made again
     assert (out / "plan.json").read_bytes() == before
     with pytest.raises(HomesimError, match="holds a plan made with other options"):
         generate_plan(TINY, 5, out, base, workers=0)
+
+
+def test_the_card_of_a_plan_counts_parts_and_coverage(tiny_plan, tmp_path):
+    from homesim.dataset.card import write_plan_card
+
+    out, _ = tiny_plan
+    paths = write_plan_card(out, tmp_path / "card")
+    assert sorted(p.name for p in paths) == ["actions.png", "contact_sheet.png",
+                                             "objects.png", "stats.json"]
+    stats = json.loads((tmp_path / "card" / "stats.json").read_text())
+    assert {k: v["made"] for k, v in stats["parts"].items()} == {"train": 2, "val": 1,
+                                                                "test": 1}
+    assert stats["train_share"] == 0.5 and stats["parts"]["val"]["role"] == "val"
+    # One program file of two steps: every test step class is a training one.
+    row = stats["coverage"]["all"]
+    assert (row["classes_seen"], row["steps_seen"], row["test_classes"]) == (1.0, 1.0, 2)
+
+
+def test_coverage_counts_classes_and_steps():
+    from homesim.dataset.card import coverage
+    from homesim.knowledge.datasets import ActivityDataset, ActivityProgram
+    from homesim.program.parse import parse_program
+
+    def ds(*texts: str) -> ActivityDataset:
+        return ActivityDataset([ActivityProgram(str(i), parse_program(t), "x")
+                                for i, t in enumerate(texts)], "x")
+
+    train = ds("[Walk] <tv> (1)\n[SwitchOn] <tv> (1)", "[Walk] <tv> (2)")
+    test = ds("[Walk] <tv> (1)\n[Grab] <cup> (1)\n[Walk] <tv> (1)")
+    c = coverage(train, test)
+    assert c["classes_seen"] == 0.5 and c["steps_seen"] == pytest.approx(2 / 3)
+    assert c["classes_seen_5"] == 0 and c["train_classes"] == 2
 
 
 def test_a_home_file_works_where_a_name_does(gl, program_file, tmp_path):

@@ -3,7 +3,7 @@ import pytest
 from homesim.goals.check import GoalSet
 from homesim.goals.contexts import TaskContext, task_objects
 from homesim.goals.eai import TaskGoals
-from homesim.goals.plans import PlanReport, parse_plan, score_plan
+from homesim.goals.plans import PlanReport, parse_plan, score_plan, score_plans
 
 
 @pytest.fixture
@@ -138,3 +138,111 @@ def test_every_action_of_eai_table_is_known(context, name):
     s = score_plan("1_1", plan(WALK_TV, '"TURNTO": ["tv", "14"]', f'"{name}": ["tv", "14"]'),
                    context)
     assert s.error != "hallucination" and s.steps[0] == "[WALK] <tv> (1.14)"
+
+
+@pytest.mark.parametrize(("kind", "expected"), [
+    ("ALREADY", "additional_step"), ("AFFORDANCE", "affordance"),
+    ("UNREACHABLE", "missing_step"), ("STATE", "missing_step")])
+def test_error_kinds_come_from_the_failure_kind_not_its_words(context, monkeypatch, kind,
+                                                              expected):
+    """The EAI kind is read from the simulator's `FailureKind`: the same words with
+    another kind give another EAI kind (no pattern over sentences)."""
+    from homesim.sim import effects
+    from homesim.sim.failure import Failure, FailureKind
+
+    monkeypatch.setitem(effects.EFFECTS, "SWITCHON",
+                        lambda st, n: Failure(FailureKind[kind], "the same words"))
+    s = score_plan("1_1", plan(WALK_TV, ON_TV), context)
+    assert s.error == expected
+    assert s.additional == ([2] if expected == "additional_step" else [])
+
+
+# ------------------------------------------------------------------ EAI's order and strict mode
+@pytest.fixture
+def wide(tiny_home):
+    goals = TaskGoals("file1_1", "Put away", GoalSet(relations=((16, "ON", 13),)), None, "")
+    objects = frozenset({("fridge", 11), ("cup", 12), ("tv", 14), ("sofa", 15),
+                         ("kitchen", 1), ("table", 13), ("plate", 16)})
+    return TaskContext(goals, tiny_home, objects)
+
+
+GRAB_PLATE = ('"WALK": ["table", "13"]', '"GRAB": ["plate", "16"]')
+PUT_PLATE = '"PUTBACK": ["plate", "16", "table", "13"]'
+
+
+@pytest.mark.parametrize("strict", [False, True])
+def test_hallucination_is_checked_on_the_whole_plan_before_arity(wide, strict):
+    """U1: EAI checks every step's action and objects before any step's arity."""
+    text = plan('"WALK": ["tv", "14", "tv", "14"]', '"GRAB": ["unicorn", "99999"]')
+    s = score_plan("1_1", text, wide, strict_eai=strict)
+    assert s.error == "hallucination" and "unicorn" in s.reason
+    text = plan('"WALK": ["tv", "14", "tv", "14"]', '"FLY": ["tv", "14"]')
+    assert score_plan("1_1", text, wide, strict_eai=strict).error == "hallucination"
+
+
+def test_put_is_putback_by_default_and_a_hallucination_in_strict_mode(wide):
+    """U5: homesim knows PUT as an alias of PUTBACK; EAI's table does not."""
+    text = plan(*GRAB_PLATE, '"PUT": ["plate", "16", "table", "13"]')
+    assert score_plan("1_1", text, wide).success
+    s = score_plan("1_1", text, wide, strict_eai=True)
+    assert s.error == "hallucination" and "not in EAI's action table" in s.reason
+    text = plan('"PLUGIN": ["tv", "14"]')  # EAI's table lacks it (docs/goals.md fault 6)
+    assert score_plan("1_1", text, wide, strict_eai=True).error == "hallucination"
+
+
+def test_a_repeated_putback_is_additional_by_default_and_wrong_order_in_strict_mode(wide):
+    """U7: the second PUTBACK fails (nothing held); EAI calls it wrong_order and stops."""
+    text = plan(*GRAB_PLATE, PUT_PLATE, PUT_PLATE)
+    s = score_plan("1_1", text, wide)
+    assert (s.error, s.additional, s.success) == ("additional_step", [4], True)
+    s = score_plan("1_1", text, wide, strict_eai=True)
+    assert (s.error, s.failed_step, s.executable) == ("wrong_order", 4, False)
+
+
+@pytest.mark.parametrize("text", [
+    '{"WALK": ["table", "13"], "GRAB": ["plate", "16"],}',   # trailing comma
+    '{"WALK": ["table", "13"], "GRAB": ["plate", "16"]',     # no closing brace
+])
+def test_eai_reader_is_lenient_only_in_strict_mode(wide, text):
+    """U2: EAI reads each "KEY": [...] pair on its own."""
+    assert score_plan("1_1", text, wide).error == "format"
+    s = score_plan("1_1", text, wide, strict_eai=True)
+    assert (s.error, s.executable) == (None, True)
+
+
+def test_strict_mode_drops_zero_argument_steps_as_eai_does(wide):
+    text = plan('"STANDUP": []', *GRAB_PLATE)
+    assert score_plan("1_1", text, wide).error == "additional_step"  # standing already
+    s = score_plan("1_1", text, wide, strict_eai=True)
+    assert (s.error, s.steps[0]) == (None, "[WALK] <table> (1.13)")
+
+
+# ------------------------------------------------------------------ hostile plans (issue 40 D9)
+def test_deep_nesting_in_one_plan_is_a_format_error_and_the_others_are_scored(wide):
+    deep = '{"WALK": ' + "[" * 5000 + "]" * 5000 + "}"
+    medium = '{"WALK": ' + "[" * 20 + "]" * 20 + "}"
+    report = score_plans([{"identifier": "1_1", "llm_output": t}
+                          for t in (deep, medium, plan(*GRAB_PLATE))], {"1_1": wide})
+    errors = [s.error for s in report.scores]
+    assert errors == ["format", "format", None]
+    assert all("MAX_PLAN_DEPTH" in s.reason for s in report.scores[:2])
+    s = score_plan("1_1", deep, wide, strict_eai=True)  # EAI's reader: one bad list
+    assert s.error == "format"
+
+
+def test_a_plan_over_the_step_limit_is_a_format_error_and_the_others_are_scored(wide):
+    long = plan(*(['"WALK": ["tv", "14"]'] * 1001))
+    report = score_plans([{"identifier": "1_1", "llm_output": t}
+                          for t in (long, plan(*GRAB_PLATE))], {"1_1": wide})
+    assert [s.error for s in report.scores] == ["format", None]
+    assert "MAX_PLAN_STEPS" in report.scores[0].reason
+
+
+def test_the_additional_step_rate_is_a_share_of_plans(wide):
+    repeated = plan(*GRAB_PLATE, *(['"GRAB": ["plate", "16"]'] * 997))
+    report = score_plans([{"identifier": "1_1", "llm_output": repeated}], {"1_1": wide})
+    assert len(report.scores[0].additional) == 997
+    assert report.summary()["trajectory_evaluation"]["runtime_error"]["additional_step"] == 100
+    strict = score_plans([{"identifier": "1_1", "llm_output": repeated}], {"1_1": wide},
+                         strict_eai=True)  # EAI counts steps: 99 700 %
+    assert strict.summary()["trajectory_evaluation"]["runtime_error"]["additional_step"] == 99700

@@ -165,3 +165,19 @@ def test_a_second_character_outside_every_room_is_refused_at_load_not_a_key_erro
     # was KeyError: None in prepare (room_rank of no room); now the loader says why
     with pytest.raises(GraphError, match="character 20 is INSIDE no room"):
         EnvironmentGraph.from_dict(d)
+
+
+def test_classes_the_knowledge_base_knows_without_properties_are_added():
+    """Issue 41: `mirror` is in the knowledge base (states, no affordances); it was
+    refused as unknown. A plural stands for its singular; an unknown name gets one line
+    with the known names spelled like it."""
+    from homesim.ground.pipeline import run_program
+
+    run = run_program("[Walk] <mirror> (1)\n[LookAt] <mirror> (1)", "scene1")
+    assert run.executable
+    assert [a.class_name for a in run.prepared.added] == ["mirror"]
+    assert run_program("[Walk] <cups> (1)\n[Grab] <cups> (1)", "scene1").executable
+    run = run_program("[Walk] <televison> (1)", "scene1")
+    assert not run.executable and run.kind.value == "missing"
+    assert run.message.endswith("does not know 'televison', so none can be added (did you "
+                                "mean television?)")

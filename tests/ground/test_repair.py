@@ -28,7 +28,9 @@ def test_a_closed_container_is_opened_before_taking_from_it(tiny_home):
     # Grounded: the cup in the fridge (ungrounded, preparation may add another cup).
     r = repair("[Grab] <cup> (1.12)", tiny_home)
     assert r.executable
-    assert [str(i.step) for i in r.insertions] == ["[Walk] <cup> (1.12)",
+    # The grab fails with kind `enclosed`: opening the fridge comes first, and walking
+    # to it first repairs that in turn.
+    assert [str(i.step) for i in r.insertions] == ["[Walk] <fridge> (1.11)",
                                                    "[Open] <fridge> (1.11)"]
     assert "may be inside it" in r.insertions[1].reason
 
@@ -99,28 +101,31 @@ def test_homesim_run_repair_lists_insertions_and_runs_the_repaired_program(tmp_p
 
     p = tmp_path / "p.txt"
     p.write_text("[Grab] <wine_glass> (1)\n")
-    assert main(["run", str(p), "--home", "scene1_trimmed"]) == 1
-    capsys.readouterr()
-    assert main(["run", str(p), "--home", "scene1_trimmed", "--repair"]) == 0
+    assert main(["run", str(p), "--home", "scene1_trimmed", "--no-repair"]) == 1
+    assert "inserted" not in capsys.readouterr().out
+    assert main(["run", str(p), "--home", "scene1_trimmed"]) == 0  # repair by default
     out = capsys.readouterr().out
     assert ("inserted step 1 [Walk] <wine_glass> (1): walk to <wine_glass> (1) before "
             "[Grab]") in out
+    assert "as written: step 1 [Grab] <wine_glass> (1): cannot be grounded" in out
     assert "executable: all 2 steps ran" in out
-    assert main(["run", str(p), "--home", "scene1_trimmed", "--repair", "--json"]) == 0
+    assert main(["run", str(p), "--home", "scene1_trimmed", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["executable"] and len(data["steps"]) == 2
+    assert [s["line"] for s in data["steps"]] == [None, None]  # no lines without a file
     assert data["repair"]["executable_before"] is False
     assert [i["step"] for i in data["repair"]["insertions"]] == ["[Walk] <wine_glass> (1)"]
+    assert data["message"] == "executable: all 2 steps ran, 1 of them inserted by repair"
 
 
-def test_repair_and_no_ground_do_not_mix(tmp_path, capsys):
+def test_no_ground_reads_node_ids_and_never_repairs(tmp_path, capsys):
     from homesim.cli.main import main
 
     p = tmp_path / "p.txt"
     p.write_text("[Grab] <wine_glass> (1)\n")
-    assert main(["run", str(p), "--repair", "--no-ground"]) != 0
-    captured = capsys.readouterr()
-    assert "drop --no-ground" in captured.out + captured.err
+    assert main(["run", str(p), "--no-ground", "--json"]) != 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["repair"] is None and data["steps"][0]["step"] == "[Grab] <wine_glass> (1)"
 
 
 @pytest.mark.parametrize(("text", "walk"), [
@@ -159,3 +164,24 @@ def test_a_walk_before_the_first_step_on_an_object_lets_grounding_pick_another(t
     assert [(i.index, str(i.step), i.before) for i in r.insertions] == [(0, walk, 0)]
     assert "first acts on it" in r.insertions[0].reason
     assert _own_steps(r) == text.split("\n")
+
+
+def test_repair_reads_the_failure_kind(tiny_home):
+    """Facing: the turn is tried before the walk (kind not_facing), so one run finds it."""
+    r = repair("[Walk] <tv> (1.14)\n[LookAt] <tv> (1.14)", tiny_home)
+    assert r.before.kind.value == "not_facing"
+    assert [str(i.step) for i in r.insertions] == ["[TurnTo] <tv> (1.14)"]
+    assert r.runs == 2  # the program, then the turn: the first candidate
+
+
+def test_run_program_switches_off_what_is_on_only_when_nothing_else_helps(tiny_home):
+    """Issue 41: a device already on blocked real programs ([SwitchOn] <light>); the
+    pipeline's repair then undoes the state, and says so."""
+    from homesim.ground.pipeline import run_program
+
+    text = "[Walk] <tv> (1.14)\n[SwitchOn] <tv> (1.14)\n[SwitchOn] <tv> (1.14)"
+    assert not repair(text, tiny_home).executable  # repair alone does not change meaning
+    run = run_program(text, tiny_home)
+    assert run.executable and run.strict.kind.value == "already"
+    assert [str(i.step) for i in run.insertions] == ["[SwitchOff] <tv> (1.14)"]
+    assert "it must be OFF" in run.insertions[0].reason

@@ -115,12 +115,24 @@ def test_ground_true_grounds_a_grounded_program_anew(client):
 
 def test_program_that_cannot_be_grounded_is_an_answer_with_its_line(client):
     text = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n[SwitchOn] <tv> (1)\n"
-    r = client.post("/api/execute", json={"program": text, "home": "scene1_trimmed"})
+    r = client.post("/api/execute", json={"program": text, "home": "scene1_trimmed",
+                                          "repair": False})
     assert r.status_code == 200
     data = r.json()
     assert data["executable"] is False and data["stage"] == "grounding"
     assert data["failed_step"] == 3 and data["failed_line"] == 3
     assert data["message"].startswith("step 3 [SwitchOn] <tv> (1): cannot be grounded")
+    assert data["kind"] == "already" and data["repair"] is None
+
+
+def test_a_program_is_repaired_by_default_and_inserted_steps_have_no_line(client):
+    text = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n\n[SwitchOn] <tv> (1)\n"
+    data = client.post("/api/execute", json={"program": text, "home": "scene1_trimmed"}
+                       ).json()
+    assert data["executable"] is True and data["kind"] is None
+    assert [s["line"] for s in data["steps"]] == [1, 2, None, 4]
+    assert data["repair"]["insertions"][0]["step"] == "[SwitchOff] <tv> (1)"
+    assert data["repair"]["executable_before"] is False
 
 
 def test_render_without_renderer_is_501(client, watch_tv, monkeypatch):

@@ -1,7 +1,7 @@
 import pytest
 
 from homesim.knowledge import fetch
-from homesim.learn import writer
+from homesim.learn.rerank import program_writer as writer
 
 
 @pytest.fixture

@@ -46,6 +46,7 @@ Walk to the TV and switch it on, then sit on the sofa and watch TV.
 const EXAMPLE = fileURLToPath(
   new URL("../../src/homesim/examples/watch_tv.txt", import.meta.url));
 const GRAB_REASON = "tv 410 cannot be grabbed (not GRABBABLE)";
+const AFFORDANCE_HINT = "this object cannot do that; choose another";
 // Title, no description: the typo is on line 4 of this text (line 5 of the 3-line-header
 // text the editor sends).
 const TYPO = "Watch TV\n\n[Walk] <tv> (1.410)\n[Wlak] <tv> (1.410)\n";
@@ -257,8 +258,9 @@ async function main() {
       const icon = block.getIcon(window.homesimEditor.Blockly.icons.IconType.WARNING);
       return icon ? { text: icon.getText(), open: icon.bubbleIsVisible() } : null;
     }, grab);
-    check(warning && warning.text === GRAB_REASON && warning.open,
-      `the Grab block's warning is ${JSON.stringify(warning)}`);
+    // The reason, then what to do about its kind (affordance: another object).
+    check(warning && warning.text.replace(/\s+/g, " ") === `${GRAB_REASON} (${AFFORDANCE_HINT})`
+      && warning.open, `the Grab block's warning is ${JSON.stringify(warning)}`);
     check(await page.locator(`[data-id="${grab}"].hsFailed`).count() === 1,
       "the failing block is not outlined");
     await page.locator(".blocklyBubble", { hasText: GRAB_REASON }).first()

@@ -19,14 +19,24 @@ export interface HomeObject {
 export interface Objects { home: string; objects: HomeObject[] }
 export interface Problem { index: number; line: number; step: string; message: string }
 export interface Validation { ok: boolean; problems: Problem[]; program: string }
+/** What kind of precondition a step failed (`homesim.sim.FailureKind`), null when it ran. */
+export type FailureKind =
+  | "missing" | "unreachable" | "not_facing" | "enclosed" | "not_held" | "hands_full"
+  | "posture" | "already" | "affordance" | "state";
+/** A step's `line` is null when repair inserted it (it has no block). */
 export interface StepResult {
-  index: number; line: number; step: string; ok: boolean; reason: string | null;
-  summary: string;
+  index: number; line: number | null; step: string; ok: boolean; reason: string | null;
+  kind: FailureKind | null; summary: string;
 }
+export interface Insertion { index: number; step: string; reason: string; before: number }
 export interface Execution {
   executable: boolean; failed_step: number | null; failed_line: number | null;
-  reason: string | null; message: string; steps: StepResult[];
-  not_run: { index: number; line: number; step: string }[];
+  reason: string | null; kind: FailureKind | null; message: string; steps: StepResult[];
+  not_run: { index: number; line: number | null; step: string }[];
+  repair: {
+    program: string; insertions: Insertion[]; executable_before: boolean;
+    message_before: string;
+  } | null;
 }
 /** A program written for a description (`homesim learn write`) and its run in the home. */
 export interface Written {

@@ -3,7 +3,8 @@
 import * as Blockly from "blockly/core";
 import * as En from "blockly/msg/en";
 import {
-  ApiError, api, frameUrl, renderKeyFrames, renderVideo, videoUrl, type Execution, type RenderJob,
+  ApiError, api, frameUrl, renderKeyFrames, renderVideo, videoUrl, type Execution,
+  type FailureKind, type RenderJob,
 } from "./api";
 import { defineBlocks, toolbox } from "./blocks";
 import { parseUnbound, setObjects, setUnbound } from "./objects";
@@ -256,17 +257,43 @@ function showError(e: unknown): void {
   }
 }
 
+/** What to do about a failed step, by its kind (the server's words say why). */
+const HINTS: Record<FailureKind, string> = {
+  missing: "the home has no such object",
+  unreachable: "the character must walk to it first",
+  not_facing: "the character must turn to it first",
+  enclosed: "open what it is inside first",
+  not_held: "the character must hold it first",
+  hands_full: "put something down first",
+  posture: "the character must stand up (or sit) first",
+  already: "it is so already; drop this step",
+  affordance: "this object cannot do that; choose another",
+  state: "it needs another state first",
+};
+
+function withHint(reason: string, kind: FailureKind | null): string {
+  return kind ? `${reason} (${HINTS[kind]})` : reason;
+}
+
 function showRun(result: Execution): void {
   resultList.replaceChildren();
+  const inserted = new Map((result.repair?.insertions ?? []).map((i) => [i.index, i.reason]));
   for (const step of result.steps) {
     const item = document.createElement("li");
-    item.className = step.ok ? "step ok" : "step fail";
-    item.dataset.line = String(step.line);
-    item.innerHTML = `<span class="mark">${step.ok ? "✓" : "✗"}</span> <code></code>
+    const added = inserted.get(step.index);
+    item.className = (step.ok ? "step ok" : "step fail") + (added ? " inserted" : "");
+    if (step.line !== null) item.dataset.line = String(step.line);
+    if (step.kind) item.dataset.kind = step.kind;
+    const mark = added ? "+" : step.ok ? "✓" : "✗";
+    item.innerHTML = `<span class="mark">${mark}</span> <code></code>
       <div class="detail"></div>`;
     item.querySelector("code")!.textContent = step.step;
-    item.querySelector(".detail")!.textContent = step.ok ? step.summary : step.reason;
-    item.addEventListener("click", () => blockAtLine(step.line)?.select());
+    const detail = step.ok ? step.summary : withHint(step.reason ?? "", step.kind);
+    item.querySelector(".detail")!.textContent = added ? `inserted: ${added}; ${detail}` : detail;
+    if (step.line !== null) {
+      const line = step.line;
+      item.addEventListener("click", () => blockAtLine(line)?.select());
+    }
     resultList.append(item);
   }
   for (const step of result.not_run) {
@@ -277,10 +304,10 @@ function showRun(result: Execution): void {
     resultList.append(item);
   }
   if (result.executable) {
-    setStatus(`✓ executable: all ${result.steps.length} steps ran`, "ok");
+    setStatus(`✓ ${result.message}`, "ok");
   } else {
     setStatus(`✗ ${result.message}`, "error");
-    markBlock(result.failed_line, result.reason ?? "failed");
+    markBlock(result.failed_line, withHint(result.reason ?? "failed", result.kind));
   }
 }
 

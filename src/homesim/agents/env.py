@@ -8,11 +8,12 @@ objects; ``<cup> (1.12)`` works too). The step runs through the simulator's one 
 function (`homesim.sim.run_step`), with the same preconditions as `homesim.run_program`.
 
 A step that cannot run (bad text, an unknown node, a failed precondition) changes
-nothing; ``info["reason"]`` says why. Reward: 1 when the goal holds after a step (the
-episode then terminates), else 0 (``failure_penalty`` for a step that could not run).
-The episode is truncated after ``max_steps`` actions. ``info`` also holds ``ok``, the
-``step`` as parsed, what it ``changed`` and ``success``. `history` keeps the `StepRecord`
-of every step that ran in this episode (what a `TraceGoal` is judged on).
+nothing; ``info["reason"]`` says why and ``info["kind"]`` what kind of precondition
+failed (a `homesim.sim.FailureKind` value; None for bad text). Reward: 1 when the goal
+holds after a step (the episode then terminates), else 0 (``failure_penalty`` for a step
+that could not run). The episode is truncated after ``max_steps`` actions. ``info`` also
+holds ``ok``, the ``step`` as parsed, what it ``changed`` and ``success``. `history` keeps
+the `StepRecord` of every step that ran in this episode (what a `TraceGoal` is judged on).
 
 >>> env = HomeEnv("scene1_trimmed", goal=StateGoal(states=((42, "ON"),)))
 >>> obs, info = env.reset(seed=0)
@@ -106,15 +107,19 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
         self.state = SimState(self.home)
         self.steps = 0
         self.history = []
-        return self._observe(), {"ok": True, "reason": None, "success": self._success()}
+        return self._observe(), {"ok": True, "reason": None, "kind": None,
+                                 "success": self._success()}
 
     def step(self, action: str) -> tuple[dict[str, Any], float, bool, bool, dict[str, Any]]:
         """Run one program step; see the module docstring for reward and termination."""
         self.steps += 1
         step, reason = self._parse(action)
         mark = self.state.mark()
+        kind = None
         if step is not None and reason is None:
-            reason = run_step(self.state, step, step.nodes)
+            failure = run_step(self.state, step, step.nodes)
+            if failure is not None:
+                reason, kind = failure.reason, failure.kind.value
         ok = reason is None
         changes = self.state.changes_since(mark)
         if ok and step is not None:
@@ -122,7 +127,8 @@ class HomeEnv(gym.Env[dict[str, Any], str]):
                                            changes))
         success = self._success()
         reward = 1.0 if success else (0.0 if ok else self.failure_penalty)
-        info = {"ok": ok, "reason": reason, "step": None if step is None else str(step),
+        info = {"ok": ok, "reason": reason, "kind": kind,
+                "step": None if step is None else str(step),
                 "changed": changes.describe(self.state.label) if ok else "",
                 "success": success}
         truncated = not success and self.steps >= self.max_steps

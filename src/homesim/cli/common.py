@@ -53,3 +53,13 @@ def read_graph(graph: str | None, home: str | None,
         return EnvironmentGraph.load(graph), graph
     name = home or default_home
     return open_home(name), name
+
+
+def demo_program(home: str) -> Program:
+    """The demo program (``watch_tv``) as written for `DEMO_HOME`, ungrounded (``<tv>
+    (1)``) for any other home, where preparation and grounding fit it."""
+    from homesim.examples import DEMO_HOME, load_example
+    from homesim.ground.search import unground
+
+    program = load_example("watch_tv")
+    return program if home == DEMO_HOME else unground(program)

@@ -131,7 +131,8 @@ def _generate_one(config, out: Path, workers: int, ray_address: str | None, t0: 
 
 def _generate_plan(name: str, config, out: Path, workers: int, ray_address: str | None,
                    t0: float) -> dict:
-    from homesim.dataset.plan import generate_plan, load_plan
+    from homesim.dataset.generate import generate_plan
+    from homesim.dataset.plan import load_plan
 
     plan = load_plan(name)
     with _bar(t0) as bar:
@@ -198,13 +199,15 @@ def verify(root: Annotated[Path, typer.Argument(help="Data set folder, or a plan
 
 @app.command()
 def card(
-    root: Annotated[Path, typer.Argument(help="Data set folder.")],
+    root: Annotated[Path, typer.Argument(help="Data set folder, or a plan folder.")],
     out: Annotated[Path, typer.Option(help="Folder for stats.json and the figures.")],
     seed: Annotated[int, typer.Option(help="Seed of the episodes on the contact sheet.")] = 0,
 ) -> None:
     """Figures of the data set card: counts and Table 1(a) (stats.json), action and object
     histograms, and a contact sheet of 12 random episodes."""
-    from homesim.dataset.card import write_card
+    from homesim.dataset.card import write_card, write_plan_card
+    from homesim.dataset.plan import read_plan
 
-    for path in write_card(root, out, seed):
+    write = write_card if read_plan(root) is None else write_plan_card
+    for path in write(root, out, seed):
         console.print(f"wrote {path}")

@@ -12,7 +12,8 @@ from rich.table import Table
 
 from homesim.cli.common import console, read_graph, read_program
 from homesim.errors import DataError, HomesimError
-from homesim.files import check_target
+from homesim.files import check_target, write_text
+from homesim.limits import MAX_PLAN_DEPTH, deeper_than
 from homesim.world.graph import EnvironmentGraph
 
 if TYPE_CHECKING:
@@ -36,6 +37,9 @@ def check(
     graph: Annotated[str | None, typer.Option(help="Environment graph JSON file.")] = None,
     home: Annotated[str | None, typer.Option(help="Built-in home.")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print JSON.")] = False,
+    strict_eai: Annotated[bool, typer.Option(
+        "--strict-eai", help="Refuse formulas EAI refuses (an 'and' of state and temporal "
+                             "goals).")] = False,
 ) -> None:
     """Run a program and say which goals of a task (and which formula) its trace meets."""
     from homesim.goals import Trajectory, check_goals, holds, parse_formula
@@ -45,7 +49,7 @@ def check(
         raise HomesimError("goals check: give --task ID, --formula TEXT or both")
     prog = read_program(program)
     goals = _task_goals(task) if task is not None else None
-    extra = parse_formula(formula) if formula is not None else None
+    extra = parse_formula(formula, strict_eai) if formula is not None else None
     if graph is None and home is None and task is not None:
         env = _task_home(task)
     else:
@@ -121,6 +125,11 @@ def plans(
     out: Annotated[Path | None, typer.Option(
         help="Write the per-plan report (JSON) here.")] = None,
     force: Annotated[bool, typer.Option(help="Replace --out if it exists.")] = False,
+    strict_eai: Annotated[bool, typer.Option(
+        "--strict-eai", help="EAI's verdicts where EAI is lenient or strict by choice: its "
+                             "plan reader, its action table, a repeated step that fails is "
+                             "not skipped, additional steps counted per step "
+                             "(docs/goals.md).")] = False,
 ) -> None:
     """Score plans with EAI's metrics; print the table, write per-plan reasons."""
     from homesim.goals.contexts import load_contexts
@@ -128,14 +137,9 @@ def plans(
 
     if out is not None:
         check_target(out, force)
-    try:
-        records = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as e:
-        raise DataError(f"{path}: cannot read plans ({e})") from None
-    if not isinstance(records, list):
-        raise DataError(f"{path}: expected a JSON list of {{identifier, llm_output}}")
+    records = _read_plans(path)
     ids = {str(r.get("identifier")) for r in records if isinstance(r, dict)}
-    report = score_plans(records, load_contexts(ids))
+    report = score_plans(records, load_contexts(ids), strict_eai=strict_eai)
     summary = report.summary()
     table = Table(title=f"{summary['plans']} plans")
     table.add_column("metric")
@@ -147,8 +151,26 @@ def plans(
     console.print(table)
     if out is not None:
         data = {"summary": summary, "plans": [s.to_dict() for s in report.scores]}
-        out.write_text(json.dumps(data, indent=1), encoding="utf-8")
+        write_text(out, json.dumps(data, indent=1), force=force)
         console.print(f"per-plan report: {escape(str(out))}")
+
+
+def _read_plans(path: Path) -> list:
+    """The records of a plan file; `DataError` naming the file when it is not a JSON list
+    or nests deeper than `MAX_PLAN_DEPTH` (one plan's text is checked when it is scored)."""
+    too_deep = DataError(f"{path}: nested deeper than {MAX_PLAN_DEPTH} levels "
+                         "(MAX_PLAN_DEPTH); expected a JSON list of {identifier, llm_output}")
+    try:
+        records = json.loads(path.read_text(encoding="utf-8"))
+    except RecursionError:  # deeper than the parser goes
+        raise too_deep from None
+    except (OSError, ValueError) as e:
+        raise DataError(f"{path}: cannot read plans ({e})") from None
+    if deeper_than(records, MAX_PLAN_DEPTH):
+        raise too_deep
+    if not isinstance(records, list):
+        raise DataError(f"{path}: expected a JSON list of {{identifier, llm_output}}")
+    return records
 
 
 def _flat(values: dict, prefix: str = "") -> list[tuple[str, float]]:
@@ -175,7 +197,13 @@ def titles(
     force: Annotated[bool, typer.Option(help="Replace --prompts-out if it exists.")] = False,
 ) -> None:
     """Title -> program on the real data ("Task: Watch TV"): LCS and executability."""
-    from homesim.goals.titles import baseline, evaluate, prompts, read_predictions, title_splits
+    from homesim.learn.eval.titles import (
+        baseline,
+        evaluate,
+        prompts,
+        read_predictions,
+        title_splits,
+    )
 
     if prompts_out is not None:
         check_target(prompts_out, force)

@@ -29,7 +29,7 @@ TASKS = ("text2prog", "video2prog")
 
 
 def _datasets(data: str) -> tuple[str, ...]:
-    from homesim.learn.table import DATASETS
+    from homesim.learn.eval.paper_table import DATASETS
 
     if data == "both":
         return DATASETS
@@ -39,7 +39,7 @@ def _datasets(data: str) -> tuple[str, ...]:
 
 
 def _table_datasets(data: str) -> tuple[str, ...]:
-    from homesim.learn.experiment import DATASETS
+    from homesim.learn.eval.experiment import DATASETS
 
     if data == "all":
         return DATASETS
@@ -124,13 +124,18 @@ def train(
     threads: Annotated[int, typer.Option(help="CPU threads for torch.")] = 1,
     force: Annotated[bool, typer.Option(help="Replace existing checkpoints.")] = False,
     device: DeviceOption = "auto",
-    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 30,
+    clip_epochs: Annotated[int, typer.Option(help="video2prog: clip model epochs.")] = 20,
+    frame_epochs: Annotated[int, typer.Option(
+        help="video2prog: frame encoder epochs (each draws 60 000 training frames).")] = 6,
+    seg_epochs: Annotated[int, typer.Option(
+        help="video2prog: segmentation network epochs (40 000 frames each).")] = 4,
     seeds: Annotated[int, typer.Option(
         help="video2prog: train seeds SEED..SEED+N-1 (Table 2 gives mean ± sd).")] = 1,
     frame_size: Annotated[str, typer.Option(
         help="video2prog: WIDTHxHEIGHT the frames are reduced to.")] = "64x48",
     video_cache: Annotated[Path | None, typer.Option(
-        help="video2prog: folder for the reduced shards (default ~/.cache/homesim/video).")
+        help="video2prog: folder for the reduced episodes and the frame store (default "
+             "~/.cache/homesim/video).")
     ] = None,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
@@ -139,15 +144,16 @@ def train(
     device = _torch(threads, device)
     if task == "video2prog":
         from homesim.cli.learn_video import train_video2prog
-        from homesim.learn.videotable import DEFAULT_CACHE, VideoRunConfig
+        from homesim.learn.video.table import DEFAULT_CACHE, VideoRunConfig
 
         video = VideoRunConfig(data, list(range(seed, seed + max(1, seeds))), frame_size,
                                cache=str(video_cache or DEFAULT_CACHE),
+                               frame_epochs=frame_epochs, seg_epochs=seg_epochs,
                                clip_epochs=clip_epochs, batch_size=batch_size)
         train_video2prog(out, video, mle_epochs, pg_epochs, force, device)
         return
     datasets = _datasets(data)
-    from homesim.learn.table import MODELS, RunConfig, train_dataset
+    from homesim.learn.eval.paper_table import MODELS, RunConfig, train_dataset
 
     _check_run_folder(out, datasets, tuple(f"{m}.pt" for m in MODELS), force)
 
@@ -204,8 +210,8 @@ def evaluate(
     datasets = _datasets(data)
     if markdown is not None:
         check_target(markdown, force)
-    from homesim.learn.report import markdown_table
-    from homesim.learn.table import evaluate_dataset, trained, write_json
+    from homesim.learn.eval.paper_table import evaluate_dataset, trained, write_json
+    from homesim.learn.eval.report import markdown_table
 
     if data == "both":
         present = tuple(name for name in datasets if trained(runs / name))
@@ -225,7 +231,7 @@ def evaluate(
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        from homesim.learn.videoreport import with_table2
+        from homesim.learn.video.report import with_table2
         text = markdown_table(results, eval_seconds=seconds, machine=_machine())
         write_text(markdown, with_table2(markdown, text), force=force)
         console.print(f"[green]ok[/]: wrote {markdown}")
@@ -243,9 +249,22 @@ def _machine(device: str = "cpu") -> str:
             f"with {torch.get_num_threads()} thread(s), {gpu}")
 
 
+def _commit() -> str:
+    """The code's short commit, ``+dirty`` with uncommitted changes; ``unknown`` outside git."""
+    import subprocess
+
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True, check=True, timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return f"{commit}{'+dirty' if dirty else ''}"
+
+
 def _versions() -> str:
     """Package versions and the code's commit, for the results file."""
-    import subprocess
     from importlib.metadata import PackageNotFoundError, version
 
     parts = []
@@ -255,14 +274,9 @@ def _versions() -> str:
             parts.append(f"{package} {version(package)}")
         except PackageNotFoundError:
             parts.append(f"{package} (not installed)")
-    try:
-        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
-                                text=True, check=True, timeout=10).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True, timeout=10).stdout.strip()
-        parts.append(f"commit {commit}{' (with uncommitted changes)' if dirty else ''}")
-    except (OSError, subprocess.SubprocessError):
-        parts.append("commit unknown")
+    commit = _commit()
+    parts.append(f"commit {commit.removesuffix('+dirty')}"
+                 f"{' (with uncommitted changes)' if commit.endswith('+dirty') else ''}")
     return ", ".join(parts)
 
 
@@ -283,7 +297,8 @@ def table(
     data: Annotated[str, typer.Option(
         help="real, synthetic (template text), synthetic-people (paraphrased text), both "
              "(real and synthetic) or all.")] = "all",
-    seeds: Annotated[int, typer.Option(help="Seeds 0..N-1 (splits and training).")] = 5,
+    seeds: Annotated[int, typer.Option(help="Development seeds 0..N-1 (splits and training); "
+                                       "with --final also N locked seeds from 100.")] = 5,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs (one set, seed 0).")] = 2000,
     mle_epochs: Annotated[int, typer.Option(help="MLE epochs of the seq2seq model.")] = 12,
     model: Annotated[bool, typer.Option(help="Train and score the learned rows (real data); "
@@ -295,62 +310,103 @@ def table(
     only_cached: Annotated[bool, typer.Option(
         help="Compute nothing: summarise the runs and rows already scored under OUT.")
     ] = False,
+    final: Annotated[bool, typer.Option(
+        help="Also score and print the locked test seeds (100, 101, ...). Never while "
+             "choosing anything: every such run is recorded in OUT/final-runs.jsonl and "
+             "counted in the markdown (docs/learn.md, 'The locked test').")] = False,
 ) -> None:
     """The honest evaluation: every baseline and model, both splits, mean ± sd over seeds
     with bootstrap intervals (docs/learn.md). The seq2seq rows are trained on real data only,
-    the reranker on real data and on the paraphrased synthetic text."""
+    the reranker on real data and on the paraphrased synthetic text. The development seeds
+    always; the locked test seeds only with --final."""
+    from homesim.learn.eval import ledger
+    from homesim.learn.eval.splits import LOCKED_FROM, locked_seeds
+
     device = _torch(threads, device)
     datasets = _table_datasets(data)
-    if seeds < 1:
-        raise HomesimError(f"--seeds must be at least 1, got {seeds}")
+    if not 1 <= seeds <= LOCKED_FROM:
+        raise HomesimError(f"--seeds must be 1 to {LOCKED_FROM}, got {seeds}")
     if markdown is not None:
         check_target(markdown, force)
-    from homesim.learn.experiment import RunSpec, block
-    from homesim.learn.report import GOALS, MODEL_ROW, evaluation_markdown
-    from homesim.learn.splits import SPLITS
-
     start = time.perf_counter()
-    blocks: dict[str, dict[str, dict]] = {}
-    for name in datasets:
-        with_model = model
-        for split in SPLITS if name == "real" else ("stratified",):
-            specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in range(seeds)]
-            runs = _runs(specs, out, device, with_model, only_cached)
-            if not runs:
-                console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
-                continue
-            beat = tuple(dict.fromkeys((GOALS[split][0], "Title-medoid", "Title-median",
-                                          "NN (description)")))
-            blocks.setdefault(name, {})[split] = block(runs, MODEL_ROW, beat)
-            console.print(_summary_table(name, split, blocks[name][split]))
+    settings = (datasets, synth_n, mle_epochs, out, device, model, only_cached)
+    runs = []
+    if final:  # recorded before anything is scored: an interrupted look counts too
+        entry = ledger.FinalRun.now(_commit(), datasets, locked_seeds(seeds))
+        ledger.record(out, entry)
+        console.print(f"[yellow]locked test[/]: final run recorded in {out / ledger.LEDGER}")
+        runs = [entry]
+    dev = _blocks(tuple(range(seeds)), *settings)
+    locked = _blocks(locked_seeds(seeds), *settings, final=True) if final else None
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
-        note = (f"Summarised with --only-cached from the runs scored under {out} so far; a row "
-                f"with fewer than {seeds} seeds had not finished for the others."
-                if only_cached else "")
-        text = evaluation_markdown(blocks, _machine(device), _versions(),
-                                   None if only_cached else seconds, note, str(out))
-        from homesim.learn.videoreport import with_table2
-        write_text(markdown, with_table2(markdown, text), force=force)
-        console.print(f"[green]ok[/]: wrote {markdown}")
+        _write_evaluation(markdown, dev, locked, runs, seconds, only_cached, out, device,
+                          seeds, force)
 
 
-def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool
-          ) -> list[dict]:
-    """Each spec's run: scored now (reusing what is cached), or only what is cached."""
-    from homesim.learn.experiment import cached_run, run
+def _blocks(seed_list: tuple[int, ...], datasets: tuple[str, ...], synth_n: int,
+            mle_epochs: int, out: Path, device: str, model: bool, only_cached: bool,
+            final: bool = False) -> dict[str, dict[str, dict]]:
+    """Data set -> split -> summary block of the runs at `seed_list`, printed as they come."""
+    from homesim.learn.eval.experiment import RunSpec, block
+    from homesim.learn.eval.goals import beaten
+    from homesim.learn.eval.splits import SPLITS
+
+    blocks: dict[str, dict[str, dict]] = {}
+    for name in datasets:
+        for split in SPLITS if name == "real" else ("stratified",):
+            specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in seed_list]
+            runs = _runs(specs, out, device, model, only_cached, final)
+            if not runs:
+                console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
+                continue
+            blocks.setdefault(name, {})[split] = block(runs, beaten(split))
+            console.print(_summary_table(name, split, blocks[name][split]))
+    return blocks
+
+
+def _write_evaluation(markdown: Path, dev: dict, locked: dict | None, runs: list,
+                      seconds: float, only_cached: bool, out: Path, device: str, seeds: int,
+                      force: bool) -> None:
+    """Write the evaluation markdown: the locked part made now (with --final) or kept from
+    the file it replaces, the development seeds' tables, Table 2 kept."""
+    from homesim.learn.eval import ledger
+    from homesim.learn.eval.report import evaluation_markdown, kept_locked_part, locked_part
+    from homesim.learn.video.report import with_table2
+
+    old = markdown.read_text(encoding="utf-8") if markdown.is_file() else ""
+    if locked is not None:
+        every = ledger.merged(ledger.read(out), ledger.listed(old), runs)
+        part = locked_part(locked, dev, every)
+    else:
+        part = kept_locked_part(old)
+    note = (f"Summarised with --only-cached from the runs scored under {out} so far; a row "
+            f"with fewer than {seeds} seeds had not finished for the others."
+            if only_cached else "")
+    text = evaluation_markdown(dev, _machine(device), _versions(),
+                               None if only_cached else seconds, note, str(out), part)
+    write_text(markdown, with_table2(markdown, text), force=force)
+    console.print(f"[green]ok[/]: wrote {markdown}")
+
+
+def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool,
+          final: bool = False) -> list[dict]:
+    """Each spec's run: scored now (reusing what is cached), or only what is cached; locked
+    seeds only with `final`."""
+    from homesim.learn.eval.experiment import cached_run, run
 
     runs = []
     for spec in specs:
         if only_cached:
-            found = cached_run(spec, out)
+            found = cached_run(spec, out, final)
             if found is not None:
                 runs.append(found)
             continue
         with _bar() as bar:
             runs.append(run(spec, out, device, with_model,
-                            _Reporter(bar, f"{spec.dataset} {spec.split} seed {spec.seed}")))
+                            _Reporter(bar, f"{spec.dataset} {spec.split} seed {spec.seed}"),
+                            final))
     return runs
 
 
@@ -379,7 +435,7 @@ def rules(
     """Score the hand-written rule parser of the synthetic phrasings on every program: how
     invertible the description text is (1.0: the text says the program outright)."""
     from homesim.learn.data import synthetic_examples
-    from homesim.learn.rules import parse
+    from homesim.learn.eval.rules import parse
     from homesim.program.metrics import lcs_steps
     from homesim.synth.grammar import STYLES
 
@@ -419,7 +475,7 @@ def write(
 
     from homesim.cli.common import err_console, read_graph
     from homesim.examples import DEMO_HOME
-    from homesim.learn.writer import write_program
+    from homesim.learn.rerank.program_writer import write_program
 
     if description == "-":
         description = sys.stdin.read(MAX_DESCRIPTION_CHARS + 1)

@@ -12,37 +12,37 @@ from homesim.errors import HomesimError
 from homesim.files import write_text
 
 if TYPE_CHECKING:
-    from homesim.learn.videotable import VideoRunConfig
+    from homesim.learn.video.table import VideoRunConfig
 
 
 def train_video2prog(out: Path, config: VideoRunConfig, mle_epochs: int | None,
                      pg_epochs: int | None, force: bool, device: str) -> None:
-    """Train the clip models and the video -> program models into OUT."""
-    from homesim.learn.videotable import train_video
+    """Train the frame, clip and video -> program models into OUT; run again with the
+    same options, it goes on where an earlier sitting stopped (`--force`: other options
+    in the same folder)."""
+    from homesim.learn.video.table import train_video
 
     for folder in config.data.split(","):
         if not Path(folder).is_dir():
-            raise HomesimError(f"--data {folder}: with --task video2prog, name data set "
-                               "folders written by 'homesim dataset generate' (commas "
-                               "between several)")
+            raise HomesimError(f"--data {folder}: with --task video2prog, name a plan folder "
+                               "or data set folders written by 'homesim dataset generate' "
+                               "(commas between several)")
     config.format  # noqa: B018 - a bad --frame-size fails here, before any work
-    if (out / "train.json").exists() and not force:
-        raise HomesimError(f"{out / 'train.json'}: already exists; pass --force to replace "
-                           "the checkpoints")
     if mle_epochs is not None:
         config.mle_epochs = mle_epochs
     if pg_epochs is not None:
         config.pg_epochs = pg_epochs
     start = time.perf_counter()
-    summary = train_video(config, out, device, report=lambda line: console.print(line))
+    summary = train_video(config, out, device, report=lambda line: console.print(line),
+                          force=force)
     console.print(f"[green]ok[/]: {out} ({summary['episodes']}) in "
                   f"{time.perf_counter() - start:.0f} s wall time")
 
 
 def eval_video2prog(runs: Path, markdown: Path | None, device: str, machine: str) -> None:
     """Score Table 2, print it, write RUNS/results.json and the markdown section."""
-    from homesim.learn.videoeval import evaluate_video
-    from homesim.learn.videoreport import table2_markdown, write_section
+    from homesim.learn.video.eval import evaluate_video
+    from homesim.learn.video.report import table2_markdown, write_section
 
     result = evaluate_video(runs, device)
     result["runs"] = str(runs)

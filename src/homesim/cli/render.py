@@ -9,9 +9,9 @@ from typing import Annotated
 import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from homesim.cli.common import console, read_graph, read_program
+from homesim.cli.common import console, demo_program, read_graph, read_program
 from homesim.errors import HomesimError
-from homesim.examples import DEMO_HOME, load_example
+from homesim.examples import DEMO_HOME
 from homesim.ground.pipeline import run_program
 
 
@@ -47,14 +47,19 @@ def render(
     no_ground: Annotated[bool, typer.Option(
         "--no-ground", help="Render an ungrounded program as is, reading (N) as node N.")]
     = False,
+    with_repair: Annotated[bool, typer.Option(
+        "--repair/--no-repair", help="Insert the steps a program misses when it cannot run "
+                                     "as written (default), or refuse it.")] = True,
 ) -> None:
     """Animate a program in 3D and record RGB video, depth, segmentation, flow and poses."""
     r = _render_module()
-    prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
-    ran = run_program(prog, g, seed=seed, reference=no_ground)
+    prog = read_program(program) if program else demo_program(gname)
+    ran = run_program(prog, g, seed=seed, reference=no_ground, repair=with_repair)
     if ran.stage == "grounding":
         raise HomesimError(f"cannot ground the program in {gname}: {ran.message}")
+    for ins in ran.insertions:
+        console.print(f"inserted step {ins.index + 1} {ins.step}: {ins.reason}", markup=False)
     g = ran.graph
     extra = {}
     if ran.grounding is not None:

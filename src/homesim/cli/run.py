@@ -9,12 +9,11 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from homesim.cli.common import console, read_graph, read_program
+from homesim.cli.common import console, demo_program, read_graph, read_program
 from homesim.errors import HomesimError
-from homesim.examples import DEMO_HOME, load_example
+from homesim.examples import DEMO_HOME
 from homesim.ground.pipeline import run_program
 from homesim.ground.prepare import Prepared
-from homesim.ground.repair import repair
 from homesim.ground.search import Grounding
 from homesim.sim.execute import ExecutionResult
 from homesim.world.graph import EnvironmentGraph
@@ -59,37 +58,39 @@ def run(
         "--no-ground", help="Run an ungrounded program as is, reading (N) as node N, as "
                             "the reference simulator does.")] = False,
     with_repair: Annotated[bool, typer.Option(
-        "--repair", help="Insert missing commonsense steps (walk to an object before "
-                         "grabbing it, ...) and list each with its reason.")] = False,
+        "--repair/--no-repair", help="When the program cannot run as written, insert the "
+                                     "commonsense steps it misses (walk to an object before "
+                                     "grabbing it, ...) and list each with its reason "
+                                     "(default); --no-repair gives the strict answer.")]
+    = True,
 ) -> None:
     """Execute a program step by step and show what each step did or why it failed.
 
     Runs `homesim.run_program`: an ungrounded program (``<cup> (1)``, no node ids) is first
     prepared (objects the home lacks are added) and grounded (each object bound to an
     instance of the home); a grounded one is checked (its nodes exist and are of its
-    classes) and run as it is. ``--json`` prints `Run.to_dict()`, as the web API answers.
+    classes) and run as it is.
+
+    A program that cannot run as written is repaired (unless ``--no-repair``): each
+    inserted step is listed with its reason. ``--json`` prints `Run.to_dict()`, as the
+    web API answers.
     """
-    prog = read_program(program) if program else load_example("watch_tv")
     g, gname = read_graph(graph, home, DEMO_HOME)
+    prog = read_program(program) if program else demo_program(gname)
     if not prog.steps:
         raise HomesimError(f"{program or 'demo'}: the program has no steps")
-    if with_repair and no_ground:
-        raise HomesimError("--repair runs through preparation and grounding; drop --no-ground")
-    fixed = repair(prog, g, seed=seed) if with_repair else None
-    if fixed is not None:
-        prog = fixed.program
-    ran = run_program(prog, g, seed=seed, trace=True, reference=no_ground)
+    ran = run_program(prog, g, seed=seed, trace=True, reference=no_ground,
+                      repair=with_repair)
     if as_json:
-        data = ran.to_dict()
-        if fixed is not None:
-            data["repair"] = fixed.to_dict()
-        console.print_json(json.dumps(data))
+        console.print_json(json.dumps(ran.to_dict()))
         raise typer.Exit(0 if ran.executable else 1)
     result = ran.result
     if result is None:
         console.print(f"[red]cannot ground[/] in {escape(gname)}: {escape(ran.message)}")
         raise typer.Exit(1)
-    for ins in fixed.insertions if fixed is not None else ():
+    if ran.strict is not None:
+        console.print(f"[yellow]as written[/]: {escape(ran.strict.message)}")
+    for ins in ran.insertions:
         console.print(f"[cyan]inserted[/] step {ins.index + 1} {escape(str(ins.step))}: "
                       f"{escape(ins.reason)}")
     if ran.prepared is not None and ran.grounding is not None:

@@ -9,7 +9,18 @@ Glossary:
     clip: a fixed-length window of an episode (default 2 s) with its step labels.
 """
 
-from homesim.dataset.generate import Summary, generate_dataset, replay_episode
+from typing import Any
+
 from homesim.dataset.spec import DatasetConfig, EpisodeSpec
 
 __all__ = ["DatasetConfig", "EpisodeSpec", "Summary", "generate_dataset", "replay_episode"]
+
+
+def __getattr__(name: str) -> Any:
+    """Generation needs the renderer; reading a data set (learning) does not, so it is
+    imported when first asked for."""
+    if name in ("Summary", "generate_dataset", "replay_episode"):
+        from homesim.dataset import generate
+
+        return getattr(generate, name)
+    raise AttributeError(f"module 'homesim.dataset' has no attribute {name!r}")

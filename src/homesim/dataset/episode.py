@@ -116,7 +116,7 @@ def ground_episode(spec: EpisodeSpec, homes: Sequence[str] = ()) -> EpisodeHome:
         except EpisodeFailed as e:
             first = first or e
             continue
-        run = run_program(program, graph, seed=spec.ground_seed, trace=True)
+        run = run_program(program, graph, seed=spec.ground_seed, trace=True, repair=False)
         if run.executable and run.grounding is not None:
             return EpisodeHome(home, run, moves, start)
         first = first or EpisodeFailed(run.stage or "execution", run.message)

@@ -8,6 +8,7 @@ any point and restarted gives the same bytes as a run never stopped.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,6 +17,7 @@ from typing import Any
 from homesim.dataset.episode import Outcome, write_episode_file
 from homesim.dataset.layout import Layout, dumps, shard_name
 from homesim.dataset.manifest import write_manifest
+from homesim.dataset.plan import PLAN_FILE, Plan, part_configs, plan_record
 from homesim.dataset.runners import RayOptions, ray_outcomes, serial_outcomes
 from homesim.dataset.spec import FORMAT, DatasetConfig, EpisodeSpec, plan_episodes
 from homesim.errors import DataError, HomesimError
@@ -172,3 +174,34 @@ def replay_episode(spec: EpisodeSpec, config: DatasetConfig, path: str | Path) -
     """Render one episode again from its spec into a tar at `path` (same members, same
     bytes as in its shard)."""
     return write_episode_file(spec, config, Path(path))
+
+
+PlanProgress = Callable[[str, int, int, Any], None]
+"""Called as ``progress(part, episodes_done, episodes_total, outcome)`` (as
+`homesim.dataset.generate.Progress`, with the part's name first)."""
+
+
+def generate_plan(plan: Plan, n: int, out: str | Path, base: DatasetConfig, *,
+                  seed: int = 0, workers: int = 2, ray_address: str | None = None,
+                  progress: PlanProgress | None = None) -> dict[str, Summary]:
+    """Make (or resume) every part of `plan` in ``out/<part>``, `n` episodes in all."""
+    root = Path(out)
+    record = plan_record(plan, n, seed, base)
+    path = root / PLAN_FILE
+    if path.is_file():
+        if json.loads(path.read_text(encoding="utf-8")) != json.loads(dumps(record)):
+            raise HomesimError(f"{root}: holds a plan made with other options; use another "
+                               "--out folder, or the same options to resume")
+    elif root.exists() and any(root.iterdir()):
+        raise HomesimError(f"{root}: not empty and not a homesim plan folder")
+    check_homes(tuple(h for p in plan.parts for h in p.homes))
+    root.mkdir(parents=True, exist_ok=True)
+    write_text(path, dumps(record), force=True)
+    out_summaries = {}
+    for name, config in part_configs(plan, n, seed, base).items():
+        def report(done: int, total: int, outcome: Any, name: str = name) -> None:
+            if progress:
+                progress(name, done, total, outcome)
+        out_summaries[name] = generate_dataset(config, root / name, workers=workers,
+                                               ray_address=ray_address, progress=report)
+    return out_summaries

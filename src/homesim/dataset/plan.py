@@ -19,16 +19,12 @@ from __future__ import annotations
 
 import hashlib
 import json
-from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from homesim.dataset.generate import Summary, check_homes, generate_dataset
-from homesim.dataset.layout import dumps
 from homesim.dataset.spec import AGENT_NAMES, DatasetConfig
 from homesim.errors import HomesimError
-from homesim.files import write_text
 
 PLAN_FILE = "plan.json"
 PLAN_FORMAT = "homesim-plan/1"
@@ -189,37 +185,6 @@ def plan_record(plan: Plan, n: int, seed: int, base: DatasetConfig) -> dict[str,
     return {"format": PLAN_FORMAT, "n": n, "seed": seed, "options": shared,
             "plan": plan.to_dict(),
             "parts": {name: {"n": c.n, "seed": c.seed} for name, c in configs.items()}}
-
-
-Progress = Callable[[str, int, int, Any], None]
-"""Called as ``progress(part, episodes_done, episodes_total, outcome)`` (as
-`homesim.dataset.generate.Progress`, with the part's name first)."""
-
-
-def generate_plan(plan: Plan, n: int, out: str | Path, base: DatasetConfig, *,
-                  seed: int = 0, workers: int = 2, ray_address: str | None = None,
-                  progress: Progress | None = None) -> dict[str, Summary]:
-    """Make (or resume) every part of `plan` in ``out/<part>``, `n` episodes in all."""
-    root = Path(out)
-    record = plan_record(plan, n, seed, base)
-    path = root / PLAN_FILE
-    if path.is_file():
-        if json.loads(path.read_text(encoding="utf-8")) != json.loads(dumps(record)):
-            raise HomesimError(f"{root}: holds a plan made with other options; use another "
-                               "--out folder, or the same options to resume")
-    elif root.exists() and any(root.iterdir()):
-        raise HomesimError(f"{root}: not empty and not a homesim plan folder")
-    check_homes(tuple(h for p in plan.parts for h in p.homes))
-    root.mkdir(parents=True, exist_ok=True)
-    write_text(path, dumps(record), force=True)
-    out_summaries = {}
-    for name, config in part_configs(plan, n, seed, base).items():
-        def report(done: int, total: int, outcome: Any, name: str = name) -> None:
-            if progress:
-                progress(name, done, total, outcome)
-        out_summaries[name] = generate_dataset(config, root / name, workers=workers,
-                                               ray_address=ray_address, progress=report)
-    return out_summaries
 
 
 @dataclass(frozen=True)

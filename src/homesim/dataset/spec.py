@@ -15,7 +15,6 @@ from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
 from homesim.errors import HomesimError
-from homesim.render.video import check_size
 
 AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
 """The four agents of `homesim.render.agent.AGENTS` (a test keeps the two equal)."""
@@ -78,6 +77,8 @@ class DatasetConfig:
         if bad or not self.agents:
             raise HomesimError(f"agent {bad[0] if bad else ''!r}: choose from "
                                f"{', '.join(AGENT_NAMES)}")
+        from homesim.render.video import check_size  # reading a data set needs no renderer
+
         check_size(self.width, self.height, self.fps)
 
     def to_dict(self) -> dict[str, Any]:

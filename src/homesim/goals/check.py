@@ -123,11 +123,15 @@ class _Judge:
 
     def _then(self, parts: tuple[Formula, ...], i: int, j: int,
               env: tuple[tuple[str, int], ...]) -> bool:
-        if len(parts) == 1:
-            return self.holds(parts[0], i, j, env)
-        first, rest = parts[0], parts[1:]
-        return any(self.holds(first, i, k, env) and self._then(rest, k, j, env)
-                   for k in range(i, j + 1))
+        # Forward over the parts: the set of times where the parts so far can end
+        # (parts x segment² checks at most, and no recursion per part).
+        ends = {i}
+        for part in parts[:-1]:
+            ends = {k for k in range(min(ends), j + 1)
+                    if any(s <= k and self.holds(part, s, k, env) for s in ends)}
+            if not ends:
+                return False
+        return any(self.holds(parts[-1], s, j, env) for s in ends)
 
     def _quantified(self, f: Quantified, i: int, j: int,
                     env: tuple[tuple[str, int], ...]) -> bool:

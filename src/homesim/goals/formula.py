@@ -25,7 +25,14 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from homesim.errors import GoalError
+from homesim.errors import GoalError, LimitError
+from homesim.limits import (
+    MAX_FORMULA_ATOMS,
+    MAX_FORMULA_CHARS,
+    MAX_FORMULA_DEPTH,
+    MAX_FORMULA_QUANTIFIERS,
+    MAX_ID_DIGITS,
+)
 from homesim.program.actions import ACTIONS, lookup_action
 
 # Predicates over node states (one argument) and relations (two), as EAI spells them.
@@ -114,14 +121,51 @@ def _wrap(f: Formula, op: str | None = None) -> str:
 
 
 _TOKEN = re.compile(r"\s*(?:(?P<num>\d+\b)|(?P<name>[A-Za-z_\-]\w*(?:\.\d+)?)|(?P<sym>[(),.]))")
+_BLANK = re.compile(r"\s*\Z")
 _KEYWORDS = {"and", "or", "then", "not", "exists", "forall", "forn"}
 
 
-def parse_formula(text: str) -> Formula:
-    """Parse an EAI goal formula; `GoalError` names the column and what was expected."""
+def parse_formula(text: str, strict_eai: bool = False) -> Formula:
+    """Parse an EAI goal formula; `GoalError` names the column and what was expected.
+
+    `strict_eai` also refuses what EAI's parser refuses: an ``and`` joining a state goal
+    and a temporal one (a ``then`` inside; see `temporal`), e.g. ``ON(a.1) and (OFF(b.2)
+    then ON(b.2))``; homesim judges those (all parts must hold on the segment).
+
+    Limits (`homesim.limits`): `MAX_FORMULA_CHARS` characters (`LimitError`), nesting
+    `MAX_FORMULA_DEPTH` levels deep, `MAX_FORMULA_ATOMS` atoms, `MAX_FORMULA_QUANTIFIERS`
+    nested quantifiers, ids and ``forn`` counts of `MAX_ID_DIGITS` digits.
+    """
     if not isinstance(text, str) or not text.strip():
         raise GoalError("formula: empty formula")
-    return _Parser(text).parse()
+    if len(text) > MAX_FORMULA_CHARS:
+        raise LimitError(f"formula: {len(text)} characters, over the limit of "
+                         f"{MAX_FORMULA_CHARS} (MAX_FORMULA_CHARS)", "MAX_FORMULA_CHARS")
+    formula = _Parser(text).parse()
+    if strict_eai:
+        temporal(formula, strict_eai=True)
+    return formula
+
+
+def temporal(formula: Formula, strict_eai: bool = False) -> bool:
+    """Whether `formula` is a temporal goal in EAI's sense: it has a ``then`` (outside
+    which ``not``, quantifiers and ``or`` pass it on). With `strict_eai`, an ``and`` of
+    state and temporal parts is a `GoalError`, as EAI's ``SimpleTLAnd`` asserts."""
+    if isinstance(formula, Atom):
+        return False
+    if isinstance(formula, Not | Quantified):
+        return temporal(formula.body, strict_eai)
+    kinds = [temporal(p, strict_eai) for p in formula.parts]
+    if formula.op == "then":
+        return True
+    if strict_eai and formula.op == "and" and len(set(kinds)) > 1:
+        raise GoalError(f"formula: {_clip(str(formula))} joins state and temporal goals with "
+                        "'and', which EAI refuses (--strict-eai)")
+    return any(kinds)
+
+
+def _clip(text: str, most: int = 80) -> str:
+    return text if len(text) <= most else text[:most] + "..."
 
 
 class _Parser:
@@ -132,7 +176,7 @@ class _Parser:
         self.tokens: list[tuple[str, str, int]] = []
         pos = 0
         while pos < len(text):
-            if text[pos:].strip() == "":
+            if _BLANK.match(text, pos):  # only blanks left (matched in place: no copy)
                 break
             m = _TOKEN.match(text, pos)
             if m is None:
@@ -143,6 +187,8 @@ class _Parser:
             pos = m.end()
         self.i = 0
         self.bound: list[str] = []
+        self.depth = 0
+        self.atoms = 0
 
     def parse(self) -> Formula:
         f = self._binary(0)
@@ -178,16 +224,29 @@ class _Parser:
 
     def _unary(self) -> Formula:
         token = self._peek()
+        if token not in ("not", "(", "exists", "forall", "forn"):
+            return self._leaf(token)
+        self._deeper()
         if token == "not":
             self.i += 1
-            return Not(self._unary())
-        if token == "(":
+            f: Formula = Not(self._unary())
+        elif token == "(":
             self.i += 1
             f = self._binary(0)
             self._expect(")", "')'")
-            return f
-        if token in ("exists", "forall", "forn"):
-            return self._quantified(token)
+        else:
+            f = self._quantified(token)
+        self.depth -= 1
+        return f
+
+    def _deeper(self) -> None:
+        """One level deeper; `GoalError` past `MAX_FORMULA_DEPTH`."""
+        self.depth += 1
+        if self.depth > MAX_FORMULA_DEPTH:
+            raise GoalError(f"formula column {self._col()}: nested deeper than "
+                            f"{MAX_FORMULA_DEPTH} levels (MAX_FORMULA_DEPTH)", self._col())
+
+    def _leaf(self, token: str | None) -> Formula:
         if token is None or self.tokens[self.i][0] != "name" or token in _KEYWORDS:
             found = "end of formula" if token is None else repr(token)
             raise GoalError(f"formula column {self._col()}: expected an atom, '(', 'not' or "
@@ -201,7 +260,7 @@ class _Parser:
             if self.i >= len(self.tokens) or self.tokens[self.i][0] != "num":
                 raise GoalError(f"formula column {self._col()}: expected a count after "
                                 "'forn'", self._col())
-            count = int(self.tokens[self.i][1])
+            count = self._number(self.tokens[self.i][1], "the count of 'forn'")
             self.i += 1
             self._expect(".", "'.' after the count")
         var = self._peek()
@@ -211,6 +270,10 @@ class _Parser:
         self.i += 1
         self._expect(".", f"'.' after '{quantifier} {var}'")
         self._expect("(", "'(' around the quantified formula")
+        if len(self.bound) == MAX_FORMULA_QUANTIFIERS:
+            raise GoalError(f"formula column {self._col()}: more than "
+                            f"{MAX_FORMULA_QUANTIFIERS} quantifiers nested "
+                            "(MAX_FORMULA_QUANTIFIERS)", self._col())
         self.bound.append(var)
         body = self._binary(0)
         self.bound.pop()
@@ -219,6 +282,10 @@ class _Parser:
 
     def _atom(self) -> Atom:
         name, col = self.tokens[self.i][1], self._col()
+        self.atoms += 1
+        if self.atoms > MAX_FORMULA_ATOMS:
+            raise GoalError(f"formula column {col}: more than {MAX_FORMULA_ATOMS} atoms "
+                            "(MAX_FORMULA_ATOMS)", col)
         self.i += 1
         self._expect("(", f"'(' after {name}")
         args: list[Arg] = []
@@ -238,11 +305,20 @@ class _Parser:
         self.i += 1
         if "." in token:
             cls, node = token.rsplit(".", 1)
-            return Arg(cls, int(node))
+            return Arg(cls, self._number(node, f"the id of {cls}", col))
         if token not in self.bound:
             raise GoalError(f"formula column {col}: variable {token!r} is not bound by "
                             "'exists' or 'forall' (objects are written class.id)", col)
         return Arg(token)
+
+
+    def _number(self, digits: str, what: str, col: int | None = None) -> int:
+        """An id or count; `GoalError` when it has more than `MAX_ID_DIGITS` digits."""
+        if len(digits.lstrip("0")) > MAX_ID_DIGITS:
+            col = self._col() if col is None else col
+            raise GoalError(f"formula column {col}: {what} has {len(digits)} digits, over "
+                            f"the limit of {MAX_ID_DIGITS} (MAX_ID_DIGITS)", col)
+        return int(digits)
 
 
 def _kind(name: str, arity: int, col: int) -> str:

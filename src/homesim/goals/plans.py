@@ -6,20 +6,31 @@ and whose values list ``name, id`` pairs, keys repeated as needed and kept in or
     {"WALK": ["dining_room", "201"], "FIND": ["soap", "1002"], "GRAB": ["soap", "1002"],
      "PUTBACK": ["soap", "1002", "washing_machine", "1001"]}
 
-`score_plan` judges it as EAI's evaluator does, in stages, and stops at the first that
-fails: ``format`` (not such an object, or empty, or an odd list), ``hallucination`` (an
-action homesim does not know, or an object that is not one of the task's objects: those
-whose state or relations differ between the program's initial and final graphs, as EAI
-defines them), ``arity`` (wrong number of objects), then execution through
-`homesim.run_program` in the program's initial graph. A step that fails at run time is
-classified with EAI's error kinds:
+`score_plan` judges it as EAI's evaluator does, in stages, each over the whole plan, and
+stops at the first that fails: ``format`` (not such an object, or empty, an odd list,
+nested deeper than `MAX_PLAN_DEPTH`, over `MAX_PLAN_STEPS` steps), ``hallucination`` (an
+action homesim does not know in any step, then an object that is not one of the task's
+objects in any step: those whose state or relations differ between the program's initial
+and final graphs, as EAI defines them), ``arity`` (wrong number of objects), then
+execution through `homesim.run_program` in the program's initial graph, as written (not
+prepared, not repaired). A step that fails at run time is classified with EAI's error
+kinds from the simulator's `FailureKind`:
 
-- ``additional_step``: it would do what is already done (open the open, switch on the
-  on, grab what is held, or repeat a step that already ran and now fails); the step is
-  skipped and the plan goes on, as in EAI;
-- ``affordance``: the object cannot take the action (not GRABBABLE, no switch, ...);
-- ``wrong_order``: it could have run in an earlier state of this run;
-- ``missing_step``: anything else (not close, not holding, inside a closed container).
+- ``additional_step`` (kind ``already``): it would do what is already done (open the
+  open, switch on the on, sit while sitting), or grab what is held, or (not in
+  ``strict_eai``) repeat a step that already ran and now fails; the step is skipped and
+  the plan goes on, as in EAI;
+- ``affordance`` (kind ``affordance``): the object cannot take the action (not
+  GRABBABLE, no switch, a room to wash, ...);
+- ``wrong_order``: any other kind, where the step could have run in an earlier state of
+  this run;
+- ``missing_step``: any other kind (not close, not holding, inside a closed container).
+
+``strict_eai`` gives EAI's verdict where EAI is lenient or strict by choice: EAI's plan
+reader (each ``"KEY": [...]`` pair on its own: a trailing comma or a missing ``}`` pass,
+empty lists are dropped), its action table (`EAI_ACTIONS`: no aliases such as PUT), ids
+matched as text, a repeated step that fails is judged like any other (EAI: wrong order),
+and additional steps counted per step in the summary. docs/goals.md lists each difference.
 
 Task success: every goal of the program (`homesim.goals.eai`) holds on the run's trace.
 """
@@ -28,15 +39,19 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from homesim.errors import DataError, ProgramError
+from homesim.errors import DataError, HomesimError
 from homesim.goals.check import GoalReport, Trajectory, check_goals
 from homesim.goals.contexts import TaskContext, load_contexts
-from homesim.program.actions import lookup_action
+from homesim.ground.pipeline import Run, run_program
+from homesim.limits import EXCERPT_CHARS, MAX_ID_DIGITS, MAX_PLAN_DEPTH, MAX_PLAN_STEPS, deeper_than
+from homesim.program.actions import ActionSpec, lookup_action
+from homesim.program.model import Program
 from homesim.program.parse import parse_program
+from homesim.sim.failure import FailureKind
 from homesim.world.graph import EnvironmentGraph
 
 __all__ = ["PlanReport", "PlanScore", "TaskContext", "load_contexts", "parse_plan",
@@ -45,14 +60,9 @@ __all__ = ["PlanReport", "PlanScore", "TaskContext", "load_contexts", "parse_pla
 GRAMMAR_KINDS = ("format", "hallucination", "arity")
 RUNTIME_KINDS = ("wrong_order", "missing_step", "affordance", "additional_step")
 
-# (action key, reason pattern) of a step that would redo what is done: additional_step.
-_ALREADY = {
-    "OPEN": "is not closed", "CLOSE": "is not open", "SWITCHON": "is not off",
-    "SWITCHOFF": "is not on", "PLUGIN": "is not unplugged", "PLUGOUT": "is not plugged in",
-    "SIT": "already sitting", "LIE": "already lying", "STANDUP": "is not sitting or lying",
-}
-_AFFORDANCE = re.compile(r"cannot be |cannot receive|has no switch|has no plug|is not a person|"
-                         r"is not clothes|is not food|cannot put .* on or in itself")
+# EAI's run-time kind of each simulator failure kind; any other is a missing step (or a
+# wrong order, when the step could run earlier).
+_EAI_KIND = {FailureKind.ALREADY: "additional_step", FailureKind.AFFORDANCE: "affordance"}
 
 
 @dataclass
@@ -107,10 +117,46 @@ class _Reject(Exception):
         super().__init__(reason)
 
 
-def parse_plan(text: str) -> list[tuple[str, list[Any]]]:
-    """The (action, params) pairs of a plan text, in order; `_Reject` ``format`` if bad."""
+EAI_ACTIONS = frozenset({
+    "DRINK", "EAT", "CUT", "TOUCH", "LOOKAT", "LOOKAT_SHORT", "LOOKAT_MEDIUM", "LOOKAT_LONG",
+    "WATCH", "READ", "TYPE", "PUSH", "PULL", "MOVE", "SQUEEZE", "SLEEP", "WAKEUP", "RINSE",
+    "SCRUB", "WASH", "GRAB", "SWITCHOFF", "SWITCHON", "CLOSE", "FIND", "WALK", "OPEN",
+    "POINTAT", "PUTBACK", "PUTIN", "PUTOBJBACK", "RUN", "SIT", "STANDUP", "TURNTO", "WIPE",
+    "PUTON", "PUTOFF", "GREET", "DROP", "LIE", "POUR"})
+"""The action names EAI 1.0.5's hallucination check accepts (its ``valid_actions``);
+``--strict-eai`` accepts only these (homesim's catalog also knows PLUGIN, PLUGOUT, RELEASE
+and aliases such as PUT)."""
+
+# EAI's plan reader: each ``"KEY": [...]`` pair with a non-empty list, wherever it stands.
+_EAI_PAIR = re.compile(r'"(\w+)"\s*:\s*(\[[^\]]+\])')
+
+Pairs = list[tuple[str, list[Any]]]
+
+
+def parse_plan(text: str, strict_eai: bool = False) -> Pairs:
+    """The (action, params) pairs of a plan text, in order; `_Reject` ``format`` if bad.
+
+    By default the plan must be one JSON object (in a code fence or amid prose); with
+    `strict_eai`, EAI's reader: every ``"KEY": [values]`` pair found in the text, each
+    list parsed alone (so a trailing comma or a missing ``}`` passes, and empty lists and
+    keys that are not one word are dropped). Either way a plan nested deeper than
+    `MAX_PLAN_DEPTH` or longer than `MAX_PLAN_STEPS` steps is a format error.
+    """
     if not isinstance(text, str):
         raise _Reject("format", "the plan is not text")
+    pairs = _eai_pairs(text) if strict_eai else _json_pairs(text)
+    if not pairs:
+        raise _Reject("format", "the plan has no steps")
+    if len(pairs) > MAX_PLAN_STEPS:
+        raise _Reject("format", f"the plan has {len(pairs)} steps, over the limit of "
+                                f"{MAX_PLAN_STEPS} (MAX_PLAN_STEPS)")
+    for action, params in pairs:
+        if not isinstance(params, list) or len(params) % 2:
+            raise _Reject("format", f"{_excerpt(action)}: the value must list name, id pairs")
+    return pairs
+
+
+def _json_pairs(text: str) -> Pairs:
     body = text.strip()
     if body.startswith("```"):
         body = body.split("\n", 1)[1] if "\n" in body else body[3:]
@@ -118,73 +164,118 @@ def parse_plan(text: str) -> list[tuple[str, list[Any]]]:
     start, end = body.find("{"), body.rfind("}")
     if start < 0 or end < start:
         raise _Reject("format", "no JSON object in the plan")
+    pairs = _loads(body[start:end + 1].replace("'", '"'), object_pairs_hook=_pair_lists)
+    if not isinstance(pairs, list):
+        raise _Reject("format", "the plan is not a JSON object")
+    return [(key, value) for key, value in pairs]
+
+
+def _pair_lists(pairs: list[tuple[str, Any]]) -> list[list[Any]]:
+    # An object as its [key, value] pairs, in order (keys repeat), as lists so that
+    # `deeper_than` sees their depth.
+    return [list(pair) for pair in pairs]
+
+
+def _eai_pairs(text: str) -> Pairs:
+    body = text[7:] if text.startswith("```json") else text
+    body = body.strip().replace("\n", "").replace("'", '"')
+    return [(key, _loads(value)) for key, value in _EAI_PAIR.findall(body)]
+
+
+def _loads(text: str, **kwargs: Any) -> Any:
+    """JSON of a plan; `_Reject` ``format`` when it is not JSON or nests too deep."""
     try:
-        pairs = json.loads(body[start:end + 1].replace("'", '"'), object_pairs_hook=list)
+        value = json.loads(text, **kwargs)
+    except RecursionError:  # nested past the parser's own depth
+        raise _Reject("format", f"nested deeper than {MAX_PLAN_DEPTH} levels "
+                                "(MAX_PLAN_DEPTH)") from None
     except ValueError as e:
         raise _Reject("format", f"not JSON: {e}") from None
-    if not isinstance(pairs, list) or not pairs:
-        raise _Reject("format", "the plan has no steps")
-    for action, params in pairs:
-        if not isinstance(params, list) or len(params) % 2:
-            raise _Reject("format", f"{action}: the value must list name, id pairs")
-    return pairs
+    if deeper_than(value, MAX_PLAN_DEPTH):
+        raise _Reject("format", f"nested deeper than {MAX_PLAN_DEPTH} levels (MAX_PLAN_DEPTH)")
+    return value
 
 
-def _steps(pairs: Sequence[tuple[str, list[Any]]], context: TaskContext) -> list[str]:
-    """Program lines of a parsed plan; `_Reject` for hallucination or arity errors."""
-    lines = []
+def _excerpt(value: object) -> str:
+    text = str(value)
+    return text if len(text) <= EXCERPT_CHARS else text[:EXCERPT_CHARS] + "..."
+
+
+def _steps(pairs: Pairs, context: TaskContext, strict_eai: bool) -> list[str]:
+    """Program lines of a parsed plan; `_Reject` for hallucination or arity errors.
+
+    EAI's order, over the whole plan at each stage: every action is known, then every
+    object is one of the task's, then every step has its number of objects."""
+    actions = [_action(k, name, strict_eai) for k, (name, _) in enumerate(pairs, start=1)]
+    refs: list[list[str]] = []
     instances: dict[tuple[str, int], int] = {}  # (name, node) -> instance number
-    for k, (action_name, params) in enumerate(pairs, start=1):
-        action = lookup_action(str(action_name))
-        if action is None:
-            raise _Reject("hallucination", f"step {k}: unknown action {action_name!r}")
-        refs = []
+    per_name: dict[str, int] = {}
+    for k, (action, (_, params)) in enumerate(zip(actions, pairs, strict=True), start=1):
+        step_refs = []
         for name, node in zip(params[::2], params[1::2], strict=True):
-            try:
-                node_id = int(str(node))
-            except ValueError:
-                node_id = -1
-            if (str(name), node_id) not in context.objects:
-                raise _Reject("hallucination", f"step {k} [{action.key}]: {name} {node} is "
-                                               "not an object of this task")
-            same = sum(1 for n, _ in instances if n == name)
-            instance = instances.setdefault((str(name), node_id), same + 1)
-            refs.append(f"<{name}> ({instance}.{node_id})")
-        if len(refs) != action.arity:
+            key = (str(name), _node_id(node, strict_eai))
+            if key not in context.objects:
+                raise _Reject("hallucination", f"step {k} [{action.key}]: {_excerpt(name)} "
+                                               f"{_excerpt(node)} is not an object of this task")
+            if key not in instances:
+                per_name[key[0]] = instances[key] = per_name.get(key[0], 0) + 1
+            step_refs.append(f"<{key[0]}> ({instances[key]}.{key[1]})")
+        refs.append(step_refs)
+    for k, (action, step_refs) in enumerate(zip(actions, refs, strict=True), start=1):
+        if len(step_refs) != action.arity:
             raise _Reject("arity", f"step {k} [{action.key}]: takes {action.arity} "
-                                   f"object(s), not {len(refs)}")
-        lines.append(" ".join([f"[{action.key}]", *refs]))
-    return lines
+                                   f"object(s), not {len(step_refs)}")
+    return [" ".join([f"[{a.key}]", *r]) for a, r in zip(actions, refs, strict=True)]
 
 
-def score_plan(identifier: str, text: str, context: TaskContext) -> PlanScore:
-    """Judge one plan text for the program of `context` (see the module docstring)."""
+def _action(k: int, name: object, strict_eai: bool) -> ActionSpec:
+    """The catalog action a plan step names; `_Reject` ``hallucination`` if none (with
+    `strict_eai`, also when EAI's table lacks the name)."""
+    text = str(name)
+    action = lookup_action(text)
+    if action is None or (strict_eai and text.upper() not in EAI_ACTIONS):
+        raise _Reject("hallucination", f"step {k}: unknown action {_excerpt(text)!r}"
+                      + (" (not in EAI's action table)" if action is not None else ""))
+    return action
+
+
+def _node_id(node: object, strict_eai: bool) -> int:
+    """The node id a plan names (-1: none); EAI matches the id's text exactly (``"014"``
+    is not 14), homesim reads the number."""
+    text = str(node)
+    if not text.isdigit() or len(text) > MAX_ID_DIGITS or (strict_eai and text != str(int(text))):
+        return -1  # names no node: a hallucination
+    return int(text)
+
+
+def score_plan(identifier: str, text: str, context: TaskContext, *,
+               strict_eai: bool = False) -> PlanScore:
+    """Judge one plan text for the program of `context` (see the module docstring);
+    `strict_eai`: EAI's verdict where EAI is lenient or strict by choice (docs/goals.md)."""
     goals = context.goals.goals
     score = PlanScore(identifier, context.goals.task, totals={
         "state": len(goals.states), "relation": len(goals.relations),
         "action": len(goals.actions)})
     try:
-        score.steps = _steps(parse_plan(text), context)
+        score.steps = _steps(parse_plan(text, strict_eai), context, strict_eai)
     except _Reject as e:
         score.error, score.reason = e.kind, str(e)
         return score
-    _execute(score, context)
+    _execute(score, context, strict_eai)
     return score
 
 
-def _execute(score: PlanScore, context: TaskContext) -> None:
+def _execute(score: PlanScore, context: TaskContext, strict_eai: bool) -> None:
     """Run the plan, skipping additional steps; fill in error, reason, goals."""
-    from homesim.ground.pipeline import run_program
-
     try:
         program = parse_program("\n".join(score.steps))
-    except ProgramError as e:  # e.g. a class name the parser refuses
-        score.error, score.reason = "hallucination", str(e)
+    except HomesimError as e:  # e.g. a class name the parser refuses
+        score.error, score.reason = "hallucination", " ".join(str(e).split())
         return
     kept = list(range(len(program.steps)))
     while True:
-        run = run_program(program.with_steps([program.steps[i] for i in kept]),
-                          context.home, trace=True)
+        run = _run(program.with_steps([program.steps[i] for i in kept]), context.home,
+                   trace=True)
         again = _regrab(run)
         if again is not None:
             score.additional.append(kept.pop(again) + 1)
@@ -192,10 +283,8 @@ def _execute(score: PlanScore, context: TaskContext) -> None:
         if run.executable or run.failed_step is None:
             break
         at = run.failed_step - 1
-        step = program.steps[kept[at]]
-        reason = run.message.split(": ", 1)[-1]
-        kind = _kind(step.action.key, reason)
-        if kind == "missing_step" and _repeats(run, at):
+        kind = _EAI_KIND.get(run.kind, "missing_step") if run.kind else "missing_step"
+        if kind == "missing_step" and not strict_eai and _repeats(run, at):
             kind = "additional_step"  # the same step already ran: doing it again fails
         if kind == "additional_step":
             score.additional.append(kept.pop(at) + 1)
@@ -248,39 +337,40 @@ def _regrab(run: Any) -> int | None:
     return None
 
 
-def _kind(action: str, reason: str) -> str:
-    """EAI's error kind of a step that failed with homesim's `reason`."""
-    if action in _ALREADY and reason.endswith(_ALREADY[action]):
-        return "additional_step"
-    if _AFFORDANCE.search(reason):
-        return "affordance"
-    return "missing_step"
-
-
 def _ran_earlier(program: Any, kept: list[int], at: int, home: EnvironmentGraph) -> bool:
     """Whether the step at `at` could have run right after some earlier prefix of the run."""
-    from homesim.ground.pipeline import run_program
-
     step = program.steps[kept[at]]
     for k in range(at):
         prefix = [program.steps[i] for i in kept[:k]]
-        if run_program(program.with_steps([*prefix, step]), home).executable:
+        if _run(program.with_steps([*prefix, step]), home).executable:
             return True
     return False
 
 
+def _run(program: Program, home: EnvironmentGraph, trace: bool = False) -> Run:
+    """A plan runs as written in the task's initial graph: not prepared, not repaired."""
+    return run_program(program, home, prepare=False, repair=False, trace=trace)
+
+
 @dataclass
 class PlanReport:
-    """Every plan's score and EAI's summary metrics."""
+    """Every plan's score and EAI's summary metrics.
+
+    The additional step rate is the share of plans with a skipped step (at most 100 %);
+    EAI counts skipped steps, not plans, over the number of plans, which `strict_eai`
+    reproduces (a plan that repeats one step 997 times reads 99 700 % there).
+    """
 
     scores: list[PlanScore]
+    strict_eai: bool = False
 
     def summary(self) -> dict[str, Any]:
         """EAI's metrics (percent of plans; goal rates over all goals of scored plans)."""
         n = len(self.scores) or 1
         kinds = {k: sum(s.error == k for s in self.scores) for k in GRAMMAR_KINDS}
         runtime = {k: sum(s.error == k for s in self.scores) for k in RUNTIME_KINDS[:3]}
-        runtime["additional_step"] = sum(len(s.additional) for s in self.scores)
+        runtime["additional_step"] = sum(
+            len(s.additional) if self.strict_eai else bool(s.additional) for s in self.scores)
         met = {"state": [0, 0], "relation": [0, 0], "action": [0, 0]}
         for s in self.scores:
             for kind in met:
@@ -310,8 +400,8 @@ class PlanReport:
         }
 
 
-def score_plans(plans: Iterable[dict[str, Any]], contexts: dict[str, TaskContext]
-                ) -> PlanReport:
+def score_plans(plans: Iterable[dict[str, Any]], contexts: dict[str, TaskContext], *,
+                strict_eai: bool = False) -> PlanReport:
     """Score EAI output records (``{"identifier": "27_2", "llm_output": "..."}``)."""
     scores = []
     for k, record in enumerate(plans):
@@ -320,8 +410,9 @@ def score_plans(plans: Iterable[dict[str, Any]], contexts: dict[str, TaskContext
         if context is None:
             raise DataError(f"plan {k + 1}: no annotated program {identifier!r} "
                             "(EAI identifiers look like '27_2')")
-        scores.append(score_plan(identifier, record.get("llm_output", ""), context))
-    return PlanReport(scores)
+        scores.append(score_plan(identifier, record.get("llm_output", ""), context,
+                                 strict_eai=strict_eai))
+    return PlanReport(scores, strict_eai)
 
 
 def gold_plan(context_program: Any) -> str:

@@ -1,19 +1,24 @@
-"""The one way to run a program in a home: prepare, ground, execute.
+"""The one way to run a program in a home: prepare, ground, execute, and repair.
 
 Every entry point runs programs through `run_program`: ``homesim run`` and ``homesim
-render``, the web API (``/api/execute``, ``/api/render``), the learning reward and the
-Simulator % column, constrained decoding (step by step, see
+render``, the web API and editor (``/api/execute``, ``/api/render``), goal checks, the
+dataset, the learning reward and constrained decoding (step by step, see
 `homesim.learn.execution.StepRunner`), so they all give the same verdict and message.
 
-- An ungrounded program (``<cup> (1)``) is prepared for the home (objects it lacks are
-  added, presupposed states set; `homesim.ground.prepare`) and grounded (each object bound
-  to a node; `homesim.ground.search`), then executed in the prepared home.
-- A grounded program (every ref carries a node id, ``<cup> (1.417)``) is checked (each
-  ref names a node of the home of its class, equivalent names allowed) and executed as is.
-  A partly grounded program counts as ungrounded: its node ids are ignored. So does a
-  program without objects (``[StandUp]`` is prepared: the character starts seated).
-- ``reference=True`` runs the program as the reference simulator does: no preparation or
-  grounding, ``(N)`` read as node N, nothing checked.
+`run_program` first runs the program as written (`homesim.ground.strict.run_strict`):
+an ungrounded program (``<cup> (1)``) is prepared for the home (objects it lacks added,
+presupposed states set) and grounded; a grounded one (``<cup> (1.417)``) is checked and
+executed as is. When a step cannot run (or grounding fails), it **repairs** the program
+(`homesim.ground.repair`): it inserts the commonsense steps people leave out (walk to an
+object before grabbing it, turn to the TV before watching it, open the fridge before
+taking the milk out), and runs the repaired program. The `Run` then lists every inserted
+step with its reason (`Run.insertions`) beside the verdict as written (`Run.strict`).
+The program's own steps are never changed, dropped or reordered. When no insertion
+helps, the answer is the strict one: where and why the program as written fails.
+
+``repair=False`` gives the strict answer (what plan scoring and the learning figures
+use); ``reference=True`` runs the program as the reference simulator does: no
+preparation, grounding or repair, ``(N)`` read as node N.
 
 Contract: a program that cannot run in the home is an answer, not an error. Grounding
 failures and refused bindings give a `Run` with ``executable`` False, ``stage``
@@ -28,95 +33,37 @@ without a character: `ExecutionError`).
 >>> run = run_program(p, load_home("scene1_trimmed"))
 >>> run.executable, run.message, [a.class_name for a in run.prepared.added]
 (True, 'executable: all 3 steps ran', ['wine_glass'])
->>> run = run_program(p, load_home("scene1_trimmed"), prepare=False)
->>> run.executable, run.stage, run.failed_step
-(False, 'grounding', 2)
+>>> run = run_program("[Grab] <wine_glass> (1)", "scene1_trimmed")
+>>> run.executable, run.message
+(True, 'executable: all 2 steps ran, 1 of them inserted by repair')
+>>> run.insertions[0].reason
+'walk to <wine_glass> (1) before [Grab]: it needs the character close to it'
+>>> run.strict.kind.value, run.strict.stage
+('unreachable', 'grounding')
+>>> run_program("[Grab] <wine_glass> (1)", "scene1_trimmed", repair=False).executable
+False
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any, Literal
+from dataclasses import replace
 
-from homesim.errors import BindingError, GroundingError
-from homesim.ground.prepare import Prepared
-from homesim.ground.search import Grounding, ground, prepare_and_ground
+from homesim.ground.repair import repair_steps
+from homesim.ground.strict import Insertion, Run, insert_steps, run_strict, runs
 from homesim.knowledge.kbtypes import ObjectKnowledge, default_kb
-from homesim.program.bindings import Bindings
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
-from homesim.sim.execute import ExecutionResult, execute
 from homesim.world.graph import EnvironmentGraph
 
-Stage = Literal["grounding", "execution"]
-
-
-@dataclass(frozen=True, eq=False)
-class Run:
-    """What `run_program` did.
-
-    Attributes:
-        program: the program as given.
-        executable: True when the program was grounded (or accepted) and every step ran.
-        message: one line: ``executable: all 5 steps ran``, or where and why it failed.
-        failed_step: 1-based number of the step that failed (grounding or execution);
-            None when executable or when no step is to blame.
-        stage: ``"grounding"`` or ``"execution"``: where it failed; None when executable.
-        result: the execution (None when grounding failed, so nothing ran).
-        prepared: what preparation added and set (None for grounded programs, without
-            preparation, or when it failed).
-        grounding: the grounded program, its bindings and standing spots (for a program
-            that came grounded: itself, its bindings, no spots); None when it failed.
-        graph: the home the program ran in (the prepared one when prepared).
-    """
-
-    program: Program
-    executable: bool
-    message: str
-    failed_step: int | None
-    stage: Stage | None
-    result: ExecutionResult | None
-    prepared: Prepared | None
-    grounding: Grounding | None
-    graph: EnvironmentGraph
-
-    @property
-    def bindings(self) -> Bindings | None:
-        """Program objects -> node ids of `graph`, when grounded."""
-        return None if self.grounding is None else self.grounding.bindings
-
-    def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
-        """JSON view, the one shape of ``homesim run --json`` and ``/api/execute``.
-
-        The keys of `ExecutionResult.to_dict` (with no steps run when grounding failed),
-        plus ``stage``, ``preparation`` (`Prepared.to_dict`) and ``grounding``
-        (`Grounding.to_dict`). `lines`: the text line of each step, for ``line`` fields.
-        """
-        if self.result is not None:
-            data = self.result.to_dict(lines)
-        else:
-            index = None if self.failed_step is None else self.failed_step - 1
-            data = {
-                "program": str(self.program),
-                "executable": False,
-                "failed_step": self.failed_step,
-                "failed_line": None if lines is None or index is None else lines[index],
-                "reason": self.message,
-                "message": self.message,
-                "steps": [],
-                "not_run": [{"index": i, "line": None if lines is None else lines[i],
-                             "step": str(s)} for i, s in enumerate(self.program.steps)],
-            }
-        data["stage"] = self.stage
-        data["preparation"] = None if self.prepared is None else self.prepared.to_dict()
-        data["grounding"] = None if self.grounding is None else self.grounding.to_dict()
-        return data
+__all__ = ["Insertion", "Run", "run_program", "runs"]
 
 
 def run_program(program: Program | str, home: EnvironmentGraph | str, *,
-                prepare: bool = True, seed: int = 0, trace: bool = False,
-                kb: ObjectKnowledge | None = None, reference: bool = False) -> Run:
-    """Run `program` in `home`: prepare and ground it when it is not grounded, execute it.
+                prepare: bool = True, repair: bool = True, seed: int = 0,
+                trace: bool = False, kb: ObjectKnowledge | None = None,
+                reference: bool = False) -> Run:
+    """Run `program` in `home`: prepare and ground it when it is not grounded, execute it,
+    and repair it when a step cannot run.
 
     Args:
         program: a `Program` or program text.
@@ -124,10 +71,13 @@ def run_program(program: Program | str, home: EnvironmentGraph | str, *,
         prepare: add the objects the program needs and the home lacks, and set the states
             it presupposes, before grounding (and retry with extra instances where
             grounding fails, see `prepare_and_ground`). Without it, only ground.
-        seed: seed of preparation and grounding (same seed, same run).
+        repair: when the program as written cannot run, insert the steps it misses
+            (`homesim.ground.repair`) and run that; False gives the strict answer.
+        seed: seed of preparation, grounding and repair (same seed, same run).
         trace: record each step's outcome and changes in ``result.trace``.
         kb: the object knowledge base (default: `homesim.knowledge.load_kb()`).
-        reference: run as the reference simulator does, ``(N)`` read as node N.
+        reference: run as the reference simulator does, ``(N)`` read as node N (nothing
+            prepared, grounded or repaired).
 
     Returns:
         A `Run`; see the module docstring for what fails how.
@@ -138,58 +88,18 @@ def run_program(program: Program | str, home: EnvironmentGraph | str, *,
         from homesim.world.homes import load_home
 
         home = load_home(home)
-    if reference:
-        result = execute(program, home, trace=trace, reference=True)
-        return _finished(program, result, None, None, home)
+    strict = run_strict(program, home, prepare=prepare, seed=seed, trace=trace, kb=kb,
+                        reference=reference)
+    if strict.executable or not repair or reference or not program.steps:
+        return strict
     kb = kb or default_kb()
-    prepared: Prepared | None = None
-    graph = home
-    try:
-        prepared, grounding = _ground(program, home, prepare, seed, kb)
-        if prepared is not None:
-            graph = prepared.graph
-        result = execute(grounding.program, graph, trace=trace, kb=kb)
-    except (GroundingError, BindingError) as e:
-        return _failed(program, e, e.step or None, graph)
-    return _finished(program, result, prepared, grounding, graph)
-
-
-def runs(program: Program, home: EnvironmentGraph, *, prepare: bool = True, seed: int = 0,
-         kb: ObjectKnowledge | None = None) -> bool:
-    """``run_program(program, home, ...).executable``, for a program that is not grounded,
-    without the final execution (grounding's search has run every step already): the
-    check constrained decoding makes for each candidate step."""
-    if _grounded(program):
-        return run_program(program, home, prepare=prepare, seed=seed, kb=kb).executable
-    try:
-        _ground(program, home, prepare, seed, kb or default_kb())
-    except GroundingError:
-        return False
-    return True
-
-
-def _ground(program: Program, home: EnvironmentGraph, prepare: bool, seed: int,
-            kb: ObjectKnowledge) -> tuple[Prepared | None, Grounding]:
-    """Preparation (if asked) and grounding; a grounded program is taken as it is."""
-    if _grounded(program):
-        return None, Grounding(program, Bindings.of(program), None, 0)
-    if prepare:
-        return prepare_and_ground(program, home, seed=seed, kb=kb)
-    return None, ground(program, home, seed=seed, kb=kb)
-
-
-def _grounded(program: Program) -> bool:
-    # A program without objects (``[StandUp]``) is prepared too: it may presuppose states.
-    return program.is_grounded and any(step.args for step in program.steps)
-
-
-def _finished(program: Program, result: ExecutionResult, prepared: Prepared | None,
-              grounding: Grounding | None, graph: EnvironmentGraph) -> Run:
-    return Run(program, result.executable, result.message, result.failed_step,
-               None if result.executable else "execution", result, prepared, grounding, graph)
-
-
-def _failed(program: Program, error: Exception, step: int | None,
-            graph: EnvironmentGraph) -> Run:
-    message = " ".join(str(error).split())  # one line, whatever the error held
-    return Run(program, False, message, step, "grounding", None, None, None, graph)
+    insertions = repair_steps(program, home, strict, seed=seed, kb=kb, prepare=prepare)
+    if not insertions:
+        return strict
+    run = run_strict(insert_steps(program, insertions), home, prepare=prepare, seed=seed,
+                     trace=trace, kb=kb)
+    if not run.executable:  # as repair's search found it; a guard all the same
+        return strict
+    message = f"{run.message}, {len(insertions)} of them inserted by repair"
+    return replace(run, program=program, message=message, insertions=insertions,
+                   strict=strict)

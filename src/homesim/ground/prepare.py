@@ -31,8 +31,9 @@ Two things are prepared, on a copy of the home (the input graph is never changed
 
 from __future__ import annotations
 
+import difflib
 import random
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
@@ -40,7 +41,9 @@ from typing import Any
 from homesim.errors import GroundingError
 from homesim.ground.placement import place_box
 from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
+from homesim.sim.failure import FailureKind
 from homesim.sim.state import SimState
 from homesim.world.class_table import class_row
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
@@ -144,7 +147,7 @@ def instances_of(graph: EnvironmentGraph, classes: list[str]) -> list[int]:
 def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
             kb: ObjectKnowledge | None = None,
             extra: Sequence[tuple[str, int]] = (),
-            pins: Mapping[tuple[str, int], int] | None = None) -> Prepared:
+            pins: Bindings | None = None) -> Prepared:
     """Add the objects `program` needs and set the initial states it presupposes.
 
     Args:
@@ -177,7 +180,7 @@ def prepare(program: Program, graph: EnvironmentGraph, seed: int = 0,
         return Prepared(graph, [])
     st = SimState(graph)
     changed = _set_states(st, states)
-    adder = _Adder(st, program, context, kb, random.Random(seed), pins or {})
+    adder = _Adder(st, program, context, kb, random.Random(seed), pins or Bindings())
     for ref in missing:
         addition = adder.add(ref)
         groups = _groups_of_class(required, ref.name)
@@ -505,7 +508,7 @@ class _Adder:
     destination the knowledge base allows, else on free floor."""
 
     def __init__(self, st: SimState, program: Program, context: _Context,
-                 kb: ObjectKnowledge, rng: random.Random, pins: Mapping[Key, int]):
+                 kb: ObjectKnowledge, rng: random.Random, pins: Bindings):
         self.st, self.program, self.context, self.kb, self.rng = st, program, context, kb, rng
         self.pins = pins
         self.plan = FloorPlan(st.graph) if has_geometry(st.graph) else None
@@ -545,7 +548,7 @@ class _Adder:
         raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and there is no "
                              f"free space for one on or in {tried or 'any destination'} or "
                              "on the floor of any room", first_use(self.program, ref.key)[0],
-                             str(ref), tried)
+                             str(ref), tried, FailureKind.MISSING)
 
     def _where(self, ref: ObjectRef) -> str:
         step_no, step_text = first_use(self.program, ref.key)
@@ -563,11 +566,14 @@ class _Adder:
         if (ref.name == CHARACTER_CLASS or ROOM_NAMES.intersection(names)
                 or any(n.is_room for c in names for n in graph.nodes_of_class(c))):
             raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}; rooms and "
-                                 "characters cannot be added", step_no, str(ref), "rooms")
-        if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c) for c in names):
+                                 "characters cannot be added", step_no, str(ref), "rooms",
+                                 FailureKind.MISSING)
+        if not any(kb.properties(c) or kb.placements(c) or kb.prefab_size(c)
+                   or kb.default_states(c) for c in names):
             raise GroundingError(f"{self._where(ref)}{self._lacks(ref, names)}, and the "
                                  f"knowledge base does not know {ref.name!r}, so none can be "
-                                 "added", step_no, str(ref), "")
+                                 f"added{_suggest(ref.name, kb)}", step_no, str(ref), "",
+                                 FailureKind.MISSING)
 
     def _add_worn(self, ref: ObjectRef, names: list[str], rank: _RoomRank,
                   char: int) -> Addition:
@@ -749,6 +755,12 @@ class _RoomRank:
         if self.graph.nodes[room].class_name in self.walked_into:
             return 0
         return 1 if room in self.rooms else 2
+
+
+def _suggest(name: str, kb: ObjectKnowledge) -> str:
+    """``" (did you mean television?)"``: known classes spelled like `name`, if any."""
+    close = difflib.get_close_matches(name, kb.classes(), n=3, cutoff=0.75)
+    return f" (did you mean {' or '.join(close)}?)" if close else ""
 
 
 def _placements(names: list[str], kb: ObjectKnowledge) -> list[Any]:

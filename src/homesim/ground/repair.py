@@ -1,9 +1,10 @@
 """Repair: insert the commonsense steps a program misses so that it runs.
 
 People writing programs leave out minor steps (the paper: 28 % of collected programs miss
-some, most often walking to an object). `repair` runs the program through the one
-pipeline (`homesim.run_program`); when a step fails it tries inserting steps before it,
-derived from that step's row of the action catalog (`homesim.program.actions`):
+some, most often walking to an object). `homesim.run_program` repairs a program that
+cannot run by default. `repair` runs the program through the pipeline's strict run
+(`homesim.ground.strict.run_strict`); when a step fails it tries inserting steps before
+it, derived from that step's row of the action catalog (`homesim.program.actions`):
 
 - ``reach``: walk to the (last) object first (Grab, Open, SwitchOn, PutBack's destination).
 - ``moves``: stand up first (Walk, Run, Find while sitting or lying).
@@ -43,36 +44,16 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from homesim.ground.pipeline import Run, run_program
+from homesim.ground.strict import Insertion, Run, run_strict
 from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_kb
 from homesim.program.actions import ACTIONS, ActionSpec
 from homesim.program.model import ObjectRef, Program, Step
+from homesim.sim.failure import FailureKind
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, INSIDE
 
 # One program line plus why it is there: None for the program's own steps.
 _Item = tuple[Step, str | None]
-
-
-@dataclass(frozen=True, slots=True)
-class Insertion:
-    """One step `repair` inserted.
-
-    Attributes:
-        index: 0-based position of the step in the repaired program.
-        step: the inserted step.
-        reason: why it is needed, in words.
-        before: 0-based index of the original step it precedes.
-    """
-
-    index: int
-    step: Step
-    reason: str
-    before: int
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"index": self.index, "step": str(self.step), "reason": self.reason,
-                "before": self.before}
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,17 +98,35 @@ class _Search:
     undo_states: bool
     runs_left: int
     runs: int = 0
+    prepare: bool = True
 
     def run(self, items: list[_Item]) -> Run:
         self.runs_left -= 1
         self.runs += 1
-        return run_program(Program(tuple(s for s, _ in items)), self.home, seed=self.seed,
-                           kb=self.kb)
+        return run_strict(Program(tuple(s for s, _ in items)), self.home, seed=self.seed,
+                          kb=self.kb, prepare=self.prepare)
+
+
+def repair_steps(program: Program, home: EnvironmentGraph, before: Run, *, seed: int = 0,
+                 kb: ObjectKnowledge | None = None, prepare: bool = True
+                 ) -> tuple[Insertion, ...]:
+    """The steps to insert so that `program` runs in `home` (`before`: its strict run,
+    which failed); () when repair finds none. What `homesim.run_program` calls.
+
+    When what stops it is a state the program's step would bring about already (it
+    switches on a device that is on), a second search also undoes such states
+    (``undo_states``: switch the device off first), each insertion saying so."""
+    found = repair(program, home, seed=seed, kb=kb, prepare=prepare, before=before)
+    if not found.executable and found.run.kind is FailureKind.ALREADY:
+        found = repair(program, home, seed=seed, kb=kb, prepare=prepare, before=before,
+                       undo_states=True)
+    return found.insertions if found.executable else ()
 
 
 def repair(program: Program | str, home: EnvironmentGraph | str, *, seed: int = 0,
            kb: ObjectKnowledge | None = None, undo_states: bool = False,
-           max_insertions: int = 16, depth: int = 3, max_runs: int = 200) -> Repair:
+           max_insertions: int = 16, depth: int = 3, max_runs: int = 200,
+           prepare: bool = True, before: Run | None = None) -> Repair:
     """Insert the missing steps `program` needs to run in `home` (see the module docstring).
 
     Args:
@@ -140,6 +139,8 @@ def repair(program: Program | str, home: EnvironmentGraph | str, *, seed: int = 
         max_insertions: at most this many inserted steps.
         depth: how many insertions may be chained to get past one failing step.
         max_runs: at most this many pipeline runs in all.
+        prepare: prepare the home for each trial (as `run_program`'s `prepare`).
+        before: the strict run of `program`, when the caller has it (not run again).
 
     Returns:
         A `Repair`; when no insertion helps, its run is the best one found (it may still
@@ -151,9 +152,9 @@ def repair(program: Program | str, home: EnvironmentGraph | str, *, seed: int = 
         from homesim.world.homes import load_home
 
         home = load_home(home)
-    search = _Search(home, seed, kb or default_kb(), undo_states, max_runs)
+    search = _Search(home, seed, kb or default_kb(), undo_states, max_runs, prepare=prepare)
     items: list[_Item] = [(s, None) for s in program.steps]
-    before = run = search.run(items)
+    before = run = before or search.run(items)
     while not run.executable and sum(r is not None for _, r in items) < max_insertions:
         found = _improve(items, run, depth, search)
         if found is None:
@@ -212,13 +213,40 @@ def _improve(items: list[_Item], run: Run, depth: int, search: _Search,
     return None
 
 
+# The inserted actions that answer each kind of failure, tried first, in this order; the
+# other candidates of the catalog row follow (a grounding failure's kind is that of the
+# deepest step the search could not pass, which need not be the one repair looks at).
+_FIRST: dict[FailureKind, tuple[str, ...]] = {
+    FailureKind.UNREACHABLE: ("WALK",),
+    FailureKind.NOT_FACING: ("TURNTO", "WALK"),
+    FailureKind.NOT_HELD: ("GRAB", "WALK"),
+    FailureKind.ENCLOSED: ("OPEN",),
+    FailureKind.POSTURE: ("STANDUP",),
+    FailureKind.STATE: ("PLUGIN", "OPEN", "SWITCHOFF"),
+    FailureKind.ALREADY: ("SWITCHOFF", "CLOSE", "PLUGOUT"),
+}
+
+
+def _by_kind(fixes: Iterator[tuple[Step, str]], kind: FailureKind | None
+             ) -> Iterator[tuple[Step, str]]:
+    """`fixes` in the order the failure's kind suggests (see `_FIRST`). Every kind keeps
+    every candidate: even where the object cannot take the action, a walk may let
+    grounding bind (or preparation add) another instance that can."""
+    first = _FIRST.get(kind, ()) if kind is not None else ()
+    if not first:
+        return fixes
+    return iter(sorted(fixes, key=lambda f: first.index(f[0].action.key)
+                       if f[0].action.key in first else len(first)))
+
+
 def _candidates(items: list[_Item], k: int, run: Run, search: _Search
                 ) -> Iterator[list[_Item]]:
-    """Programs with one step inserted before step `k`, most likely fix first."""
+    """Programs with one step inserted before step `k`, most likely fix first (by the
+    failure's kind, `run.kind`)."""
     step = items[k][0]
     previous = items[k - 1][0] if k > 0 else None
     seen: set[Step] = set()
-    for new, reason in _fixes(step, k, items, search):
+    for new, reason in _by_kind(_fixes(step, k, items, search), run.kind):
         if new == previous or new in seen:
             continue  # the same step twice in a row fixes nothing
         seen.add(new)

@@ -44,6 +44,7 @@ from homesim.knowledge.kbtypes import ObjectKnowledge, class_names_for, default_
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
+from homesim.sim.failure import Failure, FailureKind
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.standing import FloorPlan, Spot, has_geometry
@@ -51,6 +52,7 @@ from homesim.world.vocab import CLOSE, FACING, HOLDS_LH, HOLDS_RH, INSIDE, ON
 
 Key = tuple[str, int]
 
+_NO_FAILURE = Failure(FailureKind.MISSING, "")
 DEFAULT_BUDGET = 5000
 """Step runs the search may spend before it gives up (real programs need ~1.1 per step)."""
 
@@ -189,7 +191,7 @@ class _Search:
         self.owner: dict[int, Key] = {}
         self.domains: dict[Key, list[int]] = {}
         self.tried: dict[Key, list[int]] = {}
-        self.deepest: tuple[int, str] = (-1, "")
+        self.deepest: tuple[int, Failure] = (-1, _NO_FAILURE)
         self.deepest_bindings: dict[Key, int] = {}
         self.plan = FloorPlan.for_graph(graph, rotation=seed) if geometry else None
         self.needs: dict[Key, list[frozenset[str]]] = {}
@@ -205,7 +207,7 @@ class _Search:
                 raise GroundingError(
                     f"step {n} {text}: the home has no {' or '.join(classes)} for "
                     f"<{ref.name}> ({ref.instance}){_similar(ref.name, graph)}",
-                    n, str(ref), ", ".join(classes))
+                    n, str(ref), ", ".join(classes), FailureKind.MISSING)
             self.domains[ref.key] = ids
         # Nodes that can only be one program object (often one scene preparation added
         # where the program needs it): candidates next to them are preferred too.
@@ -295,8 +297,9 @@ class _Search:
             return frame.step
         if self.owner.keys() >= set(self.domains[key]) and frame.step >= self.deepest[0]:
             taken = len(self.domains[key])
-            self.deepest = (frame.step, f"all {taken} instances of <{frame.ref.name}> in the "
-                                        "home are bound to other objects of the program")
+            self.deepest = (frame.step, Failure(
+                FailureKind.MISSING, f"all {taken} instances of <{frame.ref.name}> in the "
+                                     "home are bound to other objects of the program"))
         frame.blame.discard(key)
         return frame.blame
 
@@ -360,7 +363,7 @@ class _Search:
         return boxes.nearest(box.center)
 
     # ------------------------------------------------------------------ standing
-    def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> str | None:
+    def stand(self, i: int, ids: tuple[int, ...], holding_before: set[int]) -> Failure | None:
         """Choose where the agent stands for step i; a reason if there is no free floor."""
         previous = self.spots[i - 1] if i > 0 else None
         if not ids:
@@ -375,7 +378,8 @@ class _Search:
             return None
         spot = self._spot(target)
         if spot is None:
-            return f"no free floor next to {st.label(target)} for the agent to stand on"
+            return Failure(FailureKind.UNREACHABLE, f"no free floor next to {st.label(target)} "
+                                                    "for the agent to stand on")
         self.spots[i] = spot
         return None
 
@@ -463,8 +467,8 @@ def _failure(search: _Search, stopped: bool) -> GroundingError:
     what = "; ".join(tried) or "no objects"
     obj = str(step.args[0]) if step.args else None
     error = GroundingError(f"step {index + 1} {step}: cannot be grounded: {reason}; "
-                           f"tried {what}{tail}", index + 1, obj, what)
-    error.bindings = search.deepest_bindings
+                           f"tried {what}{tail}", index + 1, obj, what, reason.kind)
+    error.bindings = Bindings(search.deepest_bindings)
     return error
 
 
@@ -514,7 +518,7 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
     """
     kb = kb or default_kb()
     extra: list[Key] = []
-    pins: dict[Key, int] = {}
+    pins = Bindings()
     rooms = {n.class_name for n in graph.rooms()}
     failure: GroundingError | None = None
     while True:
@@ -537,5 +541,5 @@ def prepare_and_ground(program: Program, graph: EnvironmentGraph, seed: int = 0,
                 raise failure from None
             extra += new
             # Put the new instances next to what the search had chosen when it failed.
-            pins = {k: n for k, n in e.bindings.items() if n in graph}
+            pins = Bindings({k: n for k, n in e.bindings.items() if n in graph})
             repairs -= 1

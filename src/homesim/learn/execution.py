@@ -1,7 +1,8 @@
 """Execute predicted (ungrounded) programs in an example's home, as every entry point does.
 
 `executable` is the simulator reward and the Simulator % column: `homesim.run_program`
-(prepare the home, ground the program, execute it). `StepRunner` serves constrained
+(prepare the home, ground the program, execute it) with ``repair=False``: a model is
+judged on the program it wrote, not on what repair would insert. `StepRunner` serves constrained
 decoding, which must decide step by step: it accepts a step when the program so far plus
 that step passes `run_program`, so a decoded program is executable by the same rules
 (preparation, grounding with the knowledge base's equivalent names) as the reward.
@@ -13,11 +14,12 @@ from functools import lru_cache
 
 from homesim.ground.pipeline import run_program, runs
 from homesim.learn.data import Example
-from homesim.learn.vocab import StepKey, key_step
+from homesim.learn.vocabularies import StepKey, key_step
 from homesim.program.actions import ACTIONS
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program
+from homesim.world.homes import load_home
 
 SEED = 0
 """Seed of preparation and grounding for the reward, the table and decoding."""
@@ -39,7 +41,8 @@ class StepRunner:
     @property
     def bound(self) -> Bindings:
         """Program objects -> nodes of the prepared home, as `run_program` binds them."""
-        bindings = run_program(Program(self.steps), self.graph, seed=SEED).bindings
+        bindings = run_program(Program(self.steps), self.graph, seed=SEED,
+                               repair=False).bindings
         return bindings if bindings is not None else Bindings()
 
     def _runs(self, step: Step) -> bool:
@@ -71,7 +74,7 @@ class StepRunner:
 
 def executable(program: Program, example: Example) -> bool:
     """Whether `run_program` runs `program` in the example's home."""
-    return run_program(program, example.graph(), seed=SEED).executable
+    return run_program(program, example.graph(), seed=SEED, repair=False).executable
 
 
 BUILTIN_HOMES = tuple(f"scene{i}_trimmed" for i in range(1, 6))
@@ -90,9 +93,8 @@ def other_homes(example: Example) -> tuple[str, ...]:
 def runs_in_builtin(program_text: str, home: str) -> bool:
     """Whether `run_program` runs the program (its text) in a built-in home; cached, since
     retrieval rows propose the same training programs again and again."""
-    from homesim.world.homes import load_home
-
-    return run_program(parse_program(program_text), load_home(home), seed=SEED).executable
+    return run_program(parse_program(program_text), load_home(home), seed=SEED,
+                       repair=False).executable
 
 
 def cross_home_rate(program: Program, example: Example) -> float:

@@ -17,13 +17,14 @@ or as a `Bindings` map beside an ungrounded program. Both say the same thing:
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
-from typing import Any
+from typing import Any, TypeVar, overload
 
 from homesim.errors import BindingError
 from homesim.program.model import ObjectRef, Program, Step
 
 Key = tuple[str, int]
 """A program object: (class name, instance)."""
+_T = TypeVar("_T")
 
 
 class Bindings(Mapping[Key, int]):
@@ -70,6 +71,18 @@ class Bindings(Mapping[Key, int]):
 
     def __getitem__(self, key: Key) -> int:
         return self._nodes[key]
+
+    # get and in go straight to the dict: the simulator asks once per object ref, and
+    # Mapping's own versions raise and catch KeyError for every miss.
+    @overload
+    def get(self, key: Key, /) -> int | None: ...
+    @overload
+    def get(self, key: Key, default: int | _T, /) -> int | _T: ...
+    def get(self, key: Key, default: object = None, /) -> object:
+        return self._nodes.get(key, default)
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._nodes
 
     def __iter__(self) -> Iterator[Key]:
         return iter(self._nodes)

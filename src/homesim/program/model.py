@@ -83,7 +83,7 @@ class Step:
         """Parse one step line; raises `ProgramError` (naming `lineno` and `source`) on a
         malformed line."""
         action, refs = read_step(line, lineno, source)
-        return cls(action, tuple(ObjectRef(name, instance, node) for name, instance, node in refs))
+        return cls(action, tuple([ObjectRef(*ref) for ref in refs]))
 
     def __str__(self) -> str:
         return " ".join([f"[{self.action.name}]", *map(str, self.args)])
@@ -122,7 +122,7 @@ class Program:
     def parse(cls, text: str, source: str | None = None) -> Program:
         """Parse a program text (steps only, or the ActivityPrograms file format)."""
         title, description, lines = read_text(text, source)
-        return cls(tuple(Step.parse(line, n, source) for n, line in lines), title, description)
+        return cls(tuple([Step.parse(line, n, source) for n, line in lines]), title, description)
 
     def __str__(self) -> str:
         body = "\n".join(str(s) for s in self.steps)

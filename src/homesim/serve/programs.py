@@ -64,13 +64,14 @@ def ref_problems(program: Program, lines: list[int], graph: EnvironmentGraph) ->
 
 
 def run_request(program: Program, graph: EnvironmentGraph, ground: bool | None, seed: int,
-                trace: bool) -> Run:
+                trace: bool, repair: bool = True) -> Run:
     """`run_program` as a request asks: ground None runs it as `homesim run` does (grounded
     programs as they are, others prepared and grounded); True grounds it anew; False
-    reads (N) as node N, as the reference simulator does."""
+    reads (N) as node N, as the reference simulator does. `repair` as `run_program`."""
     if ground:
         program = unground(program)
-    return run_program(program, graph, seed=seed, trace=trace, reference=ground is False)
+    return run_program(program, graph, seed=seed, trace=trace, reference=ground is False,
+                       repair=repair)
 
 
 def validate(request: ProgramRequest) -> dict[str, Any]:
@@ -87,7 +88,8 @@ def run(request: ExecuteRequest) -> dict[str, Any]:
     """Run a program in a home (`run_program`): every step ✓/✗ with its reason and changes."""
     program, lines = parse_request(request.program)
     graph = get_home(request.home)
-    ran = run_request(program, graph, request.ground, request.seed, trace=True)
+    ran = run_request(program, graph, request.ground, request.seed, trace=True,
+                      repair=request.repair)
     return {**ran.to_dict(lines), "home": request.home}
 
 
@@ -129,7 +131,7 @@ def _grounded(request: RenderRequest) -> tuple[Program, EnvironmentGraph, dict[s
     for each step) for a renderer."""
     program, lines = parse_request(request.program)
     graph = get_home(request.home)
-    ran = run_request(program, graph, None, request.seed, trace=False)
+    ran = run_request(program, graph, None, request.seed, trace=False, repair=request.repair)
     if ran.grounding is None:
         index = None if ran.failed_step is None else ran.failed_step - 1
         where: dict[str, Any] = {} if index is None else {"line": lines[index], "index": index}

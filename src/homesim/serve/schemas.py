@@ -29,23 +29,28 @@ class ExecuteRequest(BaseModel):
     Run by `homesim.run_program`, as ``homesim run`` does. ``ground``: None (default)
     prepares and grounds a program when some object ref lacks a node id, and checks and
     runs a grounded one as it is; True grounds it anew even when it carries node ids;
-    False reads ``(N)`` as node N, as the reference simulator does.
+    False reads ``(N)`` as node N, as the reference simulator does. ``repair``: insert
+    the steps a program misses when it cannot run as written (default; the answer's
+    ``repair`` lists them), or False for the strict answer.
     """
 
     program: str
     home: str
     ground: bool | None = None
     seed: int = Field(default=0, description="seed of preparation and grounding")
+    repair: bool = Field(default=True, description="insert the steps a program misses")
 
 
 class RenderRequest(BaseModel):
-    """A program to render as key frames (one per step)."""
+    """A program to render as key frames (one per step that runs: with ``repair``, the
+    inserted steps too)."""
 
     program: str
     home: str
     width: int = Field(default=320, ge=MIN_RENDER_SIDE, le=MAX_RENDER_WIDTH)
     height: int = Field(default=240, ge=MIN_RENDER_SIDE, le=MAX_RENDER_HEIGHT)
     seed: int = 0
+    repair: bool = Field(default=True, description="insert the steps a program misses")
 
 
 class VideoRequest(RenderRequest):

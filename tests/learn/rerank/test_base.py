@@ -1,0 +1,37 @@
+"""The bank and the query: what a training query may see, and its candidates."""
+
+from dataclasses import replace
+
+import numpy as np
+
+from homesim.knowledge.datasets import ActivityProgram
+from homesim.learn.rerank.base import Bank, Query
+from homesim.program.model import Program
+from tests.learn.rerank.test_reranker import LAMP, TV, _example
+
+
+def test_a_training_query_does_not_see_what_the_split_hides(tiny_splits):
+    bank = Bank(tiny_splits.train)
+    e = tiny_splits.train[0]
+    assert bank.hidden(e, "program")[0]
+    same = [x.activity == e.activity for x in tiny_splits.train]
+    assert list(bank.hidden(e, "activity")) == same
+
+
+def test_candidates_include_the_median_of_the_querys_activity():
+    from homesim.learn.rerank.median import Medians
+    from homesim.program.metrics import step_tokens
+    from tests.learn.rerank.test_median import program
+
+    dishes = [ActivityProgram(f"d{i}", Program(program(s).steps, "Wash dishes", f"wash {s}"))
+              for i, s in enumerate(("fae", "ebe", "ecda"))]
+    bank = Bank([*dishes, _example("Watch TV", "turn on the tv", TV),
+                 _example("Turn on light", "switch the lamp on", LAMP)])
+    query = Query(bank, replace(dishes[0], id="q"), np.ones(len(bank.train), bool))
+    references = [e.program for e in dishes]
+    medoid = bank.train[bank.medoid(np.arange(3))].program
+    median = tuple(step_tokens(Medians(references, np.ones(3)).median(medoid)))
+    assert median not in bank.tokens
+    best = {tau: int(np.argmax(query.weights[tau] @ bank.lcs)) for tau in bank.config.taus}
+    assert median in {tuple(step_tokens(p)) for _, p in query._medians(best)}
+    assert median in {c.tokens for c in query.candidates if c.edited}

@@ -1,0 +1,55 @@
+"""The reranker end to end on tiny data: seeded, and its settings saved with it."""
+
+import pickle
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from homesim.knowledge.datasets import ActivityProgram
+from homesim.learn.rerank.base import Bank, Query, feature_names
+from homesim.learn.rerank.config import RerankConfig
+from homesim.learn.rerank.reranker import Reranker
+from homesim.program.model import Program
+
+
+def _example(title: str, description: str, program: str) -> ActivityProgram:
+    p = Program.parse(program)
+    return ActivityProgram("x", replace(p, title=title, description=description))
+
+
+TV = "[Walk] <home_office> (1)\n[Walk] <television> (1)\n[SwitchOn] <television> (1)"
+LAMP = "[Walk] <bedroom> (1)\n[Walk] <light> (1)\n[SwitchOn] <light> (1)"
+
+
+def test_reranker_prefers_the_program_whose_objects_the_text_names(tiny_splits):
+    train, test = tiny_splits.train, tiny_splits.test
+    model = Reranker.fit(train, "program")
+    query = Query(model.bank, test[0], np.ones(len(train), bool))
+    assert query.features().shape == (len(query.candidates), len(feature_names(model.config)))
+    assert model.scores(query).shape == (len(query.candidates),)
+    preds = model.predict(test[:4])
+    assert [str(p) for p in preds] == [str(p) for p in Reranker.fit(
+        train, "program").predict(test[:4])]
+    pool = {e.program.steps for e in train}
+    assert all(p.steps in pool or len(p) for p in preds)
+
+
+def test_the_settings_are_saved_with_the_model_and_read_from_it(tiny_splits):
+    train, test = tiny_splits.train, tiny_splits.test
+    config = RerankConfig(top_k=2, near=5, check_executable=1)
+    model = Reranker.fit(train, "program", insert=False, config=config)
+    assert model.config == config and model.bank.config is config
+    again = pickle.loads(pickle.dumps(model))
+    assert again.config == config  # the pickle (the program writer's) carries them
+    assert [str(p) for p in again.predict(test[:3])] == [str(p) for p in model.predict(test[:3])]
+    everything = np.ones(len(train), bool)
+    default = Query(Bank(train), test[0], everything)
+    fewer = Query(model.bank, test[0], everything)
+    assert len(fewer.near) == 5 < len(default.near)
+    assert len(fewer.candidates) < len(default.candidates)
+
+
+def test_settings_that_cannot_work_are_refused():
+    with pytest.raises(ValueError, match="position_tau"):
+        RerankConfig(taus=(0.02, 0.05, 0.3))

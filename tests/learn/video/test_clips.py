@@ -1,0 +1,48 @@
+"""Clips: labels at the middle frame, mean per-class accuracy, the TRN from its config."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+pytest.importorskip("torch")
+
+
+def test_a_clip_is_labelled_by_its_middle_frame():
+    from homesim.learn.video.clips import FRAMES, clip_set
+
+    ep = SimpleNamespace(key="k", start=10, length=12, fps=4,
+                         steps=["[Walk] <tv> (1)", "[SwitchOn] <tv> (1)"])
+    step = np.full(30, -1)
+    step[10:13], step[13:22] = 0, 1  # frames 0-2 walk, 3-11 switch on: [0, 8) shows
+    # walking least, but its middle frame (4) switches on
+    clips = clip_set([ep], step)  # windows [0, 8) and no second one (12 frames)
+    assert clips.steps == ["[SwitchOn] <tv>"] and clips.actions == ["SwitchOn"]
+    assert clips.rows.shape == (1, FRAMES) and clips.rows[0, 0] == 10
+    hopped = clip_set([ep], step, hop=1.0)  # [0, 8) and [4, 12)
+    assert hopped.steps == ["[SwitchOn] <tv>", "[SwitchOn] <tv>"]
+    step[14:22] = -1  # the middle frame shows nothing: no clip
+    assert clip_set([ep], step).steps == []
+
+
+def test_mean_class_accuracy_weighs_classes_equally():
+    from homesim.learn.video.clips import mean_class_accuracy
+
+    # class a: 2 of 3 right; class b: 0 of 1
+    assert mean_class_accuracy(["a", "a", "b", "a"], ["a", "a", "a", "b"]) == pytest.approx(
+        100 * (2 / 3 + 0) / 2)
+
+
+def test_a_clip_model_is_built_from_its_settings():
+    """The TRN's scales, subsets and widths are its config's, saved with the weights."""
+    import torch
+
+    from homesim.learn.video.clips import FRAMES, ClipConfig, ClipModel
+
+    cfg = ClipConfig("trn", "seg", 2, 3, 4, max_scale=3, subsets=2, hidden=16, feature=8)
+    model = ClipModel(cfg)
+    assert model.scales == [2, 3] and model.relations[0][0].out_features == 16
+    assert model.features(torch.zeros(5, FRAMES, 2)).shape == (5, 8)
+    assert ClipConfig(**cfg.to_dict()) == cfg

@@ -1,0 +1,56 @@
+"""Table 2 end to end on the tiny plan: every model, resuming, the CLI and the results
+section (two seeds)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+pytest.importorskip("torch")
+
+
+def test_train_resume_and_eval_video2prog(tiny_plan, tmp_path):
+    from typer.testing import CliRunner
+
+    from homesim.cli.main import app
+    from homesim.learn.text.text2prog import Text2Prog
+
+    runs = tmp_path / "runs"
+    args = ["learn", "train", "--task", "video2prog", "--data", str(tiny_plan), "--out",
+            str(runs), "--frame-epochs", "1", "--seg-epochs", "1", "--clip-epochs", "2",
+            "--mle-epochs", "2", "--pg-epochs", "1", "--seeds", "2", "--frame-size",
+            "32x24", "--video-cache", str(tmp_path / "cache"), "--device", "cpu"]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 0, res.output
+    model = Text2Prog.load(runs / "seed-1" / "pg_lcs_sim.pt")
+    assert model.model.config.feature_dim == 128 and len(model.steps) > 1  # config + vocab
+    assert (runs / "features" / "seg.npy").is_file() and (runs / "frames" / "segment.json")
+    weights = (runs / "seed-0" / "clip_seg_trn.pt").read_bytes()
+    (runs / "seed-0" / "mle.pt").unlink()  # as if stopped before the seed's MLE
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 0, res.output
+    assert "clip_" not in res.output and "seed 0 mle" in res.output  # only what was missing
+    assert (runs / "seed-0" / "clip_seg_trn.pt").read_bytes() == weights
+    markdown = tmp_path / "results.md"
+    markdown.write_text("# Table 3\n")
+    res = CliRunner().invoke(app, ["learn", "eval", "--task", "video2prog", "--runs",
+                                   str(runs), "--markdown", str(markdown), "--device", "cpu"])
+    assert res.exit_code == 0, res.output
+    result = json.loads((runs / "results.json").read_text())
+    truth = result["programs"]["seen"]["Ground truth (reference)"]
+    assert truth["steps"]["mean"] == 1.0 and truth["simulator"]["seeds"] == [1.0, 1.0]
+    assert set(result["programs"]["all"]) >= {
+        "Random retrieval", "MLE", "PG (LCS)", "PG (LCS+Sim)", "MLE + constrained decoding",
+        "PG (LCS+Sim) + constrained decoding"}
+    constrained = result["programs"]["all"]["PG (LCS+Sim) + constrained decoding"]
+    assert constrained["simulator"]["mean"] == 1.0  # executable by construction
+    clips = result["clips"]["all"]
+    assert {"Random retrieval", "TRN (RGB)", "Single frame (RGB)",
+            "TRN (predicted segmentation)", "TRN (ground-truth class maps: oracle)"} <= set(clips)
+    assert all(0 <= row["step"]["lo"] <= row["step"]["hi"] <= 100 for row in clips.values())
+    assert "all test" in result["segment"]["scores"]
+    text = markdown.read_text()
+    assert text.startswith("# Table 3\n") and "Table 2" in text and " ± " in text
+    assert "*.528*" in text and "*24.6*" in text  # the paper's PG (LCS+Sim), seen homes
+    assert "--plan tiny --n 4" in text and "--seeds 2 --frame-size 32x24" in text
