@@ -85,9 +85,9 @@ def main() -> int:
         sheet.paste(ref, (ours.width + 10, 0))
     else:
         sheet = ours
-    out = Path(args.out) / f"{args.home}_topdown.png"
+    out = Path(args.out) / f"{args.home}_topdown.jpg"
     out.parent.mkdir(parents=True, exist_ok=True)
-    sheet.save(out)
+    sheet.save(out, format="JPEG", quality=85, optimize=True)
     print(f"wrote {out}")
     return 0
 
