@@ -52,6 +52,7 @@ bench: setup
 	$(BIN)/python benchmarks/learn.py
 	$(BIN)/python benchmarks/median.py
 	$(BIN)/python benchmarks/repair.py
+	$(BIN)/python benchmarks/examples.py
 	$(BIN)/python benchmarks/home_load.py
 	$(BIN)/python benchmarks/descriptions.py
 	$(BIN)/python benchmarks/parse.py

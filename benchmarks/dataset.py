@@ -1,13 +1,22 @@
-"""Activity data set throughput: episodes/hour with 1 and 2 local Ray workers, bytes per
-frame (and the size of 5 193 episodes), and loader clips/s with 2 DataLoader workers.
+"""Activity data set throughput: episodes/hour per core of the `full` and `learn` profiles,
+bytes per frame; with --scaling, 1 and 2 local Ray workers; with --data, the loader.
 
-Both generation runs make the same episodes (same seed) at 320x240 with every modality at
-full frame rate; Ray is started before the clock starts, so the ratio compares the work,
-not Ray's start-up. The loader is timed with 2 workers against 0 workers in the same run.
+Profiles (default): both make the same episodes (same seed, programs and choices) with
+`generate_dataset(workers=0)`, one after the other in this process: one core, llvmpipe
+rasterizing in the calling thread as in a data set worker. Each is timed after one
+warm-up episode (another seed: imports, knowledge base, GL context, paid once per
+worker, not per episode). Per core: episodes / CPU hours of this process (every thread of it);
+the wall rate is printed beside it (the same on a quiet machine). The ratio learn / full
+is measured in the same run.
 
-Goals (issue 14): 2 workers >= 1.8x the episodes/hour of 1; <= 100 KB per frame.
+Scaling (--scaling): the same episodes with 1 and 2 local Ray workers (Ray started before
+the clock), and the loader with 2 DataLoader workers against 0.
 
-    python benchmarks/dataset.py [--n 8] [--width 320 --height 240 --fps 15]
+Goals: learn >= 2 000 episodes/h per core (issue 42); 2 workers >= 1.8x the episodes/hour
+of 1 and <= 100 KB per frame (issue 14, full profile).
+
+    python benchmarks/dataset.py [--n 12] [--seed 0]
+    python benchmarks/dataset.py --scaling [--n 8] [--profile full]
     python benchmarks/dataset.py --data DIR     # the loader only, on a data set made before
 """
 
@@ -18,11 +27,14 @@ import os
 import resource
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from homesim.dataset import DatasetConfig, Summary, generate_dataset
+from homesim.dataset.spec import PROFILES
 
 PAPER_EPISODES = 5193
+LEARN_GOAL = 2000  # episodes per hour per core
 
 
 def timed_generation(config: DatasetConfig, out: Path, workers: int) -> tuple[Summary, float]:
@@ -43,6 +55,34 @@ def cpu_seconds() -> float:
     me, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(
         resource.RUSAGE_CHILDREN)
     return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def profile_rate(name: str, n: int, seed: int, tmp: Path) -> tuple[Summary, float, float]:
+    """(summary, wall seconds, CPU seconds) of `n` episodes of a profile, in this process,
+    after a warm-up episode of another seed."""
+    config = DatasetConfig.from_profile(name, n=n, seed=seed, shard_size=4)
+    generate_dataset(replace(config, n=1, seed=seed + 1), tmp / f"{name}-warm", workers=0)
+    t0, c0 = time.perf_counter(), time.process_time()
+    summary = generate_dataset(config, tmp / name, workers=0)
+    return summary, time.perf_counter() - t0, time.process_time() - c0
+
+
+def profiles(n: int, seed: int) -> None:
+    """Episodes/h per core of each profile and the ratio learn / full."""
+    rates = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in ("full", "learn"):
+            p = PROFILES[name]
+            summary, wall, cpu = profile_rate(name, n, seed, Path(tmp))
+            per_core = n / cpu * 3600
+            rates[name] = per_core
+            print(f"{name}: {p.width}x{p.height}, {p.fps} fps, {'+'.join(p.modalities)}: "
+                  f"{summary.episodes} episodes ({summary.failed} failed, {summary.frames} "
+                  f"frames) in {cpu:.1f} CPU s / {wall:.1f} s wall = {per_core:.0f} "
+                  f"episodes/h per core ({n / wall * 3600:.0f} by wall); "
+                  f"{summary.bytes_per_frame / 1e3:.1f} KB per frame")
+    print(f"ratio learn / full: {rates['learn'] / rates['full']:.2f}x; learn "
+          f"{rates['learn']:.0f} episodes/h per core (goal >= {LEARN_GOAL})")
 
 
 def clips_per_second(root: Path, workers: int, modalities: tuple[str, ...]
@@ -69,23 +109,9 @@ def time_loader(root: Path) -> None:
               f"{cpu:.3f} CPU s per clip with 2 workers")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=8, help="episodes per run")
-    parser.add_argument("--width", type=int, default=320)
-    parser.add_argument("--height", type=int, default=240)
-    parser.add_argument("--fps", type=int, default=15)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--data", type=Path, help="time the loader only, on this data set")
-    args = parser.parse_args()
-    if args.data:
-        print(f"load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
-        time_loader(args.data)
-        print(f"load average after: {os.getloadavg()[0]:.1f}")
-        return
-    config = DatasetConfig(n=args.n, seed=args.seed, width=args.width, height=args.height,
-                           fps=args.fps, shard_size=2)
-    print(f"load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+def scaling(n: int, seed: int, profile: str) -> None:
+    """Episodes/hour with 1 and 2 local Ray workers, bytes per frame, the loader."""
+    config = DatasetConfig.from_profile(profile, n=n, seed=seed, shard_size=2)
     rates = {}
     with tempfile.TemporaryDirectory() as tmp:
         for workers in (1, 2):
@@ -99,7 +125,27 @@ def main() -> None:
         print(f"bytes per frame on disk: {summary.bytes_per_frame / 1e3:.1f} KB (goal <= 100 KB); "
               f"{per_episode / 1e6:.1f} MB per episode -> {PAPER_EPISODES} episodes: "
               f"{per_episode * PAPER_EPISODES / 1e9:.1f} GB")
-        time_loader(Path(tmp) / "w2")
+        if "rgb" in config.modalities:
+            time_loader(Path(tmp) / "w2")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, default=12, help="timed episodes per run")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--scaling", action="store_true",
+                        help="1 and 2 Ray workers and the loader instead of the profiles")
+    parser.add_argument("--profile", default="full", choices=sorted(PROFILES),
+                        help="the profile of --scaling")
+    parser.add_argument("--data", type=Path, help="time the loader only, on this data set")
+    args = parser.parse_args()
+    print(f"load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+    if args.data:
+        time_loader(args.data)
+    elif args.scaling:
+        scaling(args.n, args.seed, args.profile)
+    else:
+        profiles(args.n, args.seed)
     print(f"load average after: {os.getloadavg()[0]:.1f}")
 
 

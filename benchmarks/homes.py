@@ -47,13 +47,12 @@ def _renders(graph) -> tuple[int, list[str]]:
 
     ok, why = 0, []
     for program in _typical_programs():
-        run = run_program(program, graph)
+        run = run_program(program, graph, trace=True)
         if not run.executable or run.grounding is None:
             why.append(f"{program.title}: not executable ({run.message})")
             continue
         try:
-            render_keyframes(run.grounding.program, run.graph, width=64, height=48,
-                             standing=run.grounding.standing)
+            render_keyframes(run, width=64, height=48)
             ok += 1
         except HomesimError as e:
             why.append(f"{program.title}: {e}")

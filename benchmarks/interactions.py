@@ -2,7 +2,7 @@
 
 Each real program with a Grab (the fetched ActivityPrograms, `homesim data fetch`) is run
 as `homesim render` runs it: prepared and grounded in a built-in home (scene1..scene5 in
-turn), executed, animated with grounding's standing spots (`homesim.render.api.prepare`).
+turn), executed, animated with grounding's standing spots (`homesim.render.animate`).
 Printed:
 
 (a) the largest distance between the wrist joint (the ``j:{side}_wrist`` keypoint, the
@@ -32,7 +32,7 @@ import numpy as np
 
 import homesim
 from _real_programs import ungrounded_texts
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.interact import box_gap
 from homesim.render.layout import Box, to_mujoco
 from homesim.render.recorder import SceneState, shot_camera
@@ -50,7 +50,7 @@ def grab_programs(count: int, seed: int):
         if "[Grab]" not in text:
             continue
         home = HOMES[len(out) % len(HOMES)]
-        ran = homesim.run_program(text, home, seed=seed)
+        ran = homesim.run_program(text, home, seed=seed, trace=True)
         if ran.executable and ran.grounding is not None:
             out.append((k, text, home, ran))
         if len(out) == count:
@@ -79,9 +79,8 @@ def mouth_gap(scene, d, obj: int, half: np.ndarray, height: float) -> float:
 
 def measure(ran, home: str, seed: int, width: int, height: int) -> dict:
     g = ran.graph
-    scene, tl, name = prepare(ran.grounding.program, g, width=width, height=height, fps=15,
-                              seed=seed, bindings=None, agent=None,
-                              standing=ran.grounding.standing)
+    animation = animate(ran, width=width, height=height, fps=15, seed=seed)
+    scene, tl, name = animation.scene, animation.timeline, animation.agent
     from homesim.render.agent import AGENTS
 
     out = {"attach": [a.gap for a in tl.attaches], "release": [r.gap for r in tl.releases],

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import homesim
 from homesim.examples import DEMO_HOME, load_example
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.gl import BACKEND, mujoco
 from homesim.render.groundtruth import RecordingWriter
 from homesim.render.recorder import SceneState, record
@@ -52,8 +52,9 @@ def main() -> None:
     load0 = os.getloadavg()[0]
     graph = homesim.load_home(DEMO_HOME)
     t0 = time.perf_counter()
-    scene, timeline, _ = prepare(load_example("watch_tv"), graph, width=w, height=h, fps=30,
-                                 seed=0, bindings=None, agent=None)
+    run = homesim.run_program(load_example("watch_tv"), graph, trace=True)
+    animation = animate(run, width=w, height=h, fps=30, seed=0)
+    scene, timeline = animation.scene, animation.timeline
     setup = time.perf_counter() - t0
     n = min(args.frames, len(timeline))
     timeline.qpos, timeline.mocap = timeline.qpos[:n], timeline.mocap[:n]

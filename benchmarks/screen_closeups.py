@@ -24,7 +24,7 @@ import numpy as np
 
 import homesim
 from _real_programs import ungrounded_texts
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.recorder import SceneState, shot_camera
 from homesim.render.renderer import Renderer
 
@@ -42,7 +42,7 @@ def screen_programs(count: int, seed: int):
         if not any(f"<{s}>" in ln for ln in lines for s in SCREENS):
             continue
         home = HOMES[len(out) % len(HOMES)]
-        ran = homesim.run_program(text, home, seed=seed)
+        ran = homesim.run_program(text, home, seed=seed, trace=True)
         if ran.executable and ran.grounding is not None:
             out.append((k, home, ran))
         if len(out) == count:
@@ -52,9 +52,8 @@ def screen_programs(count: int, seed: int):
 
 def measure(ran, seed: int, width: int, height: int) -> list[tuple[str, float, float]]:
     """(step, screen share, object share) of each hands-on step on a node with a screen."""
-    scene, tl, _ = prepare(ran.grounding.program, ran.graph, width=width, height=height,
-                           fps=15, seed=seed, bindings=None, agent=None,
-                           standing=ran.grounding.standing)
+    animation = animate(ran, width=width, height=height, fps=15, seed=seed)
+    scene, tl = animation.scene, animation.timeline
     state = SceneState(scene, tl)
     steps = ran.grounding.program.steps
     out = []

@@ -15,7 +15,7 @@ import pytest
 
 from homesim.program import ACTIONS, ActionSpec, Category, lookup_action, parse_program
 from homesim.program.actions import _needs
-from homesim.sim import EFFECTS, execute
+from homesim.sim import EFFECTS, Failure, FailureKind, execute
 from homesim.sim.state import SimState
 from homesim.world.graph import EnvironmentGraph
 from tests.conftest import tiny_home_dict
@@ -71,9 +71,9 @@ def test_adding_an_action_is_one_row_and_one_effect(monkeypatch):
                        presupposes=("CLOSED",))
     monkeypatch.setitem(ACTIONS, "KNOCK", knock)
 
-    def knock_effect(st: SimState, n: int) -> str | None:
+    def knock_effect(st: SimState, n: int) -> Failure | None:
         if "CLOSED" not in st.states(n):
-            return f"{st.label(n)} is open; no need to knock"
+            return Failure(FailureKind.ALREADY, f"{st.label(n)} is open; no need to knock")
         return None
 
     monkeypatch.setitem(EFFECTS, "KNOCK", knock_effect)
@@ -83,6 +83,7 @@ def test_adding_an_action_is_one_row_and_one_effect(monkeypatch):
                             "[Open] <fridge> (11)\n[Knock] <fridge> (11)")
     result = execute(program, home, reference=True)
     assert result.failed_step == 4 and "is open; no need to knock" in result.message
+    assert result.kind is FailureKind.ALREADY
 
 
 def test_rows_are_consistent():
@@ -121,8 +122,11 @@ def test_reach_column_is_the_simulators_closeness_check(key):
     spec = ACTIONS[key]
     st = SimState(_far_home())
     args = (12, 20) if spec.arity == 2 else (20,)
-    reason = EFFECTS[key](st, *args) or ""
+    failure = EFFECTS[key](st, *args)
+    reason = failure.reason if failure is not None else ""
     assert ("not close" in reason) == spec.reach, (key, reason)
+    if spec.reach:
+        assert failure is not None and failure.kind is FailureKind.UNREACHABLE
 
 
 def test_to_dict_is_json_ready():

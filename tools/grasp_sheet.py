@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from homesim.render import contact_sheet
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.gl import mujoco
 from homesim.render.interact import box_gap
 from homesim.render.layout import Box
@@ -67,9 +67,8 @@ def main() -> int:
         if args.only and k not in args.only:
             continue
         g = ran.graph
-        scene, tl, _ = prepare(ran.grounding.program, g, width=64, height=48, fps=15,
-                               seed=args.seed, bindings=None, agent=None,
-                               standing=ran.grounding.standing)
+        animation = animate(ran, width=64, height=48, fps=15, seed=args.seed)
+        scene, tl = animation.scene, animation.timeline
         state = SceneState(scene, tl)
         for a in tl.attaches:
             d = state.apply(a.frame)

@@ -55,7 +55,10 @@ def main() -> int:
         program = load(source)
         out = Path(args.out) / name
         shutil.rmtree(out, ignore_errors=True)
-        result = render_program(program, homesim.load_home(home), out, width=args.width,
+        # Real programs name scene1's nodes by id (as the reference simulator reads them).
+        run = homesim.run_program(program, homesim.load_home(home), trace=True,
+                                  reference=not program.is_grounded)
+        result = render_program(run, out, width=args.width,
                                 height=args.height, fps=args.fps, seed=args.seed)
         rec = load_recording(out)
         rgb = rec.rgb()

@@ -37,12 +37,11 @@ def sheet(name: str, home: str, tag: str, args: argparse.Namespace) -> Path:
     """Render one program's key frames in one home and write its sheet."""
     text = (DOCS / "programs" / f"{name}.txt").read_text(encoding="utf-8")
     program = homesim.parse_program(text, source=name)
-    ran = run_program(program, homesim.load_home(home), seed=args.seed)
+    ran = run_program(program, homesim.load_home(home), seed=args.seed, trace=True)
     if ran.grounding is None or ran.graph is None:
         raise HomesimError(f"cannot ground it: {ran.message}")
     grounded = ran.grounding.program
-    frames = render_keyframes(grounded, ran.graph, width=args.width, height=args.height,
-                              seed=args.seed, standing=ran.grounding.standing)
+    frames = render_keyframes(ran, width=args.width, height=args.height, seed=args.seed)
     labelled = [(f"{i + 1}. {grounded.steps[i]}", rgb) for i, rgb in frames]
     title = f"{program.title} - {home}, seed {args.seed} ({tag})"
     out = DOCS / "sheets" / f"{home}_{name}_{tag}.jpg"

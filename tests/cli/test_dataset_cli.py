@@ -32,6 +32,25 @@ def test_bad_options_are_one_line(tmp_path, capsys):
     assert "not a homesim data set" in capsys.readouterr().err
 
 
+def test_a_profile_sets_size_rate_and_modalities_and_options_override_it(tmp_path,
+                                                                         monkeypatch):
+    made = []
+
+    def generate(config, out, **kwargs):
+        made.append(config)
+        raise SystemExit(0)  # the config is all this test looks at
+
+    monkeypatch.setattr("homesim.dataset.generate_dataset", generate)
+    assert main(["dataset", "generate", "--out", str(tmp_path / "a"), "--profile", "learn"]) == 0
+    assert main(["dataset", "generate", "--out", str(tmp_path / "b"), "--profile", "learn",
+                 "--fps", "8", "--modalities", "rgb"]) == 0
+    learn, changed = made
+    assert (learn.width, learn.height, learn.fps, learn.modalities) == (64, 48, 4,
+                                                                         ("rgb", "class"))
+    assert (changed.width, changed.fps, changed.modalities) == (64, 8, ("rgb",))
+    assert main(["dataset", "generate", "--out", str(tmp_path / "c"), "--profile", "tiny"]) == 2
+
+
 def test_a_plan_from_the_command_line_verifies_part_by_part(tmp_path, capsys):
     import json
 
@@ -56,3 +75,25 @@ def test_a_plan_from_the_command_line_verifies_part_by_part(tmp_path, capsys):
     assert capsys.readouterr().out.count("ok: 1 episodes (0 failed)") == 2
     assert main(["dataset", "verify", str(out)]) == 0
     assert capsys.readouterr().out.count("checksums match") == 2
+
+
+def test_a_learn_profile_data_set_keeps_rgb_and_class_only_and_verifies(tmp_path, capsys):
+    from homesim.dataset.verify import iter_episodes
+    from homesim.render.gl import gl_available
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    program = tmp_path / "p.txt"
+    program.write_text("Watch TV\nI turn on the TV.\n\n[Walk] <television> (1)\n")
+    out = tmp_path / "data"
+    assert main(["dataset", "generate", "--out", str(out), "--programs", str(program),
+                 "--n", "1", "--profile", "learn", "--fps", "2", "--homes", "scene1",
+                 "--workers", "0"]) == 0
+    assert main(["dataset", "verify", str(out)]) == 0
+    assert "checksums match" in capsys.readouterr().out
+    (shard,) = (out / "shards").glob("*.tar")
+    ((_, members),) = list(iter_episodes(shard))
+    kinds = {name.split(".", 1)[1].split(".")[-2] if name.endswith(".png") else
+             name.split(".", 1)[1] for name, _ in members}
+    assert "class" in kinds and "mp4" in kinds and "json" in kinds
+    assert not kinds & {"depth", "instance", "flow"}

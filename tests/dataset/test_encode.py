@@ -30,7 +30,10 @@ def test_instances_become_legend_indices():
     order, index = encode.instance_lut([410, 12, 410])
     assert order.tolist() == [0, 410, 12] and index == {0: 0, 410: 1, 12: 2}
     seg = np.array([[0, 410], [12, 99999]], np.int32)
-    assert encode.read_png16(encode.encode_instances(seg, index)).tolist() == [[0, 1], [2, 0]]
+    codes = encode.InstanceCodes(index)
+    assert encode.read_png16(encode.encode_instances(seg, codes)).tolist() == [[0, 1], [2, 0]]
+    assert codes(np.array([-1, 5, 2**31 - 1])).tolist() == [0, 0, 0]
+    assert encode.InstanceCodes({})(seg).tolist() == [[0, 0], [0, 0]]
 
 
 def test_encoding_is_deterministic():

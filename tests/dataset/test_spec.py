@@ -2,6 +2,8 @@ import pytest
 
 from homesim.dataset.spec import (
     AGENT_NAMES,
+    MODALITIES,
+    PROFILES,
     DatasetConfig,
     EpisodeSpec,
     draw_spec,
@@ -49,3 +51,18 @@ def test_bad_options_are_refused():
         DatasetConfig(fps=0)
     with pytest.raises(HomesimError, match="no programs"):
         plan_episodes(DatasetConfig(n=1), [])
+
+
+def test_profiles_name_what_episodes_keep():
+    """``full`` is the default config; ``learn`` what the video models read."""
+    from homesim.learn.video.cache import VideoFormat
+
+    assert DatasetConfig.from_profile("full") == DatasetConfig()
+    learn = DatasetConfig.from_profile("learn", n=3)
+    video = VideoFormat()
+    assert (learn.width, learn.height, learn.fps) == (video.width, video.height, video.fps)
+    assert learn.modalities == ("rgb", "class") and learn.gt_stride == 1 and learn.n == 3
+    assert DatasetConfig.from_profile("learn", fps=8).fps == 8  # options override it
+    assert PROFILES["full"].modalities == MODALITIES
+    with pytest.raises(HomesimError, match="unknown profile 'tiny'; choose from full, learn"):
+        DatasetConfig.from_profile("tiny")

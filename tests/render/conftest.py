@@ -94,3 +94,14 @@ def place_camera(scene, data, index: int, pos, forward) -> None:
     scene.model.cam_quat[index] = quat
     mujoco.mj_kinematics(scene.model, data)
     mujoco.mj_camlight(scene.model, data)
+
+
+def ran(text: str, graph: EnvironmentGraph, **options):
+    """The `Run` render animates: `text` run in `graph` with its trace; a program with
+    plain ids (``<tv> (22)``) names nodes by id (as ``homesim render --no-ground``)."""
+    import homesim
+
+    program = homesim.parse_program(text)
+    reference = not program.is_grounded and "reference" not in options
+    return homesim.run_program(program, graph, trace=True,
+                               **{"reference": reference, **options})

@@ -16,13 +16,13 @@ PROGRAM = "[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Walk] <tv> (22)\n[SwitchOn] <t
 def recording(tmp_path_factory, gl):
     from homesim.world.graph import EnvironmentGraph
 
-    from .conftest import box_home_dict
+    from .conftest import box_home_dict, ran
 
     out = tmp_path_factory.mktemp("rec") / "r"
     g = EnvironmentGraph.from_dict(box_home_dict(), source="box home")
     calls = []
-    result = render_program(homesim.parse_program(PROGRAM), g, out, width=64, height=48,
-                            fps=6, seed=3, progress=lambda d, t: calls.append((d, t)))
+    result = render_program(ran(PROGRAM, g), out, width=64, height=48, fps=6, seed=3,
+                            progress=lambda d, t: calls.append((d, t)))
     return result, load_recording(out), g, calls
 
 
@@ -84,9 +84,11 @@ def test_loader_errors_name_the_folder(tmp_path, recording):
 
 
 def test_same_seed_gives_the_same_recording(tmp_path, box_home, gl):
-    p = homesim.parse_program("[Walk] <tv> (22)\n")
+    from .conftest import ran
+
     for name in ("a", "b"):
-        render_program(p, box_home, tmp_path / name, width=32, height=24, fps=4, seed=5)
+        render_program(ran("[Walk] <tv> (22)\n", box_home), tmp_path / name, width=32,
+                       height=24, fps=4, seed=5)
     a, b = load_recording(tmp_path / "a"), load_recording(tmp_path / "b")
     assert a.num_frames == b.num_frames
     for i in (0, a.num_frames - 1):

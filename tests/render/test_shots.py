@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 import homesim
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.recorder import SceneState, record, shot_camera
 from homesim.render.renderer import Renderer
 from homesim.render.shots import LOW_HEIGHT, RING_HEIGHTS, shot_frames
@@ -16,11 +16,11 @@ PROGRAM = "[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Walk] <tv> (22)\n[SwitchOn] <t
 def prepared():
     from homesim.world.graph import EnvironmentGraph
 
-    from .conftest import box_home_dict
+    from .conftest import box_home_dict, ran
 
     g = EnvironmentGraph.from_dict(box_home_dict())
-    return prepare(homesim.parse_program(PROGRAM), g, width=64, height=48, fps=6, seed=0,
-                   bindings=None, agent="male1")
+    a = animate(ran(PROGRAM, g), width=64, height=48, fps=6, seed=0, agent="male1")
+    return a.scene, a.timeline, a.agent
 
 
 def test_each_interaction_gets_a_close_up_from_its_own_room(prepared):
@@ -64,12 +64,12 @@ def test_a_step_no_candidate_view_shows_gets_no_close_up(monkeypatch, gl, share,
     from homesim.render import shots
     from homesim.world.graph import EnvironmentGraph
 
-    from .conftest import box_home_dict
+    from .conftest import box_home_dict, ran
 
     monkeypatch.setattr(shots._SpareCamera, "view", lambda *a: (share, hand, 0.1))
     g = EnvironmentGraph.from_dict(box_home_dict())
-    scene, tl, _ = prepare(homesim.parse_program(PROGRAM), g, width=64, height=48, fps=6,
-                           seed=0, bindings=None, agent="male1")
+    a = animate(ran(PROGRAM, g), width=64, height=48, fps=6, seed=0, agent="male1")
+    scene, tl = a.scene, a.timeline
     assert len(tl.interactions) == 2
     assert sum(c.shot >= 0 for c in scene.cameras) == close_ups
 
@@ -77,11 +77,10 @@ def test_a_step_no_candidate_view_shows_gets_no_close_up(monkeypatch, gl, share,
 def test_switching_a_screen_is_filmed_from_the_screen_side(gl):
     """In scene 1 the room camera nearest the TV sees its back: the close-up of switching
     it on must show the panel that lights up, not the set's back."""
-    ran = homesim.run_program("[Walk] <television> (1)\n[SwitchOn] <television> (1)", "scene1",
-                              seed=0)
-    scene, tl, _ = prepare(ran.grounding.program, ran.graph, width=64, height=48, fps=6,
-                           seed=0, bindings=None, agent="male1",
-                           standing=ran.grounding.standing)
+    run = homesim.run_program("[Walk] <television> (1)\n[SwitchOn] <television> (1)", "scene1",
+                              seed=0, trace=True)
+    a = animate(run, width=64, height=48, fps=6, seed=0, agent="male1")
+    scene, tl = a.scene, a.timeline
     (it,) = tl.interactions
     cam = shot_camera(scene, tl, it.peak)
     assert cam is not None and scene.cameras[cam].shot == 0

@@ -117,8 +117,10 @@ def test_a_render_job_over_its_time_is_stopped(watch_tv):
 def test_render_grounds_an_ungrounded_program_first(monkeypatch):
     from homesim.serve import programs
 
-    def fake_render(program, graph, *, width, height, seed):
-        assert str(program).startswith("[Walk] <tv> (1.")  # grounded to a node of scene1
+    def fake_render(run, *, width, height, seed):
+        # grounded to a node of scene1, and run once with its trace for render to animate
+        assert str(run.result.program).startswith("[Walk] <tv> (1.")
+        assert run.result.trace is not None
         yield 0, [[[0, 0, 0]] * width] * height
 
     monkeypatch.setattr(programs, "keyframe_renderer", lambda: fake_render)  # forked workers

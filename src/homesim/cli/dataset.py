@@ -51,13 +51,18 @@ def generate(
         help="'synth' (the grammar) or a program file, folder or JSONL data set.")] = "synth",
     n: Annotated[int, typer.Option(help="Episodes (with --plan: of all parts).")] = 200,
     seed: Annotated[int, typer.Option(help="Seed of every random choice.")] = 0,
-    width: Annotated[int, typer.Option(help="Image width (even).")] = 320,
-    height: Annotated[int, typer.Option(help="Image height (even).")] = 240,
-    fps: Annotated[int, typer.Option(help="Frames per second.")] = 15,
-    modalities: Annotated[str, typer.Option(
-        help="Per-frame images to keep, comma separated.")] = "rgb,depth,class,instance,flow",
-    gt_stride: Annotated[int, typer.Option(
-        help="Keep depth, class, instance and flow every k-th frame.")] = 1,
+    profile: Annotated[str, typer.Option(
+        help="What episodes keep: 'full' (320x240, 15 fps, every modality) or 'learn' "
+             "(64x48, 4 fps, rgb and class: what the video models read); the options "
+             "below override it.")] = "full",
+    width: Annotated[int | None, typer.Option(help="Image width (even).")] = None,
+    height: Annotated[int | None, typer.Option(help="Image height (even).")] = None,
+    fps: Annotated[int | None, typer.Option(help="Frames per second.")] = None,
+    modalities: Annotated[str | None, typer.Option(
+        help="Per-frame images to keep, comma separated (rgb,depth,class,instance,flow).")]
+    = None,
+    gt_stride: Annotated[int | None, typer.Option(
+        help="Keep depth, class, instance and flow every k-th frame.")] = None,
     homes: Annotated[str | None, typer.Option(
         help="Homes to draw from, comma separated: built-in names, gen-N or graph files "
              "(.json, .json.gz); default scene1..5, gen-0..4.")] = None,
@@ -83,11 +88,13 @@ def generate(
     if plan is not None and (homes or agents):
         raise HomesimError("--plan gives each part its homes and agents: leave out --homes "
                            "and --agents")
-    config = DatasetConfig(programs=programs, n=n, seed=seed, width=width, height=height,
-                           fps=fps, modalities=_split(modalities), gt_stride=gt_stride,
-                           homes=_split(homes) if homes else DEFAULT_HOMES,
-                           agents=_split(agents) if agents else AGENT_NAMES,
-                           shard_size=shard_size)
+    given = {"width": width, "height": height, "fps": fps, "gt_stride": gt_stride,
+             "modalities": None if modalities is None else _split(modalities)}
+    config = DatasetConfig.from_profile(
+        profile, programs=programs, n=n, seed=seed, shard_size=shard_size,
+        homes=_split(homes) if homes else DEFAULT_HOMES,
+        agents=_split(agents) if agents else AGENT_NAMES,
+        **{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
     if plan is None:
         summaries = {"": _generate_one(config, out, workers, ray_address, t0)}

@@ -40,6 +40,9 @@ def check(
     strict_eai: Annotated[bool, typer.Option(
         "--strict-eai", help="Refuse formulas EAI refuses (an 'and' of state and temporal "
                              "goals).")] = False,
+    with_repair: Annotated[bool, typer.Option(
+        "--repair/--no-repair", help="Repair the program when it cannot run as written "
+                                     "(default), as 'homesim run' does.")] = True,
 ) -> None:
     """Run a program and say which goals of a task (and which formula) its trace meets."""
     from homesim.goals import Trajectory, check_goals, holds, parse_formula
@@ -54,10 +57,11 @@ def check(
         env = _task_home(task)
     else:
         env, _ = read_graph(graph, home, "scene1")
-    run = run_program(prog, env, trace=True)
+    run = run_program(prog, env, trace=True, repair=with_repair)
     records = run.result.trace if run.result is not None and run.result.trace else []
     tr = Trajectory(run.graph, records)
-    out: dict = {"run": run.message, "executable": run.executable}
+    out: dict = {"run": run.message, "executable": run.executable,
+                 "inserted": [f"{i.step}: {i.reason}" for i in run.insertions]}
     if goals is not None:
         report = check_goals(goals.goals, tr)
         out.update(task=goals.task, goals=report.to_dict(), formula=goals.text or None,

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import inspect
 from pathlib import Path
 from typing import Annotated
 
@@ -55,21 +54,14 @@ def render(
     r = _render_module()
     g, gname = read_graph(graph, home, DEMO_HOME)
     prog = read_program(program) if program else demo_program(gname)
-    ran = run_program(prog, g, seed=seed, reference=no_ground, repair=with_repair)
+    # The program meets the simulator here, once: render animates this run's trace.
+    ran = run_program(prog, g, seed=seed, reference=no_ground, repair=with_repair, trace=True)
     if ran.stage == "grounding":
         raise HomesimError(f"cannot ground the program in {gname}: {ran.message}")
     for ins in ran.insertions:
         console.print(f"inserted step {ins.index + 1} {ins.step}: {ins.reason}", markup=False)
-    g = ran.graph
-    extra = {}
-    if ran.grounding is not None:
-        prog = ran.grounding.program
-        # Where grounding stood the agent for each step, once render walks there.
-        if ran.grounding.standing and "standing" in inspect.signature(
-                r.render_program).parameters:
-            extra["standing"] = ran.grounding.standing
     if ran.prepared is not None:
-        added = ", ".join(g.node(a.node_id).label() for a in ran.prepared.added)
+        added = ", ".join(ran.graph.node(a.node_id).label() for a in ran.prepared.added)
         console.print(f"grounded in {gname} (seed {seed})" + (f"; added {added}" if added else ""),
                       markup=False)
     bar = Progress(TextColumn("rendering"), BarColumn(), MofNCompleteColumn(),
@@ -84,9 +76,8 @@ def render(
         bar.update(task, completed=done, total=total)
 
     try:
-        result = r.render_program(prog, g, out, width=width, height=height, fps=fps,
-                                  seed=seed, progress=progress, agent=agent, home=gname,
-                                  **extra)
+        result = r.render_program(ran, out, width=width, height=height, fps=fps, seed=seed,
+                                  progress=progress, agent=agent, home=gname)
     finally:
         if task is not None:
             bar.stop()

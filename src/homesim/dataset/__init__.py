@@ -7,13 +7,16 @@ Glossary:
     shard: a tar of consecutive episodes (``shards/shard-NNNNNN.tar``).
     manifest: ``episodes.parquet``, one row per episode (status, reason, checksum...).
     clip: a fixed-length window of an episode (default 2 s) with its step labels.
+    profile: what episodes keep (image size, frame rate, modalities): ``full`` or ``learn``,
+        the video models' format (`PROFILES`, ``--profile``).
 """
 
 from typing import Any
 
-from homesim.dataset.spec import DatasetConfig, EpisodeSpec
+from homesim.dataset.spec import PROFILES, DatasetConfig, EpisodeSpec
 
-__all__ = ["DatasetConfig", "EpisodeSpec", "Summary", "generate_dataset", "replay_episode"]
+__all__ = ["PROFILES", "DatasetConfig", "EpisodeSpec", "Summary", "generate_dataset",
+           "replay_episode"]
 
 
 def __getattr__(name: str) -> Any:

@@ -87,8 +87,22 @@ def instance_lut(node_ids: list[int]) -> tuple[np.ndarray, dict[int, int]]:
     return np.asarray(list(index), np.int64), index
 
 
-def encode_instances(instance: np.ndarray, index: dict[int, int]) -> bytes:
+class InstanceCodes:
+    """Node id -> legend index for whole maps at once: the legend's ids sorted, each
+    pixel found by binary search (no `np.unique` per frame; memory by the legend's size,
+    not by the largest node id). Ids missing from the legend read background (0)."""
+
+    def __init__(self, index: dict[int, int]):
+        self.ids = np.asarray(sorted(index), np.int64)
+        self.codes = np.asarray([index[i] for i in self.ids.tolist()], np.uint16)
+
+    def __call__(self, instance: np.ndarray) -> np.ndarray:
+        if not len(self.ids):
+            return np.zeros(instance.shape, np.uint16)
+        at = np.minimum(np.searchsorted(self.ids, instance), len(self.ids) - 1)
+        return np.where(self.ids[at] == instance, self.codes[at], 0).astype(np.uint16)
+
+
+def encode_instances(instance: np.ndarray, codes: InstanceCodes) -> bytes:
     """Node ids -> legend indices PNG (ids missing from the legend read background)."""
-    ids, inverse = np.unique(instance, return_inverse=True)
-    local = np.asarray([index.get(int(i), 0) for i in ids], np.uint16)
-    return png16(local[inverse].reshape(instance.shape))
+    return png16(codes(instance))

@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import random
 import tarfile
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -33,6 +34,9 @@ from homesim.program.parse import parse_program
 from homesim.render.video import H264Writer
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import open_home
+
+if TYPE_CHECKING:
+    from homesim.render import Animation, FrameTruth
 
 ARRAYS = ("camera", "intrinsics", "world_to_cam", "joints3d", "joints2d", "joints_visible",
           "cut", "step")
@@ -124,9 +128,17 @@ def ground_episode(spec: EpisodeSpec, homes: Sequence[str] = ()) -> EpisodeHome:
     raise first
 
 
+RASTER_THREADS = "0"
+"""llvmpipe (OSMesa) threads besides the caller's in a process that makes episodes, set
+before it first draws unless ``LP_NUM_THREADS`` is set (Ray workers get it from
+`runners.task_environment`): a worker has one core, where rasterizer threads would only wait on
+each other over small frames. The pixels are the same."""
+
+
 def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> Outcome:
     """Make the episode and write it as a tar at `path` (atomically); a failure is an
     `Outcome` with its reason, never an exception (Ctrl-C and kills still stop it)."""
+    os.environ.setdefault("LP_NUM_THREADS", RASTER_THREADS)
     t0 = time.perf_counter()
     try:
         with atomic_write(path, "wb") as f:
@@ -148,38 +160,33 @@ def _one_line(text: str) -> str:
 
 
 def write_episode(spec: EpisodeSpec, config: DatasetConfig, fileobj: Any) -> Outcome:
-    """Ground, animate and record the episode into a tar stream."""
-    from homesim.render.api import _check_length, prepare
-    from homesim.render.recorder import record
-    from homesim.render.renderer import Renderer
+    """Ground, animate and record the episode into a tar stream: the `Run` of
+    `ground_episode` animated (`homesim.render.animate`) and drawn by render's one loop
+    (`homesim.render.play`) into the episode's writer, a `FrameSink`."""
+    from homesim.render import animate, check_length, play
 
     home = ground_episode(spec, config.homes)
-    run, grounding = home.run, home.run.grounding
-    assert grounding is not None  # ground_episode checked
-    scene, timeline, agent = prepare(
-        grounding.program, run.graph, width=config.width, height=config.height,
-        fps=config.fps, seed=spec.render_seed, bindings=None, agent=spec.agent,
-        standing=grounding.standing, speed=spec.speed)
-    _check_length(len(timeline), config.width, config.height)
-    writer = _EpisodeWriter(spec, config, fileobj)
-    writer.start(_meta(spec, config, home, scene, timeline, agent), scene)
-    with Renderer(scene, config.width, config.height) as renderer:
-        for truth in record(scene, timeline, renderer):
-            writer.add(truth, len(timeline))
-    return replace(writer.finish(timeline.step_frames), home=home.home)
+    animation = animate(home.run, width=config.width, height=config.height, fps=config.fps,
+                        seed=spec.render_seed, agent=spec.agent, speed=spec.speed)
+    check_length(animation)
+    writer = _EpisodeWriter(spec, config, fileobj, len(animation))
+    writer.start(_meta(spec, config, home, animation))
+    play(animation, writer, flow="flow" in config.modalities)
+    return replace(writer.finish(animation.timeline.step_frames), home=home.home)
 
 
 class _EpisodeWriter:
-    """Streams an episode's members into a tar (see the module docstring)."""
+    """Streams an episode's members into a tar (see the module docstring): a
+    `homesim.render.FrameSink` of `total` frames."""
 
-    def __init__(self, spec: EpisodeSpec, config: DatasetConfig, fileobj: Any):
-        self.spec, self.config = spec, config
+    def __init__(self, spec: EpisodeSpec, config: DatasetConfig, fileobj: Any, total: int):
+        self.spec, self.config, self.total = spec, config, total
         self.tar: tarfile.TarFile = open_writer(fileobj)
         self.hash = MemberHash()
         self.sizes: dict[str, int] = {}
         self.arrays: dict[str, list[Any]] = {k: [] for k in ARRAYS if k != "step"}
         self.video: H264Writer | None = None
-        self.instance_index: dict[int, int] = {}
+        self.codes = encode.InstanceCodes({})
 
     def put(self, suffix: str, data: bytes, modality: str) -> None:
         name = f"{self.spec.key}.{suffix}"
@@ -187,13 +194,14 @@ class _EpisodeWriter:
         self.hash.add(name, data)
         self.sizes[modality] = self.sizes.get(modality, 0) + len(data)
 
-    def start(self, meta: dict[str, Any], scene: Any) -> None:
-        self.instance_index = {item["node_id"]: item["index"] for item in meta["instances"]}
+    def start(self, meta: dict[str, Any]) -> None:
+        self.codes = encode.InstanceCodes(
+            {item["node_id"]: item["index"] for item in meta["instances"]})
         self.put("json", json.dumps(meta, indent=1, sort_keys=True).encode(), "json")
         if "rgb" in self.config.modalities:
             self.video = H264Writer(self.config.width, self.config.height, self.config.fps)
 
-    def add(self, truth: Any, total: int) -> None:
+    def add(self, truth: FrameTruth) -> None:
         if self.video is not None:
             self.video.add(truth.rgb)
         for name in self.arrays:
@@ -207,11 +215,10 @@ class _EpisodeWriter:
             self.put(f"{stem}.class.png", encode.png16(truth.class_seg), "class")
         if "instance" in mods:
             self.put(f"{stem}.instance.png",
-                     encode.encode_instances(truth.instance_seg, self.instance_index),
-                     "instance")
+                     encode.encode_instances(truth.instance_seg, self.codes), "instance")
         if "flow" in mods:
-            self.put(f"{stem}.flow.png", encode.encode_flow(truth.flow, _flow_valid(
-                truth, last=truth.index == total - 1)), "flow")
+            self.put(f"{stem}.flow.png", encode.encode_flow(*_flow(
+                truth, last=truth.index == self.total - 1)), "flow")
 
     def finish(self, step_frames: list[tuple[int, int]]) -> Outcome:
         if self.video is not None:
@@ -232,13 +239,11 @@ _DTYPES: Mapping[str, Any] = {
     "cut": np.bool_}
 
 
-def _flow_valid(truth: Any, last: bool) -> np.ndarray:
-    """The recorder's validity mask when it has one; else where something is seen (the
-    last frame has no next frame: nothing valid)."""
-    valid = getattr(truth, "flow_valid", None)
-    if valid is None:
-        valid = truth.depth > 0
-    return np.zeros_like(valid) if last else np.asarray(valid, bool)
+def _flow(truth: FrameTruth, last: bool) -> tuple[np.ndarray, np.ndarray]:
+    """The frame's flow and where it is valid (nowhere on the last frame: no next one)."""
+    if truth.flow is None or truth.flow_valid is None:
+        raise AssertionError("flow was not computed for an episode that keeps it")
+    return truth.flow, np.zeros_like(truth.flow_valid) if last else truth.flow_valid
 
 
 def frame_steps(step_frames: list[tuple[int, int]], total: int) -> np.ndarray:
@@ -256,13 +261,14 @@ def _npy(array: np.ndarray) -> bytes:
     return buf.getvalue()
 
 
-def _meta(spec: EpisodeSpec, config: DatasetConfig, home: EpisodeHome, scene: Any,
-          timeline: Any, agent: str) -> dict[str, Any]:
+def _meta(spec: EpisodeSpec, config: DatasetConfig, home: EpisodeHome,
+          animation: Animation) -> dict[str, Any]:
     from homesim.render.agent import JOINTS
     from homesim.render.flow import intrinsics
 
+    scene, timeline, agent = animation.scene, animation.timeline, animation.agent
     program = parse_program(spec.program)
-    grounded = home.run.grounding.program if home.run.grounding else program
+    grounded = animation.program
     class_ids = {name: i for i, name in enumerate(scene.classes)}
     legend = scene.instances  # a property that builds a dict: read it once
     nodes = sorted(set(legend) | {scene.character_id})

@@ -27,6 +27,28 @@ DEFAULT_HOMES: tuple[str, ...] = (
 MODALITIES: tuple[str, ...] = ("rgb", "depth", "class", "instance", "flow")
 """Per-frame images an episode can hold; pose, cameras and step spans are always kept."""
 
+
+
+@dataclass(frozen=True)
+class Profile:
+    """What each episode of a data set keeps: image size, frame rate, per-frame maps."""
+
+    width: int
+    height: int
+    fps: int
+    modalities: tuple[str, ...]
+    gt_stride: int = 1
+
+
+PROFILES: dict[str, Profile] = {
+    "full": Profile(320, 240, 15, MODALITIES),
+    "learn": Profile(64, 48, 4, ("rgb", "class")),
+}
+"""The named profiles of ``homesim dataset generate --profile``: ``full`` (the default)
+keeps every modality at 320x240, 15 frames/s; ``learn`` only what the video models read
+(`homesim.learn.video.cache.VideoFormat`: 64x48 at 4 frames/s, RGB and class maps), so
+nothing is drawn, computed or stored for them to throw away."""
+
 SPEED_RANGE = (0.8, 1.25)
 """Action speed factor drawn per episode: every motion takes 1/speed of its time."""
 
@@ -95,6 +117,14 @@ class DatasetConfig:
             if key in d:
                 d[key] = tuple(d[key])
         return cls(**d)
+
+    @classmethod
+    def from_profile(cls, profile: str, **options: Any) -> DatasetConfig:
+        """The config of a named profile (`PROFILES`), `options` overriding its values."""
+        if profile not in PROFILES:
+            raise HomesimError(f"unknown profile {profile!r}; choose from "
+                               f"{', '.join(PROFILES)}")
+        return cls(**{**asdict(PROFILES[profile]), **options})
 
     @property
     def num_shards(self) -> int:

@@ -603,7 +603,7 @@ class Animator:
             raise ExecutionError(f"cannot render a program that does not execute: "
                                  f"{result.message}")
         if result.trace is None:
-            raise ExecutionError("render needs the execution trace (execute(..., trace=True))")
+            raise ExecutionError("render needs the run's trace (run_program(..., trace=True))")
         self.hold(0.3)
         for i, rec in enumerate(result.trace):
             first = len(self.timeline)

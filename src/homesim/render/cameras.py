@@ -53,6 +53,9 @@ def room_cameras(layout: Layout, seed: int = 0) -> list[CameraSpec]:
     rng = np.random.default_rng(seed)
     blockers = [b for p in layout.parts
                 if p.class_name not in ("floor", "ceiling", "wall", "doorjamb") for b in p.boxes]
+    # Every blocker at once (one array op per camera, not one per blocker).
+    centers = np.array([b.center for b in blockers]).reshape(-1, 3)
+    reach = np.array([b.half + 0.1 for b in blockers]).reshape(-1, 3)
     cams: list[CameraSpec] = []
     for rid in sorted(layout.room_floors):
         box = layout.room_floors[rid]
@@ -67,7 +70,7 @@ def room_cameras(layout: Layout, seed: int = 0) -> list[CameraSpec]:
             pos[:2] = np.clip(pos[:2], lo, hi)
             target = np.array([mid[0], mid[1], 0.7]) + np.r_[rng.uniform(-0.6, 0.6, 2),
                                                              rng.uniform(-0.2, 0.3)]
-            if any(np.all(np.abs(pos - b.center) < b.half + 0.1) for b in blockers):
+            if np.any(np.all(np.abs(pos - centers) < reach, axis=1)):
                 continue  # inside furniture: this camera would see nothing
             xa, ya = look_at(pos, target)
             fovy = float(rng.uniform(55.0, 75.0))

@@ -65,12 +65,15 @@ class RecordingWriter:
             "cut")}
 
     def _write(self, f: FrameTruth) -> None:
+        assert f.flow is not None and f.flow_valid is not None  # `add` checked
         self._video.add(f.rgb)
         write_npz(self.out / "frames" / f"{f.index:06d}.npz", {
             "depth": f.depth, "class": f.class_seg, "instance": f.instance_seg,
             "flow": f.flow, "flow_valid": f.flow_valid})
 
     def add(self, f: FrameTruth) -> None:
+        if f.flow is None or f.flow_valid is None:
+            raise AssertionError("a recording keeps the flow: play it with flow=True")
         # Frames are written in order by the single worker (video and frame files); at
         # most 8 wait, so memory stays bounded when writing is slower than rendering.
         self._pending.append(self._pool.submit(self._write, f))

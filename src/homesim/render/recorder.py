@@ -33,8 +33,8 @@ class FrameTruth:
     depth: np.ndarray  # float32 metres along the view axis; 0 where nothing is seen
     class_seg: np.ndarray  # uint16 class index (0 background)
     instance_seg: np.ndarray  # int32 graph node id (0 background)
-    flow: np.ndarray  # (H, W, 2) float32 pixels to the next frame (u, v)
-    flow_valid: np.ndarray  # bool: the pixel's point is seen in front of the next camera
+    flow: np.ndarray | None  # (H, W, 2) float32 pixels to the next frame (u, v)
+    flow_valid: np.ndarray | None  # bool: the point is seen in front of the next camera
     intrinsics: np.ndarray  # (3, 3)
     world_to_cam: np.ndarray  # (4, 4) OpenCV convention
     joints3d: np.ndarray  # (J, 3) world metres
@@ -158,11 +158,13 @@ class SceneState:
 
 
 def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
-           fixed_camera: int | None = None) -> Iterator[FrameTruth]:
-    """Yield each frame's ground truth, in order."""
+           fixed_camera: int | None = None, flow: bool = True) -> Iterator[FrameTruth]:
+    """Yield each frame's ground truth, in order; without `flow`, `FrameTruth.flow` and
+    `flow_valid` are None (not computed)."""
     state = SceneState(scene, timeline, aim_cameras=fixed_camera is None)
     director = Director(scene)
     char = scene.character_id
+    body = scene.model.body("agent").id
     w, h = renderer.width, renderer.height
     focus = focus_per_frame(timeline)
     shots = shot_frames(scene, timeline)
@@ -172,7 +174,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
     pending = None  # frame t waiting for t+1's poses to finish its flow
     for i in range(len(timeline)):
         d = state.apply(i)
-        agent = d.xpos[scene.model.body("agent").id].copy()
+        agent = d.xpos[body].copy()
         if fixed_camera is not None:
             cam = fixed_camera
         elif shots[i] >= 0:  # a close-up of the interaction under way
@@ -187,7 +189,7 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
         instance = node_lut[ids + 1]  # one gather per map: id -1 (nothing) -> slot 0
         share = float(np.count_nonzero(instance == char)) / instance.size
         w2c = world_to_cam(d.cam_xpos[cam], d.cam_xmat[cam])
-        poses = (d.geom_xpos.copy(), d.geom_xmat.copy())
+        poses = (d.geom_xpos.copy(), d.geom_xmat.copy()) if flow else None
         if pending is not None:
             yield _finish(pending, cam, k, w2c, poses)
         joints = d.site_xpos[scene.joint_sites].copy()
@@ -200,14 +202,14 @@ def record(scene: SceneModel, timeline: Timeline, renderer: Renderer,
                                                       char, focus[i])
         depth[~seen] = 0.0
         truth = FrameTruth(
-            i, cam, rgb, depth, class_lut[ids + 1], instance,
-            np.zeros((h, w, 2), np.float32), np.zeros((h, w), bool), k, w2c, joints, uv,
-            inside & unhidden, False)
+            i, cam, rgb, depth, class_lut[ids + 1], instance, None, None, k, w2c, joints,
+            uv, inside & unhidden, False)
         pending = (truth, ids, poses)
     if pending is not None:
         truth = pending[0]
         last = _finish(pending, truth.camera, truth.intrinsics, truth.world_to_cam, pending[2])
-        last.flow_valid[:] = False  # no next frame to flow to
+        if last.flow_valid is not None:
+            last.flow_valid[:] = False  # no next frame to flow to
         yield last
 
 
@@ -220,14 +222,16 @@ def _frame_score(share: float, inside: np.ndarray, instance: np.ndarray, depth: 
 
 
 def _finish(pending, cam1: int, k1: np.ndarray, w2c1: np.ndarray, poses1) -> FrameTruth:
-    """Complete frame t with the flow to t+1 (camera `cam1`, geom poses `poses1`)."""
-    truth, ids, (xpos0, xmat0) = pending
-    truth.flow, truth.flow_valid = optical_flow(
-        truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1, xpos0, xmat0,
-        poses1[0], poses1[1])
+    """Complete frame t with the flow to t+1 (camera `cam1`, geom poses `poses1`; None:
+    no flow) and whether the view cuts after it."""
+    truth, ids, poses0 = pending
     truth.cut = is_cut(truth.camera, truth.intrinsics, truth.world_to_cam, cam1, k1, w2c1)
-    if truth.cut:  # across a cut (or a camera aimed anew) the flow is no correspondence
-        truth.flow_valid[:] = False
+    if poses0 is not None and poses1 is not None:
+        truth.flow, truth.flow_valid = optical_flow(
+            truth.depth, ids, truth.intrinsics, truth.world_to_cam, k1, w2c1, *poses0,
+            *poses1)
+        if truth.cut:  # across a cut (or a camera aimed anew) the flow is no correspondence
+            truth.flow_valid[:] = False
     return truth
 
 

@@ -13,14 +13,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from homesim.errors import HomesimError
-from homesim.render.gl import BACKEND, mujoco
+from homesim.render.gl import BACKEND, mujoco, thread_context
+from homesim.render.occlusion import corners, occluder_geoms, shadowed, target_geoms
 from homesim.render.scene import SceneModel
 
 HIDDEN_GROUP = 5
-"""Geom group of the static geoms a camera cannot see (not drawn)."""
+"""Geom group of the geoms a camera cannot see (not drawn)."""
 MAX_LIGHTS = 7
 """Lights a draw uses besides the headlight: MuJoCo's OpenGL renderer lights with at most
 eight. Each camera keeps those of its own room first, then the nearest."""
+_NONE = np.zeros(0, np.int64)
 
 
 @dataclass(frozen=True)
@@ -47,8 +49,7 @@ class Renderer:
                                f"({model.vis.global_.offwidth}x{model.vis.global_.offheight})")
         self.scene, self.width, self.height = scene, width, height
         try:
-            self._gl = mujoco.GLContext(width, height)
-            self._gl.make_current()
+            self._gl = thread_context()
         except Exception as e:
             raise HomesimError(f"cannot create an OpenGL context with MUJOCO_GL={BACKEND} "
                                f"({e}); on Debian install libosmesa6") from None
@@ -63,10 +64,15 @@ class Renderer:
         self._rgb = np.empty((height, width, 3), np.uint8)
         self._depth = np.empty((height, width), np.float32)
         self._seg4: np.ndarray | None = None
-        self._luts: dict[int, np.ndarray] = {}  # camera -> segid + 1 -> geom id
-        self._camera_now = -1
+        self._drawn = model.geom_group.copy()  # the geom groups of the last draw
         self._culled_for: dict[int, bytes] = {}  # camera -> the pose it was culled for
+        self._moving = np.flatnonzero(model.geom_bodyid != 0)  # agent, doors, held objects
         self._groups = self._cull_groups()
+        self._walls = occluder_geoms(model, scene.geom_class, scene.classes)
+        self._static = target_geoms(model, self._walls)
+        self._boxes: np.ndarray | None = None  # corners of the static geoms' boxes
+        self._placed: set[bytes] = set()  # camera positions given by `camera_moved`
+        self._shadowed: dict[bytes, np.ndarray] = {}  # camera position -> geoms behind walls
         self._opt.geomgroup[HIDDEN_GROUP] = 0
         # The light of the room a camera is in casts shadows in its colour draws.
         self._shadow_light = {c: scene.room_light.get(spec.room_id, -1)
@@ -86,11 +92,12 @@ class Renderer:
         self.close()
 
     def close(self) -> None:
-        """Free the GL resources and restore the model's geom groups (safe to call twice)."""
+        """Free the GL resources and restore the model's geom groups (safe to call twice).
+        The thread's GL context stays for the next renderer (`gl.thread_context`)."""
         if getattr(self, "_gl", None) is not None:
             self.scene.model.geom_group[:] = self._groups[-1]
+            self._gl.make_current()
             self._con.free()
-            self._gl.free()
             self._gl = None
 
     def probe(self, data: mujoco.MjData, camera_id: int, node_id: int,
@@ -156,8 +163,14 @@ class Renderer:
         """Camera `cam`'s geom groups (posed as in `data`): static geoms whose bounding
         sphere lies outside its view moved to `HIDDEN_GROUP`."""
         m = self.scene.model
-        static = m.geom_bodyid == 0
-        centers, radii = data.geom_xpos, m.geom_rbound
+        hidden = (m.geom_bodyid == 0) & self._outside(data, cam, slice(None))
+        return np.where(hidden, HIDDEN_GROUP, own).astype(np.int32)
+
+    def _outside(self, data: mujoco.MjData, cam: int, geoms: slice | np.ndarray
+                 ) -> np.ndarray:
+        """Which of `geoms` have their bounding sphere wholly outside camera `cam`'s view."""
+        m = self.scene.model
+        centers, radii = data.geom_xpos[geoms], m.geom_rbound[geoms]
         axes = data.cam_xmat[cam].reshape(3, 3)  # columns: right, up, backward
         rel = (centers - data.cam_xpos[cam]) @ axes
         depth = -rel[:, 2]
@@ -166,26 +179,65 @@ class Renderer:
         # Distance of each bounding sphere's centre outside the four side planes.
         out_x = (np.abs(rel[:, 0]) - tx * depth) / np.sqrt(1 + tx * tx)
         out_y = (np.abs(rel[:, 1]) - ty * depth) / np.sqrt(1 + ty * ty)
-        hidden = static & ((out_x > radii) | (out_y > radii) | (depth < -radii))
-        return np.where(hidden, HIDDEN_GROUP, own).astype(np.int32)
+        return (out_x > radii) | (out_y > radii) | (depth < -radii)
+
+    def _view_groups(self, data: mujoco.MjData, cam: int) -> np.ndarray:
+        """The geom groups of a draw from camera `cam` as posed now: static geoms outside
+        its view hidden (`camera_moved`) and, without shadows, also the static geoms that
+        walls hide from where it stands (`homesim.render.occlusion`) and the moving ones
+        (the agent, doors, objects carried) outside its view. Hidden geoms cannot show:
+        the image is the same, the draw cheaper (MuJoCo draws every geom it is given).
+        With shadows they could cast one into the view, so they stay."""
+        groups = self._groups.get(cam, self._groups[-1])
+        if self.shadows:
+            return groups
+        groups = groups.copy()
+        groups[self._behind_walls(data, cam)] = HIDDEN_GROUP
+        moving = self._moving
+        groups[moving[self._outside(data, cam, moving)]] = HIDDEN_GROUP
+        return groups
+
+    def _behind_walls(self, data: mujoco.MjData, cam: int) -> np.ndarray:
+        """The static geoms walls hide from camera `cam`'s position, found on the first
+        draw from there (~5 ms; a room camera is drawn from hundreds of times), except
+        from a position the caller moved a camera to (`camera_moved`: a close-up
+        candidate, drawn from once), where the search would not repay itself."""
+        key = data.cam_xpos[cam].tobytes()
+        hidden = self._shadowed.get(key)
+        if hidden is None:
+            if key in self._placed:
+                return _NONE
+            if self._boxes is None:  # static geoms do not move: their boxes once
+                self._boxes = corners(self.scene.model, data, self._static)
+            hidden = shadowed(self.scene.model, data, data.cam_xpos[cam].copy(), self._walls,
+                              self._static, self._boxes)
+            self._shadowed[key] = hidden
+        return hidden
 
     def camera_moved(self, data: mujoco.MjData, camera_id: int) -> None:
-        """A camera was moved, turned or zoomed (`data` posed with `mj_camlight` after):
-        cull for where it is now (else geoms it now sees could stay hidden). Each draw
-        does this by itself when the camera is not where it was culled for."""
+        """The caller moved a camera (`data` posed with `mj_camlight` after): cull for
+        where it is now. Each draw does this by itself when the camera is not where it was
+        culled for (a room camera aimed anew); a position given here is taken for one a
+        camera visits briefly (walls are not searched for what they hide from there)."""
+        self._placed.add(data.cam_xpos[camera_id].tobytes())
+        self._recull(data, camera_id)
+
+    def _recull(self, data: mujoco.MjData, camera_id: int) -> None:
         self._groups[camera_id] = self._cull(data, camera_id, self._groups[-1])
         self._culled_for[camera_id] = self._pose(data, camera_id)
-        self._luts.pop(camera_id, None)
 
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
               rect: mujoco.MjrRect | None = None) -> None:
         self._gl.make_current()
+        # Renderers share the thread's GL context: draw into this one's framebuffer.
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self._con)
         if self._culled_for.get(camera_id) != self._pose(data, camera_id):
-            self.camera_moved(data, camera_id)  # a room camera aimed at the agent anew
+            self._recull(data, camera_id)  # a room camera aimed at the agent anew
+        groups = self._view_groups(data, camera_id)
         # Set on every draw (a small copy): another renderer of the same model may have
         # changed the groups since.
-        self.scene.model.geom_group[:] = self._groups.get(camera_id, self._groups[-1])
-        self._camera_now = camera_id
+        self.scene.model.geom_group[:] = groups
+        self._drawn = groups
         self._cam.fixedcamid = camera_id
         m = self.scene.model
         mask = self._light_masks.get(camera_id)
@@ -232,28 +284,27 @@ class Renderer:
             self._seg4 = np.zeros((h, w, 4), np.uint8)
         self._seg4[..., :3] = buf[::-1]
         seg = self._seg4.view("<u4")[..., 0]  # segid + 1 (0: no geom), little-endian RGB
-        lut = self._segid_lut(self._camera_now)
+        lut = self._segid_lut()
         return lut[np.minimum(seg, len(lut) - 1)]
 
-    def _segid_lut(self, camera: int) -> np.ndarray:
-        """segid + 1 -> geom id. The scene lists the same geoms in the same order every
-        frame of a camera, so its table is rebuilt only when a spot check disagrees."""
+    def _segid_lut(self) -> np.ndarray:
+        """segid + 1 -> geom id (-1: none) of the last draw. MuJoCo lists the geoms it
+        draws in model order, a geom's segid its place in that list: the table is the
+        geoms of the groups drawn, checked against the scene at three places (and read
+        from the scene geom by geom should they differ)."""
         scn, n = self._scn, self._scn.ngeom
-        lut = self._luts.get(camera)
-        if lut is not None and len(lut) == n + 2:
-            ok = True
-            for i in (0, n // 2, n - 1):
-                g = scn.geoms[i]
-                want = g.objid if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM else -1
-                ok = ok and g.segid >= 0 and lut[g.segid + 1] == want
-            if ok:
-                return lut
+        drawn = np.flatnonzero(self._opt.geomgroup[np.clip(self._drawn, 0, 5)] != 0)
+        lut = np.concatenate([[-1], drawn, [-1]]).astype(np.int32)
+        geom = mujoco.mjtObj.mjOBJ_GEOM
+        if len(drawn) == n and all(scn.geoms[i].segid == i and scn.geoms[i].objtype == geom
+                                   and scn.geoms[i].objid == drawn[i]
+                                   for i in {0, n // 2, n - 1} if n):
+            return lut
         lut = np.full(n + 2, -1, np.int32)
         for i in range(n):
             g = scn.geoms[i]
-            if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
+            if g.segid >= 0 and g.objtype == geom:
                 lut[g.segid + 1] = g.objid
-        self._luts[camera] = lut
         return lut
 
     def _metric_depth(self, raw: np.ndarray) -> np.ndarray:

@@ -9,7 +9,7 @@ mocap slot of each movable object, the qpos address of each hinge.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -144,6 +144,7 @@ class SceneModel:
     joint_sites: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
     hand_sites: dict[str, int] = field(default_factory=dict)  # "l"/"r" -> site id
     palm_sites: dict[str, int] = field(default_factory=dict)  # "l"/"r" -> palm contact site
+    mjcf: tuple[str, dict[str, bytes]] = ("", {})  # what `model` was compiled from
 
     @property
     def instances(self) -> dict[int, str]:
@@ -176,9 +177,7 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
                           'emission="0" specular="0"/>')
         body.extend(_part_geoms(part, look))
     body.extend(_room_lights(layout))
-    for cam in cameras:
-        body.append(f'<camera name="{cam.name}" pos="{_v(cam.pos)}" '
-                    f'xyaxes="{_v(cam.xaxis)} {_v(cam.yaxis)}" fovy="{cam.fovy:.2f}"/>')
+    body.extend(_camera_mjcf(cam) for cam in cameras)
     width, height = max_size
     xml = f"""<mujoco model="home">
   <compiler angle="radian"/>
@@ -199,6 +198,15 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
   </worldbody>
 </mujoco>"""
     return xml, files
+
+
+def _camera_mjcf(cam: CameraSpec) -> str:
+    return (f'<camera name="{cam.name}" pos="{_v(cam.pos)}" '
+            f'xyaxes="{_v(cam.xaxis)} {_v(cam.yaxis)}" fovy="{cam.fovy:.2f}"/>')
+
+
+_END = "\n  </worldbody>"
+"""Where `scene_mjcf` closes the world body: cameras are its last children."""
 
 
 SHADOW_SIZE = 1024
@@ -245,18 +253,43 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
                            "geometry (e.g. --home scene1, not scene1_trimmed)")
     if graph.character_id is None:
         raise HomesimError("the home has no character node to animate")
-    cameras = room_cameras(layout, seed) + list(shots)
+    cameras = room_cameras(layout, seed)
     xml, files = scene_mjcf(layout, cameras, agent, max_size, Look(seed, layout.room_names))
+    scene = _index(_compile(xml, files), layout, cameras, graph)
+    scene.mjcf = (xml, files)
+    return add_cameras(scene, shots) if shots else scene
+
+
+def add_cameras(scene: SceneModel, shots: Sequence[CameraSpec]) -> SceneModel:
+    """`scene` with close-up cameras added after its cameras: its model compiled again
+    from the same MJCF with the cameras appended (no geom, body or joint changes, so the
+    index maps stay), the same model `build_scene` makes with these `shots`."""
+    xml, files = scene.mjcf
+    if not xml.endswith(_END + "\n</mujoco>"):
+        raise AssertionError("the scene's MJCF must end with its world body")
+    at = len(xml) - len(_END + "\n</mujoco>")
+    xml = xml[:at] + "".join("\n" + _camera_mjcf(c) for c in shots) + xml[at:]
+    return replace(scene, model=_compile(xml, files), cameras=[*scene.cameras, *shots],
+                   mjcf=(xml, files))
+
+
+def _compile(xml: str, files: dict[str, bytes]) -> mujoco.MjModel:
     try:
-        model = mujoco.MjModel.from_xml_string(xml, files)
+        return mujoco.MjModel.from_xml_string(xml, files)
     except ValueError as e:  # a bug of ours, but say where
         raise HomesimError(f"could not compile the scene model: {e}") from None
+
+
+def _index(model: mujoco.MjModel, layout: Layout, cameras: list[CameraSpec],
+           graph: EnvironmentGraph) -> SceneModel:
+    """The `SceneModel` of a compiled home: the maps from MuJoCo ids to graph ids."""
     # Lamps and screens: attach materials to their geoms now that ids are known.
     lamp_mat = _material_lamps(model, layout)
     classes = ["background"]
     class_index: dict[str, int] = {}
     node_class = {p.node_id: p.class_name for p in layout.parts}
     char = graph.character_id
+    assert char is not None  # build_scene checked
     node_class[char] = graph.node(char).class_name
     geom_node = np.zeros(model.ngeom, np.int32)
     geom_class = np.zeros(model.ngeom, np.int32)

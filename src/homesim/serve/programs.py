@@ -8,7 +8,6 @@ programs over `INLINE_PROGRAM_CHARS`, so a large program never slows other reque
 
 from __future__ import annotations
 
-import inspect
 from collections.abc import Callable, Iterable
 from typing import Any
 
@@ -125,34 +124,25 @@ def render_plan(request: RenderRequest) -> dict[str, Any]:
     return {"lines": lines}
 
 
-def _grounded(request: RenderRequest) -> tuple[Program, EnvironmentGraph, dict[str, Any]]:
-    """A render request's program as `run_program` grounds it (422 with the line when it
-    cannot be), the home it runs in, and ``standing=`` (where grounding stood the agent
-    for each step) for a renderer."""
+def _grounded(request: RenderRequest) -> Run:
+    """A render request's program run as `run_program` runs it, with its trace (422 with
+    the line when it cannot be grounded): render animates this run, never runs it again."""
     program, lines = parse_request(request.program)
     graph = get_home(request.home)
-    ran = run_request(program, graph, None, request.seed, trace=False, repair=request.repair)
+    ran = run_request(program, graph, None, request.seed, trace=True, repair=request.repair)
     if ran.grounding is None:
         index = None if ran.failed_step is None else ran.failed_step - 1
         where: dict[str, Any] = {} if index is None else {"line": lines[index], "index": index}
         raise ApiError(422, "grounding", ran.message, None, **where)
-    standing = {"standing": ran.grounding.standing} if ran.grounding.standing else {}
-    return ran.grounding.program, ran.graph, standing
-
-
-def _takes(function: Callable[..., Any], extra: dict[str, Any]) -> dict[str, Any]:
-    """The keyword arguments of `extra` that `function` takes."""
-    names = inspect.signature(function).parameters
-    return {k: v for k, v in extra.items() if k in names}
+    return ran
 
 
 def render_frames(request: RenderRequest) -> Iterable[tuple[int, Any]]:
     """Key frames of a program (the frame at the end of each step), one at a time, as
     (step index, RGB array); runs in a render worker process."""
     function = keyframe_renderer()
-    program, graph, standing = _grounded(request)
-    return function(program, graph, width=request.width, height=request.height,
-                    seed=request.seed, **_takes(function, standing))
+    return function(_grounded(request), width=request.width, height=request.height,
+                    seed=request.seed)
 
 
 def render_video_file(request: VideoRequest, path: str,
@@ -161,11 +151,9 @@ def render_video_file(request: VideoRequest, path: str,
     records), calling ``progress(done, total)`` per frame; returns the frame count.
     Runs in a render worker process."""
     function = video_renderer()
-    program, graph, standing = _grounded(request)
     limit = (MAX_RENDER_VIDEO_PIXEL_FRAMES, "MAX_RENDER_VIDEO_PIXEL_FRAMES")
-    return function(program, graph, path, width=request.width, height=request.height,
-                    fps=request.fps, seed=request.seed, progress=progress, limit=limit,
-                    **_takes(function, standing))
+    return function(_grounded(request), path, width=request.width, height=request.height,
+                    fps=request.fps, seed=request.seed, progress=progress, limit=limit)
 
 
 def is_large(request: ProgramRequest | ExecuteRequest | RenderRequest) -> bool:
