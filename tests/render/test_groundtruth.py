@@ -112,11 +112,12 @@ def test_flow_is_invalid_across_cuts_and_after_the_last_frame(recording):
 
 def test_a_few_frames_are_read_without_decoding_the_whole_video(box_home, tmp_path, gl,
                                                                  monkeypatch):
-    import homesim
     from homesim.render import groundtruth, load_recording, render_program
 
-    p = homesim.parse_program("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n")
-    rec = render_program(p, box_home, tmp_path / "rec", width=32, height=24, fps=5, seed=2)
+    from .conftest import ran
+
+    rec = render_program(ran("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n", box_home),
+                         tmp_path / "rec", width=32, height=24, fps=5, seed=2)
     loaded = load_recording(rec.out_dir)
     every = loaded.rgb()
     decoded = []
