@@ -137,6 +137,9 @@ def train(
         help="video2prog: folder for the reduced episodes and the frame store (default "
              "~/.cache/homesim/video).")
     ] = None,
+    settings: Annotated[Path | None, typer.Option(
+        help="video2prog: a JSON object of run settings (VideoRunConfig's fields: widths, "
+             "learning rates, epochs...); its values replace the options'.")] = None,
 ) -> None:
     """Train MLE, PG(LCS) and PG(LCS+Sim) seq2seq models; checkpoints keep their config."""
     if task not in TASKS:
@@ -150,6 +153,8 @@ def train(
                                cache=str(video_cache or DEFAULT_CACHE),
                                frame_epochs=frame_epochs, seg_epochs=seg_epochs,
                                clip_epochs=clip_epochs, batch_size=batch_size)
+        if settings is not None:
+            video = video.with_settings(settings)
         train_video2prog(out, video, mle_epochs, pg_epochs, force, device)
         return
     datasets = _datasets(data)

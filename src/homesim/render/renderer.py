@@ -148,6 +148,7 @@ class Renderer:
         data = mujoco.MjData(m)
         mujoco.mj_kinematics(m, data)
         mujoco.mj_camlight(m, data)  # camera poses
+        self._rest = data  # where the static geoms always are
         groups = {-1: m.geom_group.copy()}
         for cam in range(m.ncam):
             groups[cam] = self._cull(data, cam, groups[-1])
@@ -207,9 +208,10 @@ class Renderer:
         if hidden is None:
             if key in self._placed:
                 return _NONE
+            model, rest = self.scene.model, self._rest
             if self._boxes is None:  # static geoms do not move: their boxes once
-                self._boxes = corners(self.scene.model, data, self._static)
-            hidden = shadowed(self.scene.model, data, data.cam_xpos[cam].copy(), self._walls,
+                self._boxes = corners(model, rest, self._static)
+            hidden = shadowed(model, rest, data.cam_xpos[cam].copy(), self._walls,
                               self._static, self._boxes)
             self._shadowed[key] = hidden
         return hidden
