@@ -24,7 +24,7 @@ import numpy as np
 
 import homesim
 from _look_sets import program_sets
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.flow import backproject
 from homesim.render.layout import to_mujoco
 from homesim.render.recorder import record
@@ -37,13 +37,12 @@ HOMES = ("scene1", "scene2", "scene3", "scene4", "scene5", "gen-0", "gen-1", "ge
 
 def measure(text: str, home: str, args) -> tuple[Counter, Counter] | None:
     """(pixels per class, pixels outside their box per class) of one program's frames."""
-    ran = homesim.run_program(text, home, seed=args.seed)
+    ran = homesim.run_program(text, home, seed=args.seed, trace=True)
     if not ran.executable or ran.grounding is None or ran.graph is None:
         return None
     g = ran.graph
-    scene, tl, _ = prepare(ran.grounding.program, g, width=args.width, height=args.height,
-                           fps=args.fps, seed=args.seed, bindings=None, agent=None,
-                           standing=ran.grounding.standing)
+    anim = animate(ran, width=args.width, height=args.height, fps=args.fps, seed=args.seed)
+    scene, tl = anim.scene, anim.timeline
     boxes = {n.id: b for n in g if (b := to_mujoco(n)) is not None}
     total, outside = Counter(), Counter()
     with Renderer(scene, args.width, args.height) as r:

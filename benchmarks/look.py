@@ -36,7 +36,7 @@ import numpy as np
 
 import homesim
 from _look_sets import HOMES, program_sets
-from homesim.render.api import prepare
+from homesim.render.api import animate
 from homesim.render.clearance import Clearance
 from homesim.render.director import Director
 from homesim.render.interact import box_gap
@@ -172,13 +172,12 @@ def wrist_gaps(scene, tl, graph) -> list[tuple[float, str]]:
 
 
 def measure(text: str, home: str, args) -> dict | None:
-    ran = homesim.run_program(text, home, seed=args.seed)
+    ran = homesim.run_program(text, home, seed=args.seed, trace=True)
     if not ran.executable or ran.grounding is None or ran.graph is None:
         return None
-    steps = ran.grounding.program.steps
-    scene, tl, _ = prepare(ran.grounding.program, ran.graph, width=args.width,
-                           height=args.height, fps=15, seed=args.seed, bindings=None,
-                           agent=None, standing=ran.grounding.standing)
+    steps = ran.result.program.steps
+    anim = animate(ran, width=args.width, height=args.height, fps=15, seed=args.seed)
+    scene, tl = anim.scene, anim.timeline
     out = {"pen": interpenetration(scene, tl, steps), "wrist": wrist_gaps(scene, tl, ran.graph),
            "close": []}
     if not args.no_closeups:
