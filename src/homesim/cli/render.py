@@ -93,8 +93,8 @@ def render(
             if task is not None:
                 bar.stop()
         if preview:
-            rec = r.load_recording(made)
-            rgb = rec.rgb()
+            rec = r.load_recording(made)  # streamed: only each step's last frame is kept
+            rgb = rec.rgb_frames(s.end_frame for s in rec.steps)
             frames = [(f"{s.index + 1}. {s.step}", rgb[s.end_frame]) for s in rec.steps]
             r.contact_sheet(frames, made / "preview.png", columns=3, title=prog.title or None)
         move_into_place(made, out)

@@ -30,16 +30,21 @@ ORIENT_WEIGHT = (0.25, 0.12)
 position error in a grasp."""
 ORIENT_TOLERANCE = 0.1
 """Radians: a grasp's orientation is good enough below this (position first)."""
+MAX_LEAN = 1.1
+"""Radians: the spine bends forward at most this much in a reach (about 63 degrees; lower
+points are reached crouching). Reaching across a table needs about 1.1."""
 
 
 @dataclass(frozen=True)
 class Grasp:
     """How a hand takes an object: the palm's contact site (``{side}_palm``) at `point`,
-    the palm facing `palm` and the fingers pointing along `fingers` (world unit vectors)."""
+    the palm facing `palm` and the fingers pointing along `fingers` (world unit vectors);
+    `box` (lo, hi corners), when given, is the object's: the wrist must end near it."""
 
     point: np.ndarray
     palm: np.ndarray
     fingers: np.ndarray
+    box: tuple[np.ndarray, np.ndarray] | None = None
 
 
 def wrist_joints(side: str) -> tuple[str, ...]:
@@ -75,6 +80,8 @@ class ArmIK:
                      for name in scene.joint_qpos}
         self._range = {name: tuple(m.jnt_range[m.joint(f"a:{name}").id])
                        for name in scene.joint_qpos}
+        lo, hi = self._range["spine_pitch"]
+        self._range["spine_pitch"] = (lo, min(hi, MAX_LEAN))
         self._jacp = np.zeros((3, m.nv))
 
     def hand(self, pose: Pose, side: str) -> np.ndarray:
@@ -89,6 +96,14 @@ class ArmIK:
         body = self.model.site_bodyid[site]
         return (self.data.site_xpos[site].copy(),
                 self.data.xmat[body].reshape(3, 3).copy())
+
+    def head_frame(self, pose: Pose) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The head's centre and its forward and up directions (world) for a pose: a
+        lying agent's face looks up."""
+        write_qpos(self.data.qpos, pose, self.scene.joint_qpos)
+        mujoco.mj_kinematics(self.model, self.data)
+        rot = self.data.xmat[self.model.body("a:head").id].reshape(3, 3)
+        return self.data.site("j:head").xpos.copy(), rot[:, 0].copy(), rot[:, 2].copy()
 
     def site(self, pose: Pose, name: str) -> np.ndarray:
         """World position of a named site (``j:head``...) for a pose."""
