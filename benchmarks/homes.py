@@ -84,6 +84,10 @@ def _measure(name: str, limit: int, render: bool) -> dict:
         row["gen_s"] = time.perf_counter() - t0
         row["cpu_s"] = time.process_time() - c0
     rooms = graph.rooms()
+    row["room_areas"] = [(r.class_name, _floor_area(graph, r.id)) for r in rooms]
+    from homesim.world.procedural.checks import through_bathroom
+
+    row["through_bathroom"] = len(through_bathroom(graph)) if name.startswith("gen-") else 0
     row["objects"] = len(graph)
     row["area"] = sum(r.bounding_box.size[0] * r.bounding_box.size[2] for r in rooms)
     programs = [unground(rp.program) for rp in real_programs()[:limit]]
@@ -144,8 +148,45 @@ def main() -> None:
     print(f"checks: {sum(r['problems'] == 0 for r in gen)}/{len(gen)} pass; same seed, same "
           f"bytes: {sum(r['same_bytes'] for r in gen)}/{len(gen)}; homes under 95%: "
           f"{sum(r['rate'] < 0.95 for r in gen)}")
+    _print_rooms(base, gen)
     if rendered:
         _print_renders(base, [r for r in gen if "renders" in r])
+
+
+def _floor_area(graph, room: int) -> float:
+    """A room's floor area: its floor tiles (listed twice: once), m2."""
+    seen, area = set(), 0.0
+    for nid in graph.sources(room, "INSIDE"):
+        n = graph.node(nid)
+        if n.class_name == "floor" and n.bounding_box is not None:
+            (cx, _, cz), (sx, _, sz) = n.bounding_box.center, n.bounding_box.size
+            key = (round(cx, 2), round(cz, 2), round(sx, 2), round(sz, 2))
+            if key not in seen and sx * sz < 9.0:  # not the doorway strips' neighbours
+                seen.add(key)
+                area += sx * sz
+    return area
+
+
+def _print_rooms(base: list[dict], gen: list[dict]) -> None:
+    """Floor areas per room kind: the built-in range (scaled for derived kinds, as the
+    generator draws them) against the generated homes' range, and the rooms outside it."""
+    from homesim.world.procedural.stats import KINDS, kind_area, room_class
+
+    print(f"{'room kind':<14} {'built-in m2':>14} {'generated m2':>14} {'rooms':>6} "
+          f"{'outside':>8}")
+    for kind in KINDS:
+        cls = room_class(kind)
+        lo, hi = kind_area(kind)
+        built = [a for r in base for c, a in r["room_areas"] if c == cls]
+        made = [a for r in gen for c, a in r["room_areas"] if c == cls]
+        if not made:
+            continue
+        out = sum(not lo - 0.5 <= a <= hi + 0.5 for a in made)
+        rng = f"{min(built):.1f}-{max(built):.1f}" if built else f"({lo:.1f}-{hi:.1f})"
+        print(f"{kind:<14} {rng:>14} {min(made):>6.1f}-{max(made):<7.1f} {len(made):>6} "
+              f"{out:>8}")
+    print(f"rooms reachable only through a bathroom: "
+          f"{sum(r['through_bathroom'] for r in gen)} in {len(gen)} generated homes")
 
 
 def _print_renders(base: list[dict], gen: list[dict]) -> None:

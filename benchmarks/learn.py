@@ -28,7 +28,7 @@ from homesim.learn.text.text2prog import Text2Prog
 from homesim.learn.text.train import TrainConfig, train_mle
 from homesim.sim import execute
 from homesim.synth import generate
-from homesim.synth.grammar import _home
+from homesim.world.homes import open_home
 
 
 def main() -> None:
@@ -40,8 +40,9 @@ def main() -> None:
     torch.set_num_threads(1)
 
     programs = list(generate(args.n, seed=0))  # warm the home cache
+    homes = {name: open_home(name) for name in {p.home for p in programs}}
     t_synth = best_of(lambda: list(generate(args.n, seed=0)), args.repeat)
-    t_exec = best_of(lambda: [execute(p.program, _home(p.home), bindings=p.bindings)
+    t_exec = best_of(lambda: [execute(p.program, homes[p.home], bindings=p.bindings)
                               for p in programs], args.repeat)
     print(f"synthesis: {args.n / t_synth:,.0f} programs/s; re-executing them: "
           f"{args.n / t_exec:,.0f} programs/s; ratio {t_synth / t_exec:.1f}x")

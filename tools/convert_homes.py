@@ -5,9 +5,10 @@ and gzip-compressed, to src/homesim/world/builtin/<name>.json.gz. Where the char
 INSIDE edge names another room than the one its box is in (scene1: bathroom 1, with its
 box and CLOSE edges in bedroom 67), the edge is moved to the room of the box, and the fix
 is printed. Door boxes are VirtualHome placeholders (0.93 x 0.93 x 1.0 m at the floor);
-each becomes the closed leaf of its door frame (`homesim.render.layout.door_leaf`: between
-the posts, as tall as the opening, 2.5 cm thick), so the rendered door and its graph box
-agree. Then the column files `load_home` reads are written from the JSON
+each becomes the box of its door's swing in its door frame (`homesim.world.doors`: the
+closed leaf between the posts, as tall as the opening, and the leaf open at a right angle
+on the side the placeholder lies), so the rendered door, open or closed, stays in its
+graph box. Then the column files `load_home` reads are written from the JSON
 (`tools/pack_homes.py`). Run from the repo root:
 
     python tools/convert_homes.py [../shared/data/virtualhome/scenes]
@@ -21,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.render.layout import door_leaf, to_mujoco
+from homesim.world.doors import door_swing
 from homesim.world.graph import BoundingBox, EnvironmentGraph
 from homesim.world.homes import character_room_problem, rooms_holding_box
 from homesim.world.vocab import INSIDE
@@ -57,24 +58,27 @@ def fix_character_room(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:
 
 
 def fix_door_boxes(graph: EnvironmentGraph, name: str) -> EnvironmentGraph:
-    """The graph with each door's box set to the closed leaf of its nearest door frame."""
-    jambs = [b for n in graph.nodes_of_class("doorjamb") if (b := to_mujoco(n)) is not None]
+    """The graph with each door's box set to the box of its swing in its nearest door
+    frame (`homesim.world.doors.door_swing`), opening to the side VirtualHome's
+    placeholder box lies on."""
+    jambs = [n.bounding_box for n in graph.nodes_of_class("doorjamb")
+             if n.bounding_box is not None]
     fixed = 0
     nodes = []
     for node in graph.nodes.values():
-        box = to_mujoco(node) if node.class_name == "door" else None
+        box = node.bounding_box if node.class_name == "door" else None
         if box is not None and jambs:
-            jamb = min(jambs, key=lambda j: float(np.hypot(*(j.center[:2] - box.center[:2]))))
-            leaf = door_leaf(jamb)
-            (x, y, z), (sx, sy, sz) = leaf.center, 2 * leaf.half
+            jamb = min(jambs, key=lambda j: float(np.hypot(j.center[0] - box.center[0],
+                                                           j.center[2] - box.center[2])))
+            swing = door_swing(jamb, (box.center[0], box.center[2]))
             node = replace(node, bounding_box=BoundingBox(
-                (round(float(x), 4), round(float(z), 4), round(float(y), 4)),
-                (round(float(sx), 4), round(float(sz), 4), round(float(sy), 4))))
+                tuple(round(float(c), 4) for c in swing.center),
+                tuple(round(float(c), 4) for c in swing.size)))
             fixed += 1
         nodes.append(node)
     if not fixed:
         return graph
-    print(f"{name}: {fixed} door boxes set to their frames' leaves")
+    print(f"{name}: {fixed} door boxes set to the boxes of their swings")
     return EnvironmentGraph(nodes, list(graph.edges()), graph.meta)
 
 

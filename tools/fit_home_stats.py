@@ -1,11 +1,13 @@
 """Fit the statistics procedural homes are drawn from, from the five built-in apartments.
 
-For each of the paper's 8 room kinds it records room sizes (x, z extents of the room
-boxes), and for each object class seen in rooms of its source kinds: how often a room
-holds it (``p``), how many when it does (``counts``), how it is held up (``mount``:
-``floor``, ``wall``, ``ceiling`` or ``item`` for things ON or INSIDE furniture, with the
-parent classes seen), and per class its median box size, height, category, properties,
-states and prefab. The four kinds the apartments lack are derived from kinds they have,
+For each of the paper's 8 room kinds it records room sizes (x, z extents of the room's
+floor tiles, walls included: the outer size a generated room is drawn with) and the range
+of floor areas (the tiles' area: what a generated room's floor must stay within), and
+for each object class seen in rooms of its source kinds: how often a room holds it
+(``p``), how many when it does (``counts``), how it is held up (``mount``: ``floor``,
+``wall``, ``ceiling`` or ``item`` for things ON or INSIDE furniture, with the parent
+classes seen), and per class its median box size, height, category, properties, states
+and prefab. The four kinds the apartments lack are derived from kinds they have,
 restricted to a class list (``RECIPES``). Writes src/homesim/world/procedural/stats.json.
 
     python tools/fit_home_stats.py
@@ -72,16 +74,37 @@ def _support(g: EnvironmentGraph, n) -> tuple[str, list[tuple[str, str]]]:
     return "wall", []
 
 
+def _floor(g: EnvironmentGraph, room: int) -> tuple[list[float], list[float], float]:
+    """(x, z) lower and upper corners of a room's floor tiles and their area (tiles
+    listed twice counted once)."""
+    seen, lo, hi, area = set(), [1e9, 1e9], [-1e9, -1e9], 0.0
+    for nid in g.sources(room, "INSIDE"):
+        n = g.node(nid)
+        if n.class_name != "floor" or n.bounding_box is None:
+            continue
+        (cx, _, cz), (sx, _, sz) = n.bounding_box.center, n.bounding_box.size
+        key = (round(cx, 2), round(cz, 2), round(sx, 2), round(sz, 2))
+        if key in seen:
+            continue
+        seen.add(key)
+        area += sx * sz
+        lo = [min(lo[0], cx - sx / 2), min(lo[1], cz - sz / 2)]
+        hi = [max(hi[0], cx + sx / 2), max(hi[1], cz + sz / 2)]
+    return lo, hi, area
+
+
 def main() -> None:
     per_kind: dict[str, list[dict[str, list]]] = defaultdict(list)  # kind -> rooms
     sizes: dict[str, list[list[float]]] = defaultdict(list)
+    areas: dict[str, list[float]] = defaultdict(list)
     boxes: dict[str, list[tuple[float, ...]]] = defaultdict(list)
     info: dict[str, Counter] = defaultdict(Counter)
     for i in range(1, 6):
         g = load_home(f"scene{i}")
         for room in g.rooms():
-            b = room.bounding_box
-            sizes[room.class_name].append([round(b.size[0], 2), round(b.size[2], 2)])
+            lo, hi, area = _floor(g, room.id)
+            sizes[room.class_name].append([round(hi[0] - lo[0], 2), round(hi[1] - lo[1], 2)])
+            areas[room.class_name].append(round(area, 2))
             found: dict[str, list] = defaultdict(list)
             for nid in g.sources(room.id, "INSIDE"):
                 n = g.node(nid)
@@ -121,7 +144,9 @@ def main() -> None:
         scale = recipe["scale"]
         room_sizes = [[round(w * scale ** 0.5, 2), round(d * scale ** 0.5, 2)]
                       for src in recipe["from"] for w, d in sizes[src]]
-        kinds[kind] = {"class": recipe["class"], "sizes": room_sizes, "objects": objects}
+        src_areas = [a * scale for src in recipe["from"] for a in areas[src]]
+        kinds[kind] = {"class": recipe["class"], "sizes": room_sizes, "objects": objects,
+                       "area": [round(min(src_areas), 2), round(max(src_areas), 2)]}
     OUT.write_text(json.dumps({"source": "tools/fit_home_stats.py on scene1..scene5",
                                "kinds": kinds, "classes": classes}, indent=1,
                               sort_keys=True) + "\n")

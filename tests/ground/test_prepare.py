@@ -105,6 +105,19 @@ def test_added_object_gets_a_box_on_its_destination_with_geometry():
             assert ob is None or not (overlaps_xz(box, ob) and overlaps_y(box, ob))
 
 
+def test_a_body_part_is_never_a_prop_on_a_counter():
+    home = load_home("scene1")
+    program = parse_program("[Walk] <bathroom> (1)\n[Wash] <teeth> (1)\n[Wash] <hair> (1)")
+    prep = prepare(program, home, seed=0)
+    g = prep.graph
+    assert [g.node(a.node_id).class_name for a in prep.added] == ["teeth", "hair"]
+    for a in prep.added:
+        node = g.node(a.node_id)
+        assert "BODY_PART" in node.properties and node.bounding_box is None
+        assert a.destination_id == a.room and g.targets(a.node_id, "ON") == set()
+    assert execute(program, g, bindings=ground(program, g).bindings).executable
+
+
 def test_object_without_destination_stands_on_free_floor():
     home = load_home("scene1")  # it has no dishwasher, and no class lists a place for one
     prep = prepare(parse_program("[Walk] <kitchen> (1)\n[Find] <dishwasher> (1)"), home)

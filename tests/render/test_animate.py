@@ -277,3 +277,29 @@ def test_a_front_never_swings_through_the_agent(box_home):
     swinging = [f for f in range(1, len(tl)) if tl.qpos[f][hinge] != tl.qpos[f - 1][hinge]]
     assert len(swinging) > 10  # it opens and closes
     assert min(clearance(tl.qpos[f]) for f in swinging) >= BODY_CLEAR - 1e-6
+
+
+def test_a_step_on_a_body_part_brings_the_held_tool_to_the_mouth():
+    from homesim.render.animate import HEAD_RADIUS
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()  # teeth as preparation adds them: a body part without a box
+    d["nodes"].append({"id": 900, "class_name": "teeth", "category": "Props",
+                       "properties": ["BODY_PART"]})
+    d["edges"].append({"from_id": 900, "relation_type": "INSIDE", "to_id": 1})
+    g = EnvironmentGraph.from_dict(d)
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    program = "[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Wash] <teeth> (900)"
+    result = homesim.execute(homesim.parse_program(program), g, trace=True, reference=True)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
+    it = tl.interactions[-1]
+    assert it.step == 2 and it.nodes == (21, 900)  # the tool first, then the body part
+    data = mujoco.MjData(scene.model)
+    data.qpos[:] = tl.qpos[it.peak]
+    data.mocap_pos[:] = tl.mocap[it.peak]
+    mujoco.mj_kinematics(scene.model, data)
+    head = data.site("j:head").xpos
+    cup = tl.mocap[it.peak][scene.mocap[21]]
+    assert np.linalg.norm(cup - head) < 4 * HEAD_RADIUS * AGENTS["male1"].height

@@ -108,3 +108,27 @@ def test_flow_is_invalid_across_cuts_and_after_the_last_frame(recording):
     kept = next(i for i in range(rec.num_frames - 1) if not cut[i])
     f = rec.frame(kept)
     assert f["flow_valid"].any() and not f["flow_valid"][f["depth"] == 0].any()
+
+
+def test_a_few_frames_are_read_without_decoding_the_whole_video(box_home, tmp_path, gl,
+                                                                 monkeypatch):
+    from homesim.render import groundtruth, load_recording, render_program
+
+    from .conftest import ran
+
+    rec = render_program(ran("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n", box_home),
+                         tmp_path / "rec", width=32, height=24, fps=5, seed=2)
+    loaded = load_recording(rec.out_dir)
+    every = loaded.rgb()
+    decoded = []
+    original = groundtruth.iter_video
+
+    def counting(*args, **kwargs):
+        for frame in original(*args, **kwargs):
+            decoded.append(1)
+            yield frame
+
+    monkeypatch.setattr(groundtruth, "iter_video", counting)
+    some = loaded.rgb_frames([1, 3])
+    assert sorted(some) == [1, 3] and len(decoded) == 4  # stopped after the last asked for
+    np.testing.assert_array_equal(some[3], every[3])

@@ -7,6 +7,7 @@ from homesim.render.interact import (
     box_gap,
     hand_room_clear,
     palm_grasps,
+    touch_grasps,
 )
 from homesim.render.layout import Box
 
@@ -22,7 +23,7 @@ def test_box_gap_is_zero_inside_and_euclidean_outside():
 def test_a_tall_object_is_taken_by_the_face_on_the_hand_side():
     cup = Box(np.array([1.0, 0.0, 0.85]), np.array([0.04, 0.04, 0.05]))
     agent = np.array([0.5, 0.0])  # facing +x: the right is -y
-    side, top = palm_grasps(cup, "r", agent)
+    side, top, *_ = palm_grasps(cup, "r", agent)
     np.testing.assert_allclose(side.palm, [0.0, 1.0, 0.0])  # palm on the -y face, facing +y
     np.testing.assert_allclose(side.fingers, [1.0, 0.0, 0.0])  # fingers away from the agent
     assert side.point[1] == pytest.approx(-0.036)  # 4 mm inside the face
@@ -55,3 +56,14 @@ def test_hand_room_asks_rays_out_of_the_taken_face():
     assert not hand_room_clear(side, wall_at_minus_y)
     assert all(np.allclose(d, [0.0, -1.0, 0.0]) and n == HAND_ROOM for _, d, n in rays)
     assert hand_room_clear(side, lambda *_: True)
+
+
+def test_a_touch_lays_the_palm_on_the_face_toward_the_agent():
+    switch = Box(np.array([1.0, 0.0, 1.3]), np.array([0.01, 0.05, 0.06]))  # on a wall at x=1
+    face, *_ = touch_grasps(switch, np.array([0.4, 0.0]))
+    np.testing.assert_allclose(face.palm, [1.0, 0.0, 0.0])  # into the switch, fingers up
+    np.testing.assert_allclose(face.fingers, [0.0, 0.0, 1.0])
+    assert face.point[0] < switch.center[0]  # on the near face
+    low = Box(np.array([1.0, 0.0, 0.3]), np.array([0.2, 0.2, 0.2]))  # a cat on the floor
+    first, *_ = touch_grasps(low, np.array([0.4, 0.0]))
+    np.testing.assert_allclose(first.palm, [0.0, 0.0, -1.0])  # the palm on its back

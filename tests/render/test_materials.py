@@ -5,7 +5,7 @@ import numpy as np
 from PIL import Image
 
 from homesim.render.agent import agent_shape
-from homesim.render.materials import TEXTURE_SIZE, Look, planks, tiles
+from homesim.render.materials import FINE_TEXTURE, TEXTURE_SIZE, Look, planks, tiles
 from homesim.render.scene import build_scene
 from homesim.world.homes import load_home
 
@@ -42,18 +42,39 @@ def test_every_role_names_a_material_of_the_assets():
         assert all(0.0 <= c <= 1.0 for c in rgba)
     assert look.material("glass", (0, 0, 0, 1))[1][3] < 0.5  # see-through
     for png in files.values():
-        assert Image.open(io.BytesIO(png)).size == (TEXTURE_SIZE, TEXTURE_SIZE)
+        assert Image.open(io.BytesIO(png)).size[0] in (TEXTURE_SIZE, FINE_TEXTURE)
 
 
-def test_each_lamp_drives_its_rooms_light():
+def test_ceiling_lamps_drive_their_rooms_light_and_table_lamps_their_own():
+    from homesim.render.layout import render_kind
+
     graph = load_home("scene1")
     scene = build_scene(graph, agent_shape("male1"))
     assert set(scene.room_light) == set(scene.layout.room_floors)
     assert all(lid >= 0 for lid in scene.room_light.values())
-    lamps = [p.node_id for p in scene.layout.parts if p.lamp]
-    assert lamps
-    for n in lamps:
-        room = graph.room_of(n)
-        if room in scene.room_light:
-            assert scene.lamp_light[n] == scene.room_light[room]
-    assert scene.model.ntex >= 9 and scene.model.nlight == len(scene.room_light)
+    lamps = [p for p in scene.layout.parts if p.lamp]
+    own = [p for p in lamps if render_kind(p.class_name) == "lamp"]
+    assert own and len(own) < len(lamps)
+    for p in lamps:
+        room = graph.room_of(p.node_id)
+        if p in own:
+            assert scene.lamp_light[p.node_id] not in scene.room_light.values()
+            assert scene.light_room[scene.lamp_light[p.node_id]] == room
+        elif room in scene.room_light:
+            assert scene.lamp_light[p.node_id] == scene.room_light[room]
+    assert scene.model.ntex >= 9 and scene.model.nlight == len(scene.room_light) + len(own)
+    m = scene.model  # each room's light hangs under its ceiling lamps, warm
+    assert all(m.light_diffuse[lid][0] > m.light_diffuse[lid][2] for lid in range(m.nlight))
+
+
+def test_a_camera_draws_with_at_most_eight_lights_its_rooms_first():
+    from homesim.render.renderer import MAX_LIGHTS, Renderer
+
+    graph = load_home("gen-4")  # eight rooms
+    scene = build_scene(graph, agent_shape("male1"), max_size=(32, 24))
+    assert scene.model.nlight > MAX_LIGHTS  # the check below has something to choose
+    with Renderer(scene, 32, 24) as r:
+        for cam, spec in enumerate(scene.cameras):
+            mask = r._light_masks[cam]
+            assert mask.sum() == MAX_LIGHTS
+            assert mask[scene.room_light[spec.room_id]]

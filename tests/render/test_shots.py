@@ -5,7 +5,7 @@ import homesim
 from homesim.render.api import animate
 from homesim.render.recorder import SceneState, record, shot_camera
 from homesim.render.renderer import Renderer
-from homesim.render.shots import LOW_HEIGHT, shot_frames
+from homesim.render.shots import LOW_HEIGHT, RING_HEIGHTS, shot_frames
 
 pytestmark = pytest.mark.render
 
@@ -33,9 +33,9 @@ def test_each_interaction_gets_a_close_up_from_its_own_room(prepared):
         it = tl.interactions[cam.shot]
         assert cam.room_id == it.room == 1
         # placed where a camera of the room is, or on the way from one to the action, at
-        # its height or lowered to see into furniture
+        # its height or lowered to see into furniture, or on a ring around the action
         assert any(np.allclose(cam.pos[2], c.pos[2]) for c in rooms) or np.isclose(
-            cam.pos[2], LOW_HEIGHT)
+            cam.pos[2], LOW_HEIGHT) or np.isclose(cam.pos[2], RING_HEIGHTS).any()
     assert shots[0].fovy < 0.75 * min(c.fovy for c in rooms)  # the cup: narrowed to it
 
 
@@ -66,7 +66,7 @@ def test_a_step_no_candidate_view_shows_gets_no_close_up(monkeypatch, gl, share,
 
     from .conftest import box_home_dict, ran
 
-    monkeypatch.setattr(shots._SpareCamera, "view", lambda *a: (share, hand))
+    monkeypatch.setattr(shots._SpareCamera, "view", lambda *a: (share, hand, 0.1))
     g = EnvironmentGraph.from_dict(box_home_dict())
     a = animate(ran(PROGRAM, g), width=64, height=48, fps=6, seed=0, agent="male1")
     scene, tl = a.scene, a.timeline
@@ -87,3 +87,17 @@ def test_switching_a_screen_is_filmed_from_the_screen_side(gl):
     with Renderer(scene, 64, 48) as r:
         ids, _ = r.ids_depth(SceneState(scene, tl).apply(it.peak), cam)
     assert (ids == scene.screen_geom[it.nodes[0]]).mean() >= 0.05
+
+
+def test_a_view_the_body_fills_is_widened():
+    from homesim.render import shots
+    from homesim.render.cameras import CameraSpec
+
+    class Spare:  # the body covers 60 % of a tight view, 20 % once the view is wider
+        def view(self, renderer, data, spec, it, arm, seen):
+            return 0.03, True, 0.6 if spec.fovy < 30 else 0.2
+
+    tight = CameraSpec("shot0", 1, np.zeros(3), np.array([1.0, 0, 0]), np.array([0, 0, -1.0]),
+                       20.0, 0, 1)
+    best = shots._best_view(Spare(), None, None, None, frozenset(), None, [tight])
+    assert best is not None and best.fovy == pytest.approx(20.0 * shots.WIDER[0])

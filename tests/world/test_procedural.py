@@ -106,3 +106,55 @@ def test_edges_and_support_are_checked(home):
     problems = check_home(EnvironmentGraph.from_dict(d))
     assert any("CLOSE" in p and "disagrees" in p for p in problems)
     assert f"plate {plate} is not ON or INSIDE anything" in problems
+
+
+def _door_links(g: EnvironmentGraph) -> dict[str, set[str]]:
+    out: dict[str, set[str]] = {}
+    for d in g.nodes_of_class("door"):
+        a, b = sorted(g.node(r).class_name for r in g.targets(d.id, "BETWEEN"))
+        out.setdefault(a, set()).add(b)
+        out.setdefault(b, set()).add(a)
+    return out
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_rooms_read_like_an_apartment(seed):
+    from homesim.world.procedural.stats import kind_area
+
+    g = generate_home(seed, ["living_room", "kitchen", "dining_room", "bedroom", "bedroom",
+                             "home_office", "bathroom", "bathroom"])
+    kinds = {"livingroom": "living_room"}
+    for room in g.rooms():
+        lo, hi = kind_area(kinds.get(room.class_name, room.class_name))
+        size = room.bounding_box.size
+        assert lo <= (size[0] - 0.2) * (size[2] - 0.2) <= hi, room.label()
+    links = _door_links(g)
+    assert links["kitchen"] & {"dining_room", "livingroom"}  # the kitchen by the day rooms
+    for room in g.rooms():  # a bathroom opens onto one room only
+        if room.class_name == "bathroom":
+            doors = [d for d in g.nodes_of_class("door") if room.id in g.targets(d.id, "BETWEEN")]
+            assert len(doors) == 1
+    assert "livingroom" in links and len(links["livingroom"]) >= 2  # the hub
+
+
+def test_a_room_behind_a_bathroom_fails_the_checks(home):
+    from homesim.world.procedural.checks import through_bathroom
+
+    d = home.to_dict()
+    bath = next(n["id"] for n in d["nodes"] if n["class_name"] == "bathroom")
+    bedroom = next(n["id"] for n in d["nodes"] if n["class_name"] == "bedroom")
+    for e in d["edges"]:  # every door of the bedroom now leads into the bathroom
+        if e["relation_type"] == "BETWEEN" and e["to_id"] != bedroom and any(
+                f["from_id"] == e["from_id"] and f["to_id"] == bedroom
+                and f["relation_type"] == "BETWEEN" for f in d["edges"]):
+            e["to_id"] = bath
+    assert through_bathroom(EnvironmentGraph.from_dict(d)) == [
+        f"bedroom {bedroom} can be reached only through a bathroom"]
+    assert through_bathroom(home) == []
+
+
+def test_a_sofa_faces_the_tv():
+    g = generate_home(7)
+    sofa = g.nodes_of_class("sofa")[0]
+    tv = g.nodes_of_class("tv")[0]
+    assert tv.id in g.targets(sofa.id, "FACING")

@@ -45,9 +45,11 @@ from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.sim.failure import FailureKind
 from homesim.sim.state import SimState
+from homesim.world.class_table import class_row
 from homesim.world.graph import BoundingBox, EnvironmentGraph, Node
 from homesim.world.standing import FloorPlan, has_geometry, note_prepared
 from homesim.world.vocab import (
+    BODY_PART,
     CAN_OPEN,
     CHARACTER_CLASS,
     CLOSE,
@@ -528,6 +530,8 @@ class _Adder:
         char = st.graph.character_id
         if ref.key in context.worn and char is not None and st.room_of(char) is not None:
             return self._add_worn(ref, names, rank, char)
+        if char is not None and st.room_of(char) is not None and _body_part(ref.name, names):
+            return self._add_body_part(ref, names, char)
         anchors = self._anchors(ref, rank)
         options = self._kb_options(ref, names, anchors, rank)
         options += self._evidence_options(ref, names, anchors, rank, options)
@@ -581,6 +585,21 @@ class _Adder:
         assert room is not None
         others = [self.by_key[k] for k in self.context.worn if k in self.by_key]
         return _put(st, ref, names, self.kb, None, char, ON, room, others)
+
+    def _add_body_part(self, ref: ObjectRef, names: list[str], char: int) -> Addition:
+        """A part of the agent's body (teeth, hair): no prop on a counter but a
+        ``BODY_PART`` node without a box, in the character's room and close to it (the
+        simulator keeps body parts close; render acts at the body)."""
+        st = self.st
+        room = st.room_of(char)
+        assert room is not None
+        node_id = max(st.next_node_id(), 1000)
+        node = _new_node(node_id, ref.name, names, self.kb, None)
+        st.add_node(Node(node.id, node.class_name, node.category,
+                         node.properties | {BODY_PART}, node.states, None, None))
+        st.add_edge(node_id, INSIDE, room)
+        st.add_pair(node_id, CLOSE, char)
+        return Addition(node_id, ref.name, room, INSIDE, room)
 
     def _anchors(self, ref: ObjectRef, rank: _RoomRank) -> list[int]:
         """The node(s) the object should be near: its anchor's node when known."""
@@ -777,6 +796,12 @@ def _put(st: SimState, ref: ObjectRef, names: list[str], kb: ObjectKnowledge,
     for a in near:
         st.add_pair(node_id, CLOSE, a)
     return Addition(node_id, ref.name, dest, relation, room)
+
+
+def _body_part(name: str, names: list[str]) -> bool:
+    """Whether a program's object is a part of the agent's body (the class table's size
+    ``body``): such things are never added as objects of their own."""
+    return any((row := class_row(c)) is not None and row.is_body_part for c in [name, *names])
 
 
 def _size(names: list[str], kb: ObjectKnowledge) -> tuple[float, float, float]:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -22,6 +22,7 @@ import numpy as np
 from homesim.errors import ExecutionError
 from homesim.program.actions import ACTIONS
 from homesim.render.agent import AgentShape
+from homesim.render.clearance import Clearance
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK, Grasp
 from homesim.render.interact import (
@@ -32,7 +33,7 @@ from homesim.render.interact import (
     box_gap,
     hand_room_clear,
     palm_grasps,
-    surface_point,
+    touch_grasps,
 )
 from homesim.render.layout import SEAT_HEIGHT, Box, room_of_point
 from homesim.render.navigation import build_grid, plan_path
@@ -73,6 +74,30 @@ SWING_STAND = (0.45, 0.55, 0.65)
 """Metres from a handle of the standing points tried out of the front's way..."""
 MAX_SWING_SPOTS = 12
 """... at most this many (the nearest to the agent first)."""
+REST_GAP = 0.005
+"""Metres between the body and the seat or mattress it rests on."""
+REST_CLEAR = 0.01
+"""Metres: a sitting or lying pose whose body passes deeper than this into anything is
+tried after those that do not."""
+SIT_SHIFTS = (0.0, 0.04, 0.08, 0.12, 0.16, -0.06, -0.12)
+"""Metres the pelvis is moved toward a seat's front edge when the back would enter the
+backrest (or back, when the legs would enter a desk)..."""
+SIT_TURNS = (0.0, 0.3, -0.3, 0.6, -0.6)
+"""... radians it is turned when the legs would enter what stands in front..."""
+SIT_KNEES = (1.22, 1.6)
+"""... and knee angles tried (the second draws the feet back under the seat)."""
+SIT_INSET = 0.35
+"""Metres from a seat's front edge to where the pelvis sits (less on a shallow seat)."""
+SIT_FRONT = 0.3
+"""Metres in front of a seat's front edge where the agent stands before sitting down..."""
+SIT_ABOVE = 0.18
+"""... and how high above the seated pose the pelvis passes over the front edge."""
+READ_AT = (0.32, 0.12)
+"""Metres in front of and below the eyes where a read object's centre is held."""
+PILLOW_IN = 0.3
+"""Metres from a bed's head end to where the head lies."""
+LIE_NECKS = (0.3, 0.5, 0.7, 0.9)
+"""Neck bends (radians) tried until the head rests above the pillow."""
 
 Standing = Mapping[int, tuple[float, float]]
 """Step index -> (x, z) standing spot chosen by grounding (Unity frame = MuJoCo x, y)."""
@@ -128,6 +153,8 @@ class Timeline:
     attaches: list[Attach] = field(default_factory=list)  # objects taken (gap: hand-box)
     releases: list[Attach] = field(default_factory=list)  # put down (gap: how far it moved)
     interactions: list[Interaction] = field(default_factory=list)
+    rests: list[tuple[int, int]] = field(default_factory=list)
+    """(first, last) frames of each sit or lie: from getting down to the end of its step."""
 
     def __len__(self) -> int:
         return len(self.qpos)
@@ -147,7 +174,7 @@ class Animator:
         self.scene, self.graph, self.shape, self.fps = scene, graph, shape, fps
         self.rng = np.random.default_rng(seed)
         self.ik = ArmIK(scene)
-        self.planner = ReachPlanner(scene.layout, self.ik, shape)
+        self.planner = ReachPlanner(scene.layout, self.ik, shape, Clearance(scene))
         self.step_index = -1
         self.grid = build_grid(scene.layout)
         self.data = mujoco.MjData(scene.model)
@@ -160,6 +187,7 @@ class Animator:
             start = self.grid.point(self.grid.nearest_free(start))
         self.pose = standing_pose(shape, start)
         self.posture = "stand"
+        self._rest_from: int | None = None  # the frame the current step began to sit or lie
         self.reaching: frozenset[str] = frozenset()
         self.timeline = Timeline()
 
@@ -297,7 +325,7 @@ class Animator:
               at_peak=None, during=None, back: bool = True, step: bool = True,
               nodes: tuple[int, ...] = (), hold: float = 0.15,
               grip: np.ndarray | None = None, seed: Mapping[str, float] | None = None,
-              grasp_of: GraspOf | None = None) -> Reached:
+              grasp_of: GraspOf | None = None, acts_on: tuple[int, ...] = ()) -> Reached:
         """Reach `point` with a hand, call `at_peak()`, hold `hold` seconds and come back.
 
         Standing, the agent first steps toward the point until the hand can touch it
@@ -306,7 +334,9 @@ class Animator:
         `nodes`: the objects acted on, recorded as an `Interaction` of the step. `grip`:
         bring the point held at this offset from the hand (a held object's centre) to
         `point` rather than the hand. `seed`: joint angles the arm's IK starts from.
-        `grasp_of`: take hold with the palm as it says (`palm_grasp`), the wrist turning."""
+        `grasp_of`: take hold with the palm as it says (`palm_grasp`), the wrist turning.
+        `acts_on`: objects the hand may enter besides `nodes` (a door's handle)."""
+        self._plan_around(side, nodes + acts_on)
         if self.posture == "stand" and step:
             plan = self.planner.plan(self.pose.xy, side, point, grip, grasp_of)
             self.step_to(plan.pose.xy, point)
@@ -338,6 +368,18 @@ class Animator:
         if nodes:
             self.note_interaction(nodes, side, start, peak)
         return Reached(reached, rest, start, peak)
+
+    def _plan_around(self, side: str, nodes: tuple[int, ...]) -> None:
+        """Tell the reach planner where things are now and what the `side` hand may be
+        inside (what it acts on and holds). Held objects are set aside: they move with
+        the hand the planner is still choosing."""
+        data, props = self.ik.data, self.props
+        if self.scene.model.nmocap:
+            data.mocap_pos[:] = props.mocap
+            for n in props.held.values():
+                if n in self.scene.mocap:
+                    data.mocap_pos[self.scene.mocap[n]] = (0.0, 0.0, -50.0)
+        self.planner.hands_in = {side: set(nodes) | {n for n in props.held.values()}}
 
     def note_interaction(self, nodes: tuple[int, ...], side: str, start: int,
                          peak: int) -> None:
@@ -378,24 +420,138 @@ class Animator:
         """World position of a shoulder in the current pose."""
         return self.ik.site(self.pose, f"j:{side}_shoulder")
 
-    def sit(self, seat: Box) -> None:
+    def sit(self, node: int) -> None:
+        """Walk to a seat and sit on it, facing away from it: on the seat's drawn top,
+        as far back as the body clears the backrest (`_seated`)."""
+        seat = self.props.box_of(node)
         self.walk(seat, reach=0.5)
-        inset = np.minimum(seat.half[:2], 0.35)
-        spot = np.clip(self.pose.xy, seat.lo[:2] + inset, seat.hi[:2] - inset)
-        away = self.pose.xy - spot
-        yaw = math.atan2(away[1], away[0]) if np.hypot(*away) > 1e-3 else self.pose.yaw + math.pi
-        top = seat.hi[2]
-        height = SEAT_HEIGHT if top > 0.7 else top
-        self.turn_to(self.pose.xy + np.array([math.cos(yaw), math.sin(yaw)]))
-        self.move_to(sitting(self.shape, spot, yaw, height), 1.0)
+        spot, yaw = self._seat_spot(node, seat)
+        ahead = np.array([math.cos(yaw), math.sin(yaw)])
+        edge = float(abs(ahead @ seat.half[:2]))  # from the spot's axis to the front edge
+        front = spot + ahead * (max(edge - float(abs(ahead @ (spot - seat.center[:2]))), 0.0)
+                                + SIT_FRONT)
+        if self.planner.fits(front):
+            self.step_to(front, front + ahead)
+        else:
+            self.turn_to(self.pose.xy + ahead)
+        seated = self._seated(node, spot, yaw)
+        self._rest_from = len(self.timeline)
+        over = replace(seated, z=seated.z + SIT_ABOVE,
+                       joints={**seated.joints, "spine_pitch": 0.35})
+        self.move_to(over, 0.6)  # bending over the seat's front edge...
+        self.move_to(seated, 0.5)  # ... then down onto it
         self.posture = "sit"
 
-    def lie(self, bed: Box) -> None:
+    def _seat_edge(self, node: int, seat: Box, spot: np.ndarray, axis: int,
+                   sign: float) -> float:
+        """Where the seat's drawn top begins, coming in from the box's front face along
+        `axis` across from `spot` (an L sofa's box is empty in front of its back seat)."""
+        front = seat.center[axis] + sign * seat.half[axis]
+        xy = spot.copy()
+        for d in np.arange(0.0, 2 * seat.half[axis], 0.05):
+            xy[axis] = front - sign * d
+            top = self._top_at(node, xy, SEAT_HEIGHT + 0.35)
+            if top is not None and top > 0.2:
+                return float(xy[axis])
+        return float(front)
+
+    def _seat_spot(self, node: int, seat: Box) -> tuple[np.ndarray, float]:
+        """Where the pelvis goes on a seat and which way the agent faces: the seat's
+        front (`Part.front`: a chair faces its desk, a sofa its TV) `SIT_INSET` in from
+        its front edge, across from where the agent stands; else away from the seat's
+        middle toward the agent."""
+        inset = np.minimum(seat.half[:2], SIT_INSET)
+        spot = np.clip(self.pose.xy, seat.lo[:2] + inset, seat.hi[:2] - inset)
+        part = self.scene.layout.part(node)
+        if part is not None and part.front is not None:
+            axis, sign = part.front
+            spot[axis] = self._seat_edge(node, seat, spot, axis, sign) - sign * inset[axis]
+            yaw = (0.0 if sign > 0 else math.pi) if axis == 0 else math.copysign(math.pi / 2,
+                                                                                 sign)
+            return spot, yaw
+        away = self.pose.xy - spot
+        yaw = math.atan2(away[1], away[0]) if np.hypot(*away) > 1e-3 else self.pose.yaw + math.pi
+        return spot, yaw
+
+    def lie(self, node: int) -> None:
+        """Walk to a bed and lie on it on the back, the head on the pillow end (away from
+        its foot, the side facing the room) resting above what lies there."""
+        bed = self.props.box_of(node)
         self.walk(bed, reach=0.5)
-        along = 0 if bed.half[0] >= bed.half[1] else 1
-        yaw = 0.0 if along == 0 else math.pi / 2
-        self.move_to(lying(self.shape, bed.center[:2], yaw, bed.hi[2]), 1.4)
+        part = self.scene.layout.part(node)
+        axis, sign = part.front if part is not None and part.front else (
+            0 if bed.half[0] >= bed.half[1] else 1, 1.0)
+        yaw = (0.0 if sign > 0 else math.pi) if axis == 0 else (
+            math.pi / 2 if sign > 0 else -math.pi / 2)
+        self._rest_from = len(self.timeline)
+        self.move_to(self._lying_on(node, bed, axis, sign, yaw), 1.4)
         self.posture = "lie"
+
+    # -- resting on furniture ------------------------------------------------------------
+    def _top_at(self, node: int, xy: np.ndarray, below: float) -> float | None:
+        """The highest top lower than `below` (m) of the node's drawn shapes over `xy`."""
+        part = self.scene.layout.part(node)
+        if part is None:
+            return None
+        tops = [float(sh.center[2] + sh.half[2]) for sh in part.shapes
+                if np.all(np.abs(xy - sh.center[:2]) <= sh.half[:2])
+                and sh.center[2] + sh.half[2] < below]
+        return max(tops, default=None)
+
+    def _clash(self, pose: Pose) -> float:
+        """How deep (m) the body in `pose` passes into anything (objects where they are)."""
+        self._plan_around("r", ())
+        self.planner.hands_in = {}
+        return self.planner.inside(pose)
+
+    def _rested(self, pose: Pose, top: float, parts: tuple[str, ...]) -> Pose:
+        """`pose` raised or lowered so the lowest point of `parts` lies on `top`."""
+        write_qpos(self.ik.data.qpos, pose, self.scene.joint_qpos)
+        mujoco.mj_kinematics(self.scene.model, self.ik.data)
+        low = self.planner.clearance.lowest(self.ik.data, parts) if self.planner.clearance \
+            else pose.z
+        return replace(pose, z=pose.z + top + REST_GAP - low)
+
+    def _seated(self, node: int, spot: np.ndarray, yaw: float) -> Pose:
+        """Sitting on a seat near `spot` facing `yaw`: the pelvis and thighs on the seat's
+        top, moved toward its front edge and turned a little until the body clears the
+        backrest, arms and whatever stands in front (the least deep pose otherwise)."""
+        ahead = np.array([math.cos(yaw), math.sin(yaw)])
+        best: tuple[float, Pose] | None = None
+        for shift, turn, knee in itertools.product(SIT_SHIFTS, SIT_TURNS, SIT_KNEES):
+            xy = spot + shift * ahead
+            top = self._top_at(node, xy, SEAT_HEIGHT + 0.35) or SEAT_HEIGHT
+            pose = sitting(self.shape, xy, yaw + turn, top).with_joints(
+                l_knee=knee, r_knee=knee)
+            pose = self._rested(pose, top, ("agent", "l_thigh", "r_thigh"))
+            depth = self._clash(pose)
+            if best is None or depth < best[0] - 1e-3:
+                best = (depth, pose)
+            if depth <= REST_CLEAR:
+                break
+        assert best is not None
+        return best[1]
+
+    def _lying_on(self, node: int, bed: Box, axis: int, sign: float, yaw: float) -> Pose:
+        """Lying on the back along the bed, the head `PILLOW_IN` from its head end, the
+        back on the mattress, the neck bent until the head rests above the pillow."""
+        base = lying(self.shape, bed.center[:2], yaw, bed.hi[2])
+        head = self.ik.site(base, "j:head")[:2] - base.xy
+        end = bed.center[:2].copy()
+        end[axis] -= sign * (bed.half[axis] - PILLOW_IN)  # where the head goes
+        xy = end - head
+        top = self._top_at(node, xy, bed.hi[2] + 0.01) or float(bed.hi[2])
+        best: tuple[float, Pose] | None = None
+        for neck in LIE_NECKS:
+            pose = replace(base, x=float(xy[0]), y=float(xy[1])).with_joints(neck_pitch=neck)
+            pose = self._rested(pose, top, ("agent", "torso"))
+            depth = self._clash(pose)
+            if best is None or depth < best[0] - 1e-3:
+                best = (depth, pose)
+            if depth <= REST_CLEAR:
+                break
+        assert best is not None
+        return best[1]
 
     def look(self, target: np.ndarray, point: bool = False) -> None:
         """Turn (when standing) and tilt the head toward a point; point at it if asked."""
@@ -454,8 +610,11 @@ class Animator:
             spot = self.standing.get(i)
             self.step_index = i
             self.spot = None if spot is None else np.array(spot, float)
+            self._rest_from = None
             animation_for(rec.step.action.key)(self, rec)
             self.timeline.step_frames.append((first, len(self.timeline) - 1))
+            if self._rest_from is not None:
+                self.timeline.rests.append((self._rest_from, len(self.timeline) - 1))
             self.timeline.focus.append(rec.nodes[-1] if rec.nodes else -1)
         self.spot = None
         self.hold(0.3)
@@ -492,8 +651,12 @@ def animation_for(key: str) -> Animation:
     return MOTIONS[ACTIONS[key].motion]
 
 
-def _target(rec: StepRecord) -> int | None:
-    return rec.nodes[0] if rec.nodes else None
+def _target(anim: Animator, rec: StepRecord) -> int | None:
+    """The node a step acts on; None without one, or when it is a part of the agent's
+    body (nothing to walk to or look at: `_at_body` acts there)."""
+    if not rec.nodes or anim.props.is_body_part(rec.nodes[0]):
+        return None
+    return rec.nodes[0]
 
 
 @animation("idle")
@@ -504,7 +667,7 @@ def idle(anim: Animator, rec: StepRecord) -> None:
 
 @animation("walk", "run")
 def walk(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     anim.walk(anim.props.box_of(target), run=rec.step.action.motion == "run")
@@ -513,7 +676,7 @@ def walk(anim: Animator, rec: StepRecord) -> None:
 @animation("find")
 def find(anim: Animator, rec: StepRecord) -> None:
     """Walk to the object, or only look for it when it is already at hand."""
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is not None and anim.within_reach(target, 1.0):
         anim.look(anim.props.box_of(target).center)
     else:
@@ -522,7 +685,7 @@ def find(anim: Animator, rec: StepRecord) -> None:
 
 @animation("look", "point")
 def look(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     anim.look(anim.props.box_of(target).center, point=rec.step.action.motion == "point")
@@ -530,18 +693,18 @@ def look(anim: Animator, rec: StepRecord) -> None:
 
 @animation("sit")
 def sit(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
-    anim.sit(anim.props.box_of(target))
+    anim.sit(target)
 
 
 @animation("lie")
 def lie(anim: Animator, rec: StepRecord) -> None:
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return rest(anim, rec)
-    anim.lie(anim.props.box_of(target))
+    anim.lie(target)
 
 
 @animation("rest")
@@ -560,7 +723,7 @@ def stand_up(anim: Animator, rec: StepRecord) -> None:
 def use_held(anim: Animator, rec: StepRecord) -> None:
     """Drink or eat: bring the held object to the mouth; read: hold it before the eyes.
     An object not held is touched where it is."""
-    target = _target(rec)
+    target = _target(anim, rec)
     if target is None:
         return idle(anim, rec)
     props = anim.props
@@ -578,12 +741,9 @@ def use_held(anim: Animator, rec: StepRecord) -> None:
 def _face_spot(anim: Animator, obj: int, action: str) -> np.ndarray:
     """Where a held object's centre goes to be drunk or eaten (its rim at the lips) or
     read (before the eyes)."""
-    pose = anim.pose
-    head = anim.ik.site(pose, "j:head")
-    fwd = np.array([math.cos(pose.yaw), math.sin(pose.yaw), 0.0])
-    up = np.array([0.0, 0.0, 1.0])
-    if action == "READ":
-        return head + 0.35 * fwd - 0.2 * up
+    head, fwd, up = anim.ik.head_frame(anim.pose)  # the face's forward and up (lying too)
+    if action == "READ":  # held open before the eyes, a little below them
+        return head + READ_AT[0] * fwd - READ_AT[1] * up
     head_r = HEAD_RADIUS * anim.shape.height
     half = anim.props.half_of(obj)
     mouth = head + 0.9 * head_r * fwd - 0.45 * head_r * up
@@ -593,7 +753,7 @@ def _face_spot(anim: Animator, obj: int, action: str) -> np.ndarray:
 @animation("let_go")
 def let_go(anim: Animator, rec: StepRecord) -> None:
     """Drop a held object: it falls to the floor in front of the agent."""
-    obj = _target(rec)
+    obj = _target(anim, rec)
     props = anim.props
     side = None if obj is None else props.side_holding(obj)
     if obj is None or side is None:
@@ -624,6 +784,8 @@ def reach(anim: Animator, rec: StepRecord) -> None:
     nodes, ch = rec.nodes, rec.changes
     if not nodes:
         return idle(anim, rec)
+    if anim.props.is_body_part(nodes[0]):
+        return _at_body(anim, nodes[0])
     if len(nodes) > 1:  # put or pour: go to the destination
         anim.walk_if_far(nodes[1])
     elif nodes[0] not in anim.props.held.values():
@@ -637,14 +799,65 @@ def reach(anim: Animator, rec: StepRecord) -> None:
     _touch(anim, nodes[0], states, nodes)
 
 
+BODY_POINTS: dict[str, tuple[float, float, float]] = {
+    "teeth": (0.9, 0.0, -0.45), "face": (0.9, 0.0, 0.0), "eye": (0.85, 0.0, 0.2),
+    "hair": (0.2, 0.0, 1.0), "hand": (0.0, 0.0, 0.0), "arm": (0.0, 0.0, 0.0),
+    "leg": (0.0, 0.0, 0.0), "feet": (0.0, 0.0, 0.0),
+}
+"""A body part's word -> where a hand acts on it: (forward, left, up) from the head's
+centre in head radii (hands, arms, legs and feet: see `_body_point`)."""
+
+
+def _body_point(anim: Animator, node: int, side: str) -> np.ndarray:
+    """Where the `side` hand (or what it holds) acts on a part of the agent's body: at
+    the mouth for teeth, on the face, on the head's top for hair; before the chest where
+    the other hand is for hands and arms; at the knee for legs and feet."""
+    cls = anim.graph.node(node).class_name.lower()
+    word = next((w for w in BODY_POINTS if w in cls), "hand")
+    pose, ik = anim.pose, anim.ik
+    if word in ("hand", "arm"):
+        other = "l" if side == "r" else "r"
+        return ik.hand(pose, other) + np.array([0.0, 0.0, 0.03])
+    if word in ("leg", "feet"):
+        return ik.site(pose, f"j:{'l' if side == 'l' else 'r'}_knee")
+    fwd = np.array([math.cos(pose.yaw), math.sin(pose.yaw), 0.0])
+    left = np.array([-fwd[1], fwd[0], 0.0])
+    r = HEAD_RADIUS * anim.shape.height
+    f, lt, up = BODY_POINTS[word]
+    return ik.site(pose, "j:head") + r * (f * fwd + lt * left + up * np.array([0, 0, 1.0]))
+
+
+def _at_body(anim: Animator, node: int) -> None:
+    """A step on a part of the agent's body (wash the teeth, comb the hair): the hand
+    holding a tool brings it there (the tool just before the point), else a free hand
+    touches it; the agent does not walk. The step's object in the timeline is the tool,
+    else the body part (drawn as the agent)."""
+    props = anim.props
+    side = next(iter(props.held), None) or props.free_side()
+    point = _body_point(anim, node, side)
+    tool = props.held.get(side)
+    grip = props.grip.get(side) if tool is not None else None
+    if tool is not None:
+        fwd = np.array([math.cos(anim.pose.yaw), math.sin(anim.pose.yaw), 0.0])
+        point = point + (float(max(props.half_of(tool)[:2])) + 0.01) * fwd
+    sign = 1.0 if side == "l" else -1.0
+    bent = {f"{side}_sh_pitch": -1.0, f"{side}_elbow": -2.0, f"{side}_sh_roll": 0.3 * sign}
+    anim.reach(side, point, 0.7, step=False, hold=0.8, grip=grip, seed=bent,
+               nodes=(tool, node) if tool is not None else (node,))
+
+
 def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> None:
     """Put a free hand on the object's surface (the point nearest the shoulder); the
     step's state changes (switching on...) happen when it arrives."""
     props = anim.props
     side = props.free_side()
-    point = surface_point(props.box_of(node), anim.shoulder(side))
-    anim.reach(side, point, 0.6, at_peak=lambda: props.apply_states(states),
-               nodes=nodes or (node,))
+    box = props.box_of(node)
+
+    def grasp_of(xy: np.ndarray) -> list[Grasp]:
+        return touch_grasps(box, xy)
+    anim.reach(side, grasp_of(anim.pose.xy)[0].point, 0.6,
+               at_peak=lambda: props.apply_states(states), nodes=nodes or (node,),
+               grasp_of=grasp_of)
 
 
 def _grab(anim: Animator, ch: Changes) -> bool:
@@ -720,7 +933,7 @@ def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
         spot = _beside_swing(anim, target, side, handle, start, goal)
         if spot is not None:
             anim.step_to(spot, handle)
-    done = anim.reach(side, handle, 0.5, back=False, hold=0.1)
+    done = anim.reach(side, handle, 0.5, back=False, hold=0.1, acts_on=(target,))
     pose, holding = done.pose, True
     n = max(1, round(SWING_SECONDS * anim.fps))
     for i in range(1, n + 1):

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import zipfile
+from collections.abc import Iterable
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,7 +28,7 @@ import numpy as np
 from homesim.errors import DataError
 from homesim.files import write_text
 from homesim.render.recorder import FrameTruth
-from homesim.render.video import H264Writer, decode_video
+from homesim.render.video import H264Writer, decode_video, iter_video
 
 FORMAT_VERSION = 2
 """2: frames carry `flow_valid`."""
@@ -157,6 +158,19 @@ class Recording:
     def rgb(self) -> np.ndarray:
         """All RGB frames (T, H, W, 3) uint8, decoded from video.mp4."""
         return decode_video(self.path / "video.mp4", self.meta["width"], self.meta["height"])
+
+    def rgb_frames(self, wanted: Iterable[int]) -> dict[int, np.ndarray]:
+        """Some RGB frames by index, decoded one at a time from video.mp4 (memory for the
+        frames asked for only, however long the video)."""
+        wanted = set(wanted)
+        out: dict[int, np.ndarray] = {}
+        size = (self.meta["width"], self.meta["height"])
+        for i, frame in enumerate(iter_video(self.path / "video.mp4", size)):
+            if i in wanted:
+                out[i] = frame
+                if len(out) == len(wanted):
+                    break
+        return out
 
 
 def load_recording(out_dir: str | Path) -> Recording:

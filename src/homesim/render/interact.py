@@ -12,14 +12,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from homesim.render.agent import AgentShape
+from homesim.render.clearance import Clearance
+from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK, Grasp, crouched
 from homesim.render.layout import Box, Layout
-from homesim.render.poses import Pose, standing
+from homesim.render.poses import Pose, standing, write_qpos
 
 TOUCH = 0.01
 """Metres: a hand this close to an object's surface touches it (grab, press, open)."""
@@ -49,8 +51,16 @@ first, the palm on their top; taller ones by the side first."""
 KNEE = 0.45
 """Metres: objects whose top is lower than this (on the floor) are also taken from above
 first."""
+TOUCH_TOP = 1.1
+"""Metres: objects whose top is lower than this are touched on the top first."""
 HAND_ROOM = 0.05
 """Metres the palm and the closing fingers need out of the face they take."""
+CLEAR = 0.02
+"""Metres: a reach pose whose body passes deeper than this into anything but what the
+hand takes (or holds) is tried after those that do not."""
+WRIST = 0.02
+"""Metres: a grasp holds when the palm touches the object and the wrist is this near its
+box (a palm touching with only its edge, the hand turned away, does not)."""
 
 GraspOf = Callable[[np.ndarray], list[Grasp]]
 """Ways a hand may take an object, best first, for the agent standing at a floor point."""
@@ -83,11 +93,41 @@ def palm_grasps(box: Box, side: str, from_xy: np.ndarray,
     palm lies just past the face's near edge (`PALM_IN`), so the palm covers the face back
     to the wrist, and the fingers point on, away from the agent, to wrap round the far
     side. Contact points are `inset` metres inside their face."""
+    u = _toward(box, from_xy)
+    both = [_side_grasp(box, side, u, inset), _top_grasp(box, u, inset)]
+    out = both[::-1] if 2.0 * box.half[2] <= FLAT or box.hi[2] <= KNEE else both
+    # the palm on the top with the fingers across, where the far side is against a wall
+    across = np.array([-u[1], u[0]]) * (1.0 if side == "l" else -1.0)
+    grasps = [*out, _top_grasp(box, across, inset), _top_grasp(box, -across, inset)]
+    return [replace(g, box=(box.lo, box.hi)) for g in grasps]
+
+
+def _toward(box: Box, from_xy: np.ndarray) -> np.ndarray:
+    """The horizontal unit direction from a floor point to a box's centre."""
     u = box.center[:2] - np.asarray(from_xy, float)[:2]
     n = float(np.hypot(*u))
-    u = u / n if n > 1e-9 else np.array([1.0, 0.0])
-    both = [_side_grasp(box, side, u, inset), _top_grasp(box, u, inset)]
-    return both[::-1] if 2.0 * box.half[2] <= FLAT or box.hi[2] <= KNEE else both
+    return u / n if n > 1e-9 else np.array([1.0, 0.0])
+
+
+def touch_grasps(box: Box, from_xy: np.ndarray, inset: float = 0.004) -> list[Grasp]:
+    """Ways a hand lays its palm on an object to touch, press or switch it, best first:
+    on the side face toward the agent (the fingers up, flat against it: a light switch on
+    its wall) and on the top (the fingers pointing on, away from the agent); the top
+    first for objects lower than `TOUCH_TOP`. Contact points are `inset` inside the face,
+    at its middle."""
+    u = _toward(box, from_xy)
+    axis = 0 if abs(u[0]) * box.half[1] >= abs(u[1]) * box.half[0] else 1
+    point = box.center.copy()
+    point[axis] -= np.sign(u[axis] or 1.0) * (box.half[axis] - min(inset, box.half[axis]))
+    palm = np.zeros(3)
+    palm[axis] = np.sign(u[axis] or 1.0)
+    face = Grasp(point, palm, np.array([0.0, 0.0, 1.0]))
+    at = np.r_[box.center[:2], box.hi[2] - min(inset, box.half[2])]
+    down = np.array([0.0, 0.0, -1.0])
+    top = Grasp(at, down, np.r_[u, 0.0])
+    across = [Grasp(at, down, np.array([-u[1] * s, u[0] * s, 0.0])) for s in (1.0, -1.0)]
+    first = [top, face] if box.hi[2] < TOUCH_TOP else [face, top]
+    return first + across  # the fingers along a wall behind it
 
 
 def _side_grasp(box: Box, side: str, u: np.ndarray, inset: float) -> Grasp:
@@ -131,19 +171,46 @@ def _top_grasp(box: Box, u: np.ndarray, inset: float) -> Grasp:
 
 @dataclass(frozen=True)
 class ReachPlan:
-    """A reach: the pose at its end (standing where it must, crouched if low) and the
-    distance the hand stays from its target point."""
+    """A reach: the pose at its end (standing where it must, crouched if low), the
+    distance the hand stays from its target point and how deep the body then passes
+    into things other than what the hand takes (metres)."""
 
     pose: Pose
     gap: float  # metres
+    inside: float = 0.0
+    wrist: float = 0.0  # metres from the wrist to the object's box (grasps)
+
+    @property
+    def clear(self) -> bool:
+        return self.inside <= CLEAR
+
+    @property
+    def touches(self) -> bool:
+        return self.gap <= TOUCH and self.wrist <= WRIST
 
 
 class ReachPlanner:
     """Finds a standing point from which a hand reaches a target point."""
 
-    def __init__(self, layout: Layout, ik: ArmIK, shape: AgentShape):
+    def __init__(self, layout: Layout, ik: ArmIK, shape: AgentShape,
+                 clearance: Clearance | None = None):
         self.ik, self.shape = ik, shape
         self.walk = layout.walk
+        self.clearance = clearance
+        self.hands_in: dict[str, set[int]] = {}
+        """Per hand, the nodes it may be inside during the reach being planned (what it
+        takes or holds); set by the caller before `plan`."""
+
+    def inside(self, pose: Pose) -> float:
+        """How deep (m) the body in `pose` passes into anything but what the hands may be
+        inside (`hands_in`); objects where the IK's data has them."""
+        if self.clearance is None:
+            return 0.0
+        ik = self.ik
+        write_qpos(ik.data.qpos, pose, ik.scene.joint_qpos)
+        mujoco.mj_kinematics(ik.model, ik.data)
+        found = self.clearance.penetrations(ik.data, self.hands_in, CLEAR)
+        return max((p.depth for p in found), default=0.0)
 
     def fits(self, xy: np.ndarray) -> bool:
         """Whether the agent may stand at `xy`: the nearest cell of the floor model
@@ -164,9 +231,9 @@ class ReachPlanner:
         best: ReachPlan | None = None
         for grasp in grasp_of(xy):
             plan = self._reach_from(xy, side, grasp.point, None, grasp)
-            if best is None or plan.gap < best.gap - 1e-3:
+            if best is None or _better(plan, best):
                 best = plan
-            if plan.gap <= TOUCH:
+            if plan.touches and plan.clear:
                 break
         assert best is not None
         return best
@@ -179,14 +246,20 @@ class ReachPlanner:
         best: ReachPlan | None = None
         for drop in CROUCH if point[2] < LOW else CROUCH[:1]:
             low = crouched(base, self.shape, drop)
+            wrist = 0.0
             if grasp is not None:
                 reached, gap = self.ik.grasp(low, side, grasp)
+                if grasp.box is not None:
+                    lo, hi = grasp.box
+                    w = self.ik.site(reached, f"j:{side}_wrist")
+                    wrist = float(np.linalg.norm(w - np.clip(w, lo, hi)))
             else:
                 reached, _ = self.ik.reach(low, side, point, grip)
                 gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
-            if best is None or gap < best.gap - 1e-4:
-                best = ReachPlan(reached, gap)
-            if gap <= TOUCH:
+            plan = ReachPlan(reached, gap, self.inside(reached) if gap <= TOUCH else 0.0, wrist)
+            if best is None or _better(plan, best):
+                best = plan
+            if plan.touches and plan.clear:
                 break
         assert best is not None
         return best
@@ -202,24 +275,25 @@ class ReachPlanner:
         dist = float(np.hypot(*d))
         tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
         best = self.reach_from(start_xy, side, point, grip, grasp_of)
-        touching = best if best.gap <= TOUCH else None
+        touching = best if best.touches and best.clear else None
         for xy in tries:
             if touching is not None and _lean(touching) <= COMFORT_LEAN:
                 return touching
             if not self.fits(xy):
                 break
             plan = self.reach_from(xy, side, point, grip, grasp_of)
-            if plan.gap <= TOUCH and (touching is None or _lean(plan) < _lean(touching)):
+            if (plan.touches and plan.clear
+                    and (touching is None or _lean(plan) < _lean(touching))):
                 touching = plan
-            if plan.gap < best.gap - 1e-3:
+            if _better(plan, best):
                 best = plan
         if touching is not None:
             return touching
         for xy in self.around(start_xy, point)[:MAX_AROUND]:
             plan = self.reach_from(xy, side, point, grip, grasp_of)
-            if plan.gap < best.gap - 1e-3:
+            if _better(plan, best):
                 best = plan
-            if plan.gap <= TOUCH:
+            if plan.touches and plan.clear:
                 break
         return best
 
@@ -235,6 +309,17 @@ class ReachPlanner:
         """Whether the body fits all along the segment a-b (checked every 5 cm)."""
         n = max(2, int(np.ceil(np.linalg.norm(b - a) / 0.05)) + 1)
         return all(self.fits(a + t * (b - a)) for t in np.linspace(0.0, 1.0, n)[1:])
+
+
+def _better(a: ReachPlan, b: ReachPlan) -> bool:
+    """Whether reach `a` beats `b`: touching first (the wrist near a grasped object too),
+    then the body clear (else less deep in things), then the hand nearer its point."""
+    ta, tb = a.touches, b.touches
+    if ta != tb:
+        return ta
+    if ta and (a.clear != b.clear or not a.clear):
+        return a.clear if a.clear != b.clear else a.inside < b.inside - 1e-3
+    return a.gap < b.gap - 1e-3
 
 
 def _lean(plan: ReachPlan) -> float:

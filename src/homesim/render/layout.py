@@ -16,8 +16,10 @@ from typing import Any
 
 import numpy as np
 
+from homesim.render.counters import COUNTERS, carve, strips
 from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
+from homesim.world.class_table import class_row
 from homesim.world.floor import FloorModel
 from homesim.world.graph import EnvironmentGraph, Node
 from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
@@ -27,21 +29,12 @@ WALL_THICKNESS = 0.1
 PANEL_THICKNESS = 0.04
 """Metres of a hinged front inside its box: the door leaf and, in front of it, the handle."""
 LEAF_THICKNESS = 0.025
-HINGED_CLASSES = frozenset({
-    "fridge", "cabinet", "kitchencabinet", "kitchencabinets", "closet", "microwave",
-    "washingmachine", "dishwasher", "stove", "oven", "bathroomcabinet", "closetdrawer",
-    "garbagecan", "nightstand", "dresser",
-})
-"""Classes drawn as a hollow carcass with a hinged front door when they can open."""
-SCREEN_CLASSES = frozenset({"tv", "computer", "laptop", "television"})
-LAMP_CLASSES = frozenset({"ceilinglamp", "tablelamp", "walllamp", "floorlamp", "lamp",
-                          "desklamp", "lightbulb"})
 SKIP_CATEGORIES = frozenset({"Rooms", "Characters"})
-ENCLOSURES = frozenset({"stall", "shower", "showerstall"})
-"""Furniture that surrounds other objects (a toilet stall): drawn as three walls, open at
-the front and the top."""
 SEAT_HEIGHT = 0.45
 """Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
+TABLES = ("desk", "kitchentable", "table", "coffeetable", "diningtable", "kitchencounter")
+AT_TABLE = 0.5
+"""Metres: a seat this near a table, desk or counter faces it."""
 
 
 @dataclass(frozen=True)
@@ -101,6 +94,8 @@ class Part:
     screen: Box | None = None  # a thin emissive panel: tv, computer
     lamp: bool = False
     is_on: bool = False
+    front: tuple[int, float] | None = None  # the side facing the room (axis, sign)
+    levels: list[float] = field(default_factory=list)  # inside: tops of floor and shelves
 
 
 @dataclass
@@ -115,6 +110,7 @@ class Layout:
     start: np.ndarray  # the character's start position on the floor (x, y)
     walk: FloorModel | None = None
     """Where the agent may walk: the floor model grounding uses (MuJoCo x, y = Unity x, z)."""
+    room_of_part: dict[int, int] = field(default_factory=dict)  # node id -> room id
 
     def part(self, node_id: int) -> Part | None:
         return next((p for p in self.parts if p.node_id == node_id), None)
@@ -258,10 +254,25 @@ def _window(panel: Box, axis: int, sign: float) -> Shape:
     return Shape("box", c, half, "glass_dark")
 
 
-_WINDOWED = frozenset({"microwave", "stove", "oven", "washingmachine"})
-_CARCASS_ROLE = {"fridge": "white", "washingmachine": "white", "dishwasher": "white",
-                 "stove": "metal", "oven": "metal", "microwave": "black", "garbagecan": "metal"}
-"""Material of a hinged object's body; others are wood."""
+_CARCASS_ROLE = {"white": "white", "metal": "metal", "dark": "black"}
+"""A hinged object's family (class table) -> the material of its body; others are wood."""
+
+
+def render_kind(class_name: str) -> str:
+    """How render shapes a class beyond its model (the class table's ``render``: hinged,
+    screen, lamp, room_lamp, enclosure; empty for the rest)."""
+    row = class_row(class_name)
+    return "" if row is None else row.render
+
+
+def _tagged(class_name: str, tag: str) -> bool:
+    row = class_row(class_name)
+    return row is not None and tag in row.tags
+
+
+def _family(class_name: str) -> str:
+    row = class_row(class_name)
+    return "" if row is None else row.family
 
 
 def _seat(box: Box, axis: int, sign: float) -> list[Box]:
@@ -298,19 +309,47 @@ def _is_leaf(box: Box) -> bool:
 
 
 def _door(box: Box, jambs: list[Box]) -> Hinge | None:
-    """A room door hinged on one edge of its leaf: the node's box when it is a leaf, else
-    the leaf of the nearest door frame."""
-    if not _is_leaf(box):
-        if not jambs:
-            return None
-        box = door_leaf(min(jambs, key=lambda j: float(np.hypot(*(j.center[:2]
-                                                                   - box.center[:2])))))
-    along = 0 if box.half[0] >= box.half[1] else 1
-    pivot = box.center.copy()
-    pivot[along] = box.lo[along]
+    """A room door hinged on one edge of its leaf: the node's box when it is a leaf (it
+    opens on its +90 degree side), else the leaf of the nearest door frame, hinged on the
+    end and opening to the side that keep it, open, inside the node's box (the box of
+    its swing, `homesim.world.doors.door_swing`; VirtualHome's placeholders as far as
+    they can)."""
+    if _is_leaf(box):
+        return _leaf_hinge(box, 0, 1.0)
+    if not jambs:
+        return None
+    leaf = door_leaf(min(jambs, key=lambda j: float(np.hypot(*(j.center[:2]
+                                                               - box.center[:2])))))
+    end, side = max(((e, s) for e in (0, 1) for s in (1.0, -1.0)),
+                    key=lambda c: _overlap(_swung(leaf, *c), box))
+    return _leaf_hinge(leaf, end, side)
+
+
+def _leaf_hinge(leaf: Box, end: int, side: float) -> Hinge:
+    """A hinge on end `end` (0: the low end along the leaf, 1: the high end) of a closed
+    leaf, opening 90 degrees about +z with sign `side`."""
+    along = 0 if leaf.half[0] >= leaf.half[1] else 1
+    pivot = leaf.center.copy()
+    pivot[along] = leaf.lo[along] if end == 0 else leaf.hi[along]
     offset = np.zeros(3)
-    offset[along] = box.half[along]
-    return Hinge(pivot, Box(offset, box.half.copy()), np.pi / 2, False)
+    offset[along] = leaf.half[along] if end == 0 else -leaf.half[along]
+    return Hinge(pivot, Box(offset, leaf.half.copy()), side * np.pi / 2, False)
+
+
+def _swung(leaf: Box, end: int, side: float) -> Box:
+    """The box of a leaf hinged at `end` once swung open by `side` * 90 degrees."""
+    h = _leaf_hinge(leaf, end, side)
+    c, s = np.cos(h.open_angle), np.sin(h.open_angle)
+    off = h.panel.center
+    center = h.pivot + np.array([c * off[0] - s * off[1], s * off[0] + c * off[1], off[2]])
+    half = h.panel.half[[1, 0, 2]]  # a quarter turn swaps the horizontal extents
+    return Box(center, half)
+
+
+def _overlap(a: Box, b: Box) -> float:
+    """Volume of the intersection of two boxes."""
+    d = np.minimum(a.hi, b.hi) - np.maximum(a.lo, b.lo)
+    return float(np.prod(np.maximum(d, 0.0)))
 
 
 @dataclass
@@ -328,9 +367,37 @@ class _Home:
         return self.rooms[room].center if room in self.rooms else fallback
 
     def front(self, node: Node, box: Box) -> tuple[int, float]:
-        """The side of a node's box that faces its room."""
+        """The side of a node's box that faces its room; a seat faces the table, desk or
+        counter it stands at (within `AT_TABLE`), else a screen it FACES."""
         room = self.graph.room_of(node.id)
+        if SITTABLE in node.properties and node.class_name != "bed":
+            faced = self._faced(node, box, room)
+            if faced is not None:
+                return _front_axis(box, faced)
         return _front_axis(box, self.toward(room, box.center + np.array([0.0, 1.0, 0.0])))
+
+    def _faced(self, node: Node, box: Box, room: int | None) -> np.ndarray | None:
+        """The centre of what a seat faces: the nearest table, desk or counter it stands
+        at, else a screen it FACES."""
+        graph = self.graph
+        near: tuple[float, np.ndarray] | None = None
+        for cls in TABLES:
+            for table in graph.nodes_of_class(cls):
+                b = to_mujoco(table)
+                if b is None or graph.room_of(table.id) != room:
+                    continue
+                gap = float(np.linalg.norm(np.maximum(np.abs(b.center[:2] - box.center[:2])
+                                                      - b.half[:2] - box.half[:2], 0.0)))
+                if gap <= AT_TABLE and (near is None or gap < near[0]):
+                    near = (gap, b.center)
+        if near is not None:
+            return near[1]
+        for t in sorted(graph.targets(node.id, "FACING")):
+            if render_kind(graph.node(t).class_name) == "screen" and graph.room_of(t) == room:
+                b = to_mujoco(graph.node(t))
+                if b is not None:
+                    return b.center
+        return None
 
     def model(self, node: Node, box: Box, front: tuple[int, float] | None = None
               ) -> list[Shape]:
@@ -369,8 +436,10 @@ def build_layout(graph: EnvironmentGraph, seed: int = 0) -> Layout:
             part.hinge.is_open = S_OPEN in node.states
         part.is_on = S_ON in node.states
         parts.append(part)
+    _carve_counters(parts, graph)
+    rooms_of = {p.node_id: r for p in parts if (r := graph.room_of(p.node_id)) is not None}
     return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
-                  _room_floors(home.tiles), _start(graph), FloorModel(graph))
+                  _room_floors(home.tiles), _start(graph), FloorModel(graph), rooms_of)
 
 
 def _start(graph: EnvironmentGraph) -> np.ndarray:
@@ -397,14 +466,17 @@ def _kind(node: Node, box: Box) -> str:
         return "wall"
     if cls in ("doorjamb", "door"):
         return cls
-    if cls in HINGED_CLASSES and CAN_OPEN in node.properties:
+    kind = render_kind(cls)
+    if kind == "hinged" and CAN_OPEN in node.properties:
         return "hinged"
-    if cls in ENCLOSURES:
+    if kind == "enclosure":
         return "enclosure"
     if SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
         return "seat"
     if GRABBABLE in node.properties:
         return "movable"
+    if cls in COUNTERS:
+        return "counter"
     return "solid"
 
 
@@ -412,8 +484,31 @@ Shaper = Callable[[Part, Node, Box, _Home], bool]
 """Fills a part's boxes and shapes (hinge, screen, lamp); False drops the part."""
 
 
-def _slab_shapes(boxes: list[Box], role: str) -> list[Shape]:
-    return [Shape("box", b.center.copy(), np.maximum(b.half, 1e-3), role) for b in boxes]
+def _slab_shapes(boxes: list[Box], role: str, piece: float = 0.0) -> list[Shape]:
+    """Box shapes of slabs; with `piece` > 0, each cut into pieces at most that long
+    along x and y (and 1.25 m up): MuJoCo lights per vertex, so a room light's pool of
+    light falls off across a floor or wall only where it has vertices."""
+    out = []
+    for b in boxes:
+        for c, h in _pieces(b, piece) if piece > 0 else [(b.center, b.half)]:
+            out.append(Shape("box", c.copy(), np.maximum(h, 1e-3), role))
+    return out
+
+
+LIT_PIECE = 1.25
+"""Metres: floors and walls are drawn in pieces this long for the lights' falloff."""
+
+
+def _pieces(b: Box, piece: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    counts = [max(1, int(np.ceil(2 * b.half[a] / piece - 1e-6))) for a in range(3)]
+    size = 2 * b.half / np.array(counts)
+    out = []
+    for i in range(counts[0]):
+        for j in range(counts[1]):
+            for k in range(counts[2]):
+                lo = b.lo + size * np.array([i, j, k])
+                out.append((lo + size / 2, size / 2))
+    return out
 
 
 def _room_role(kind: str, node: Node, home: _Home) -> str:
@@ -423,8 +518,9 @@ def _room_role(kind: str, node: Node, home: _Home) -> str:
 
 def _flat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
     part.boxes.append(_flat(box))
-    role = "ceiling" if node.class_name == "ceiling" else _room_role("floor", node, home)
-    part.shapes = _slab_shapes(part.boxes, role)
+    ceiling = node.class_name == "ceiling"
+    role = "ceiling" if ceiling else _room_role("floor", node, home)
+    part.shapes = _slab_shapes(part.boxes, role, 0.0 if ceiling else LIT_PIECE)
     return True
 
 
@@ -432,7 +528,7 @@ def _wall(part: Part, node: Node, box: Box, home: _Home) -> bool:
     room = home.graph.room_of(node.id)
     for slab in _wall_slabs(box, [] if room is None else home.tiles.get(room, [])):
         part.boxes.extend(_cut_doorways(slab, home.jambs))
-    part.shapes = _slab_shapes(part.boxes, _room_role("wall", node, home))
+    part.shapes = _slab_shapes(part.boxes, _room_role("wall", node, home), LIT_PIECE)
     return True
 
 
@@ -469,18 +565,49 @@ def _door_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
 def _hinged(part: Part, node: Node, box: Box, home: _Home) -> bool:
     axis, sign = home.front(node, box)
     part.boxes, part.hinge = _hollow(box, axis, sign)
-    role = _CARCASS_ROLE.get(node.class_name, "wood")
+    role = _CARCASS_ROLE.get(_family(node.class_name), "wood")
     part.shapes = _slab_shapes(part.boxes, role)
+    shelves, part.levels = _shelves(part.boxes, axis)
+    part.boxes += shelves
+    part.shapes += _slab_shapes(shelves, "glass" if role == "white" else role)
     h = part.hinge
     h.shapes = [Shape("box", h.panel.center.copy(), h.panel.half.copy(), role),
                 _handle(h.panel, axis, sign, PANEL_THICKNESS - LEAF_THICKNESS)]
-    if node.class_name in _WINDOWED:
+    if _tagged(node.class_name, "windowed"):
         h.shapes.append(_window(h.panel, axis, sign))
     if node.class_name in ("stove", "oven"):  # the top gives way to the hot plates
         part.shapes = [Shape(s.kind, s.center - [0, 0, 0.004], s.half, s.role)
                        if s.center[2] - s.half[2] > box.center[2] else s for s in part.shapes]
         part.shapes += _burners(box)
     return True
+
+
+SHELF_GAP = 0.36
+"""Metres between the shelves inside a cabinet, fridge or closet (about)."""
+SHELF_THICKNESS = 0.015
+
+
+def _shelves(slabs: list[Box], front_axis: int) -> tuple[list[Box], list[float]]:
+    """Shelves inside a hollow carcass (its five slabs): boards spanning the inside every
+    `SHELF_GAP` or so, and the heights things rest at inside (the carcass floor's top,
+    each shelf's top)."""
+    lo = np.min([b.lo for b in slabs], axis=0)
+    hi = np.max([b.hi for b in slabs], axis=0)
+    floor = min(slabs, key=lambda b: b.center[2])  # the bottom slab
+    ceil = max(slabs, key=lambda b: b.center[2])
+    inner_lo, inner_hi = floor.hi[2], ceil.lo[2]
+    n = int((inner_hi - inner_lo) // SHELF_GAP)
+    if n < 2:
+        return [], [float(inner_lo)]
+    t = float(min(b.half[a] for b in slabs for a in range(3)) * 2)
+    boards, levels = [], [float(inner_lo)]
+    for k in range(1, n):
+        z = inner_lo + k * (inner_hi - inner_lo) / n
+        blo, bhi = lo + t, hi - t
+        blo[2], bhi[2] = z - SHELF_THICKNESS, z
+        boards.append(Box.from_bounds(blo, bhi))
+        levels.append(float(z))
+    return boards, levels
 
 
 def _burners(box: Box) -> list[Shape]:
@@ -503,7 +630,7 @@ def _enclosure(part: Part, node: Node, box: Box, home: _Home) -> bool:
 
 
 def _seat_part(part: Part, node: Node, box: Box, home: _Home) -> bool:
-    front = home.front(node, box)
+    part.front = front = home.front(node, box)
     part.boxes = _seat(box, *front)
     part.shapes = home.model(node, box, front)
     return True
@@ -518,13 +645,61 @@ def _movable(part: Part, node: Node, box: Box, home: _Home) -> bool:
     return True
 
 
+def _counter(part: Part, node: Node, box: Box, home: _Home) -> bool:
+    """A counter: strips along the walls of its room when its box is an L or a U (see
+    `homesim.render.counters`), each drawn as the counter model facing the room."""
+    room = home.graph.room_of(node.id)
+    tiles = home.tiles.get(room, []) if room is not None else []
+    if not tiles:
+        return _solid(part, node, box, home)
+    room_lo = np.min([t.lo for t in tiles], axis=0)
+    room_hi = np.max([t.hi for t in tiles], axis=0)
+    for lo, hi, front in strips(box.lo, box.hi, room_lo, room_hi):
+        strip = Box.from_bounds(lo, hi)
+        part.boxes.append(strip)
+        part.shapes += home.model(node, strip, front)
+    part.front = home.front(node, box)
+    return True
+
+
+def _carve_counters(parts: list[Part], graph: EnvironmentGraph) -> None:
+    """Cut each counter's shapes around the furniture and appliances standing in its box
+    (a dishwasher under it, scene 5's table in the corner of its U)."""
+    boxes = {n.id: b for n in graph if (b := to_mujoco(n)) is not None}
+    for part in parts:
+        if part.class_name not in COUNTERS or part.node_id not in boxes:
+            continue
+        cb = boxes[part.node_id]
+        room = graph.room_of(part.node_id)
+        holes = []
+        for other in parts:
+            b = boxes.get(other.node_id)
+            if (b is None or other is part or other.class_name in ("floor", "ceiling", "wall")
+                    or other.movable is not None or graph.room_of(other.node_id) != room):
+                continue
+            inside = np.prod(np.maximum(np.minimum(b.hi, cb.hi) - np.maximum(b.lo, cb.lo), 0))
+            if inside >= 0.5 * np.prod(2 * b.half) and np.prod(2 * b.half) > 1e-3:
+                holes.append((b.lo - 0.01, b.hi + 0.01))
+        if holes:
+            part.shapes = carve(part.shapes, holes)
+            part.boxes = [Box((a + c) / 2, (c - a) / 2) for bx in part.boxes
+                          for a, c in _box_pieces(bx, holes)]
+
+
+def _box_pieces(box: Box, holes: list[tuple[np.ndarray, np.ndarray]]
+                ) -> list[tuple[np.ndarray, np.ndarray]]:
+    shapes = carve([Shape("box", box.center, box.half, "body")], holes)
+    return [(s.center - s.half, s.center + s.half) for s in shapes]
+
+
 def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
     """The class's model; screens get their panel, lamps light."""
     part.boxes.append(_flat(box))
-    cls = node.class_name
-    front = _facing_seat(node, box, home) if cls in SCREEN_CLASSES else home.front(node, box)
+    kind = render_kind(node.class_name)
+    front = _facing_seat(node, box, home) if kind == "screen" else home.front(node, box)
+    part.front = front
     part.shapes = home.model(node, _flat(box), front)
-    if cls in SCREEN_CLASSES:
+    if kind == "screen":
         screen = next((s for s in part.shapes if s.role == "screen"), None)
         if screen is None:
             screen = _screen(box, front)
@@ -534,7 +709,7 @@ def _solid(part: Part, node: Node, box: Box, home: _Home) -> bool:
         part.shapes = [s if s.role != "screen" else Shape(s.kind, s.center, s.half,
                                                          "screen_dark", s.axis)
                        for s in part.shapes]
-    if cls in LAMP_CLASSES or node.category == "Lamps":
+    if kind in ("lamp", "room_lamp") or node.category == "Lamps":
         part.lamp = True
     return True
 
@@ -563,7 +738,7 @@ def _screen(box: Box, front: tuple[int, float]) -> Shape:
 _SHAPERS: dict[str, Shaper] = {
     "floor": _flat_part, "ceiling": _flat_part, "wall": _wall, "doorjamb": _doorjamb,
     "door": _door_part, "hinged": _hinged, "enclosure": _enclosure, "seat": _seat_part,
-    "movable": _movable, "solid": _solid,
+    "movable": _movable, "solid": _solid, "counter": _counter,
 }
 
 

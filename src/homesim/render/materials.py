@@ -12,22 +12,22 @@ from __future__ import annotations
 
 import colorsys
 import io
+import zlib
 from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
 from PIL import Image
 
-from homesim.render.palette import RGBA
+from homesim.render.palette import PAINTS, RGBA, Theme, themed_color
 
 TEXTURE_SIZE = 128
-"""Pixels per side of the generated textures (small: llvmpipe samples them per pixel)."""
-
-_WOODS = ((0.78, 0.58, 0.38), (0.56, 0.37, 0.22), (0.86, 0.72, 0.52), (0.45, 0.3, 0.2))
-_PAINTS = ((0.90, 0.87, 0.80), (0.82, 0.86, 0.88), (0.88, 0.82, 0.74), (0.80, 0.84, 0.76),
-           (0.93, 0.92, 0.90), (0.86, 0.78, 0.76))
-_FABRICS = ((0.30, 0.36, 0.55), (0.55, 0.52, 0.48), (0.45, 0.22, 0.22), (0.25, 0.40, 0.35),
-            (0.70, 0.66, 0.58), (0.35, 0.33, 0.38))
+"""Pixels per side of most generated textures (small: llvmpipe samples them per pixel)."""
+FINE_TEXTURE = 256
+"""Pixels per side of the textures where the eye lands: floors, counters, fabric."""
+_FINE = frozenset({"planks", "tiles", "fabric", "marble"})
+_TILES = ((0.88, 0.87, 0.84), (0.78, 0.79, 0.80), (0.86, 0.82, 0.74), (0.93, 0.93, 0.92))
+"""Tile colours of kitchens and bathrooms: off-white, grey, sand, white."""
 _BOOKS = ((0.6, 0.15, 0.12), (0.12, 0.25, 0.5), (0.15, 0.42, 0.22), (0.85, 0.7, 0.2),
           (0.3, 0.3, 0.32), (0.5, 0.2, 0.45))
 _TILED_ROOMS = ("kitchen", "bathroom")
@@ -106,10 +106,14 @@ def fabric(seed: int, n: int = TEXTURE_SIZE) -> np.ndarray:
 
 
 def marble(seed: int, n: int = TEXTURE_SIZE) -> np.ndarray:
+    """Polished stone: a calm, cloudy ground and a few thin, dark veins."""
     rng = np.random.default_rng(seed)
-    y, x = np.mgrid[0:n, 0:n]
-    veins = np.abs(np.sin((x + y) * 0.05 + 8 * _noise(rng, n, 5)))
-    return _gray(0.85 + 0.15 * veins)
+    y, x = np.mgrid[0:n, 0:n] / n
+    ground = 0.93 + 0.05 * _noise(rng, n, 3)
+    warp = 2.5 * _noise(rng, n, 4)
+    veins = np.abs(np.sin(2 * np.pi * (1.3 * x + 0.7 * y) + warp))
+    thin = np.clip(1.0 - veins / 0.06, 0.0, 1.0)  # near the sine's zeros: fine lines
+    return _gray(ground - 0.22 * thin * (0.5 + 0.5 * _noise(rng, n, 6)))
 
 
 def wallpaper(seed: int, n: int = TEXTURE_SIZE) -> np.ndarray:
@@ -174,7 +178,9 @@ def tv_image(n: int = TEXTURE_SIZE) -> np.ndarray:
 def _texture_png(kind: str, seed: int) -> bytes:
     maker = {"planks": planks, "tiles": tiles, "fabric": fabric, "marble": marble,
              "wallpaper": wallpaper, "picture": picture, "books": book_spines}
-    return _png(tv_image() if kind == "tv" else maker[kind](seed))
+    if kind == "tv":
+        return _png(tv_image())
+    return _png(maker[kind](seed, FINE_TEXTURE if kind in _FINE else TEXTURE_SIZE))
 
 
 def _jitter(rgb, rng: np.random.Generator, amount: float = 0.06) -> tuple[float, ...]:
@@ -193,22 +199,33 @@ class Look:
 
     def __post_init__(self) -> None:
         rng = np.random.default_rng([self.seed, 7])
-        self.wood = _WOODS[int(rng.integers(len(_WOODS)))]
-        self.fabric = _FABRICS[int(rng.integers(len(_FABRICS)))]
+        # the theme varies with the seed and the home (its rooms): two homes rendered with
+        # one seed do not share one look
+        home = zlib.crc32(repr(sorted(self.rooms.items())).encode()) % 100_000
+        self.theme = Theme.of(self.seed * 100_000 + home)
+        self.wood = self.theme.wood
+        self.fabric = self.theme.fabric
         self.books = [_BOOKS[int(i)] for i in rng.permutation(len(_BOOKS))[:4]]
         self.floor: dict[int, tuple[str, tuple[float, ...]]] = {}
         self.wall: dict[int, tuple[str, tuple[float, ...]]] = {}
+        tile = _TILES[int(rng.integers(len(_TILES)))]
+        order = sorted(self.rooms)
         for rid, cls in sorted(self.rooms.items()):
             r = np.random.default_rng([self.seed, rid])
             if cls in _TILED_ROOMS:
-                self.floor[rid] = ("tiles", _jitter((0.85, 0.84, 0.80), r, 0.1))
-            elif r.random() < 0.25:
-                self.floor[rid] = ("fabric", _jitter(_FABRICS[int(r.integers(6))], r))
+                self.floor[rid] = ("tiles", _jitter(tile, r, 0.02))
+            elif r.random() < 0.2:
+                self.floor[rid] = ("fabric", _jitter(self.theme.fabric2, r))
             else:
-                self.floor[rid] = ("planks", tuple(c * 0.85 for c in _WOODS[int(r.integers(4))]))
-            paint = _PAINTS[int(r.integers(len(_PAINTS)))]
-            papered = cls not in _TILED_ROOMS and r.random() < 0.35
+                self.floor[rid] = ("planks", self.theme.floor_wood)
+            paint = self.theme.wall_paint(rid, order)
+            papered = cls not in _TILED_ROOMS and r.random() < 0.3
             self.wall[rid] = ("wallpaper" if papered else "paint", paint)
+
+    def body(self, class_name: str, rgba: RGBA) -> RGBA:
+        """The colour of a class's ``body`` (and fabric) parts in this home: its theme
+        colour, else `rgba` (its fixed colour)."""
+        return themed_color(self.theme, class_name, rgba)
 
     def material(self, role: str, body: RGBA) -> tuple[str, RGBA]:
         """(material name, rgba) of a role; `body` is the node's class colour."""
@@ -223,7 +240,7 @@ class Look:
             tex, rgb = self.floor.get(int(arg), ("planks", self.wood))
             return rgb, f"floor_{tex}"
         if kind == "wall" and arg:
-            tex, rgb = self.wall.get(int(arg), ("paint", _PAINTS[0]))
+            tex, rgb = self.wall.get(int(arg), ("paint", PAINTS[0]))
             return rgb, "wallpaper" if tex == "wallpaper" else "paint"
         return self._plain(role, body)
 

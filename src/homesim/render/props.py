@@ -13,17 +13,18 @@ from collections.abc import Iterator
 import numpy as np
 
 from homesim.errors import ExecutionError
-from homesim.render.layout import Box, Part, lights_on_by_switch, to_mujoco
+from homesim.render.layout import Box, Part, lights_on_by_switch, render_kind, to_mujoco
 from homesim.render.navigation import Grid
 from homesim.render.scene import SceneModel
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.vocab import ON, S_OFF, S_ON
+from homesim.world.vocab import BODY_PART, ON, S_OFF, S_ON
 
-_CEILING_LAMPS = ("ceilinglamp", "walllamp")
 HANDLE_HEIGHT = 1.0
 """Metres: where a hand takes a door or a tall appliance's front (lower fronts: their top)."""
 HANDLE_OUT = 0.02
 """Metres: a handle stands this far out of its panel."""
+REACH_HEIGHT = 1.1
+"""Metres: things put inside a fridge or cabinet go on the shelf nearest this height."""
 
 
 class Props:
@@ -58,7 +59,7 @@ class Props:
         light switch is on."""
         on = set(self.lit)
         for n, p in self.parts():
-            if p.lamp and p.class_name in _CEILING_LAMPS:
+            if p.lamp and render_kind(p.class_name) == "room_lamp":
                 room = self.graph.room_of(n)
                 if self.switch_rooms.get(room, True):
                     on.add(n)
@@ -77,6 +78,13 @@ class Props:
         if node_id not in self.boxes:
             raise ExecutionError(f"node {node_id} has no 3D box to walk to")
         return self.boxes[node_id]
+
+    def is_body_part(self, node_id: int) -> bool:
+        """Whether a node is a part of the agent's body without a box of its own (teeth,
+        hair): the animation acts at the body."""
+        if node_id in self.boxes or node_id not in self.graph.nodes:
+            return False
+        return BODY_PART in self.graph.node(node_id).properties
 
     def half_of(self, node_id: int) -> np.ndarray:
         return self.boxes[node_id].half if node_id in self.boxes else np.full(3, 0.05)
@@ -139,15 +147,26 @@ class Props:
         return False
 
     def placement(self, obj: int, rel: str, dest: int, agent_xy: np.ndarray) -> np.ndarray:
-        """Where an object ends up when put ON or INSIDE a destination."""
+        """Where an object ends up when put ON or INSIDE a destination: on its top, or
+        inside on the level (floor or shelf) nearest `REACH_HEIGHT` that it fits under."""
         box = self.box_of(dest)
         half = self.half_of(obj)
         room = np.maximum(box.half[:2] - half[:2] - 0.05, 0.0)
         jitter = self.rng.uniform(-1.0, 1.0, 2) * np.minimum(room, 0.2)
         near = np.clip(agent_xy, box.lo[:2] + half[:2], box.hi[:2] - half[:2])
         xy = 0.5 * (box.center[:2] + jitter) + 0.5 * near
-        z = box.hi[2] + half[2] if rel == ON else box.lo[2] + 0.05 + half[2]
+        z = box.hi[2] + half[2] if rel == ON else self.level_inside(dest, box, half) + half[2]
         return np.r_[xy, z]
+
+    def level_inside(self, dest: int, box: Box, half: np.ndarray) -> float:
+        """The height an object of half size `half` rests at inside `dest`: the top of the
+        level (its floor or a shelf, `Part.levels`) nearest `REACH_HEIGHT` with room above
+        for it; the box's floor (5 cm up) for a destination without levels."""
+        part = self.scene.layout.part(dest)
+        levels = part.levels if part is not None and part.levels else [box.lo[2] + 0.05]
+        ceilings = [*levels[1:], box.hi[2] - 0.03]
+        fits = [z for z, top in zip(levels, ceilings, strict=True) if top - z >= 2 * half[2] + 0.01]
+        return min(fits or levels[:1], key=lambda z: abs(z + half[2] - REACH_HEIGHT))
 
     def landing(self, obj: int, dest: int, final: np.ndarray,
                 carried: np.ndarray) -> np.ndarray:

@@ -19,6 +19,9 @@ from homesim.render.scene import SceneModel
 
 HIDDEN_GROUP = 5
 """Geom group of the geoms a camera cannot see (not drawn)."""
+MAX_LIGHTS = 7
+"""Lights a draw uses besides the headlight: MuJoCo's OpenGL renderer lights with at most
+eight. Each camera keeps those of its own room first, then the nearest."""
 _NONE = np.zeros(0, np.int64)
 
 
@@ -75,6 +78,8 @@ class Renderer:
         self._shadow_light = {c: scene.room_light.get(spec.room_id, -1)
                               for c, spec in enumerate(scene.cameras)}
         self._shadow_now: int | None = None
+        self._light_masks = {c: self._lights_for(spec.room_id, spec.pos)
+                             for c, spec in enumerate(scene.cameras)}
         self.shadows = BACKEND == "egl" if shadows is None else shadows
         extent = model.stat.extent
         self.znear = float(model.vis.map.znear * extent)
@@ -123,6 +128,17 @@ class Renderer:
         return Probe([float(np.count_nonzero(nodes == n)) / ids.size for n in node_ids],
                      float(np.count_nonzero(close)) / ids.size)
 
+    def _lights_for(self, room: int | None, pos: np.ndarray) -> np.ndarray | None:
+        """Which lights a camera in `room` at `pos` may use (None: all, when few)."""
+        m = self.scene.model
+        if m.nlight <= MAX_LIGHTS:
+            return None
+        order = sorted(range(m.nlight), key=lambda i: (
+            self.scene.light_room.get(i) != room, float(np.linalg.norm(m.light_pos[i] - pos))))
+        mask = np.zeros(m.nlight, bool)
+        mask[order[:MAX_LIGHTS]] = True
+        return mask
+
     def _cull_groups(self) -> dict[int, np.ndarray]:
         """Per camera, the geom groups that hide static geoms outside its view (-1: the
         model's own groups). MuJoCo draws every geom it is given; a room camera sees a
@@ -132,6 +148,7 @@ class Renderer:
         data = mujoco.MjData(m)
         mujoco.mj_kinematics(m, data)
         mujoco.mj_camlight(m, data)  # camera poses
+        self._rest = data  # where the static geoms always are
         groups = {-1: m.geom_group.copy()}
         for cam in range(m.ncam):
             groups[cam] = self._cull(data, cam, groups[-1])
@@ -191,9 +208,10 @@ class Renderer:
         if hidden is None:
             if key in self._placed:
                 return _NONE
+            model, rest = self.scene.model, self._rest
             if self._boxes is None:  # static geoms do not move: their boxes once
-                self._boxes = corners(self.scene.model, data, self._static)
-            hidden = shadowed(self.scene.model, data, data.cam_xpos[cam].copy(), self._walls,
+                self._boxes = corners(model, rest, self._static)
+            hidden = shadowed(model, rest, data.cam_xpos[cam].copy(), self._walls,
                               self._static, self._boxes)
             self._shadowed[key] = hidden
         return hidden
@@ -223,8 +241,15 @@ class Renderer:
         self.scene.model.geom_group[:] = groups
         self._drawn = groups
         self._cam.fixedcamid = camera_id
-        mujoco.mjv_updateScene(self.scene.model, data, self._opt, None, self._cam,
+        m = self.scene.model
+        mask = self._light_masks.get(camera_id)
+        saved = None if mask is None else m.light_active.copy()
+        if saved is not None:  # only the lights this camera uses (see MAX_LIGHTS)
+            m.light_active[:] = saved & mask
+        mujoco.mjv_updateScene(m, data, self._opt, None, self._cam,
                                mujoco.mjtCatBit.mjCAT_ALL, self._scn)
+        if saved is not None:
+            m.light_active[:] = saved
         self._scn.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = segment
         self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
         mujoco.mjr_render(rect or self._rect, self._scn, self._con)

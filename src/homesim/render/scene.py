@@ -13,11 +13,12 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from homesim.errors import HomesimError
+from homesim.errors import HomesimError, LimitError
+from homesim.limits import MAX_RENDER_NODES
 from homesim.render.agent import HINGES, JOINTS, AgentShape, agent_mjcf
 from homesim.render.cameras import CameraSpec, room_cameras
 from homesim.render.gl import mujoco
-from homesim.render.layout import Layout, Part, build_layout
+from homesim.render.layout import Layout, Part, build_layout, render_kind
 from homesim.render.materials import Look
 from homesim.render.models import Shape
 from homesim.world.graph import EnvironmentGraph
@@ -54,13 +55,14 @@ def _part_geoms(part: Part, look: Look) -> list[str]:
     """The MJCF of one part: static shapes, a mocap body, a hinged door."""
     n = part.node_id
     out = []
+    body = look.body(part.class_name, part.rgba)
 
     def geom(name: str, s: Shape, origin=None) -> str:
         if s.role == "glow" and part.lamp:
             return _shape_geom(name.replace(":", ":g", 1), s, f"lamp{n}", None, origin)
         if s.role == "screen" and part.screen is not None:
             return _shape_geom(f"n{n}:screen", s, "screen_off", None, origin)
-        mat, rgba = look.material(s.role, part.rgba)
+        mat, rgba = look.material(s.role, body)
         return _shape_geom(name, s, mat, rgba, origin)
 
     for k, s in enumerate(part.shapes):
@@ -78,15 +80,44 @@ def _part_geoms(part: Part, look: Look) -> list[str]:
     return out
 
 
+ROOM_LIGHT = (1.0, 0.84, 0.64)
+"""Diffuse colour of a room's ceiling light: warm white, falling off with distance
+(`ROOM_FALLOFF`: constant, linear, quadratic), so it pools under the lamp and the
+room's corners stay dimmer."""
+ROOM_FALLOFF = (0.45, 0.12, 0.09)
+LAMP_LIGHT = (0.85, 0.62, 0.38)
+"""A table or floor lamp's own light when on: warmer and weaker, falling off fast."""
+LAMP_FALLOFF = (0.6, 0.6, 0.9)
+AMBIENT = 0.14
+"""The headlight's ambient and diffuse share: what a room gets with its lights off."""
+
+
 def _room_lights(layout: Layout) -> list[str]:
-    """One ceiling light per room (its lamps and switch turn it on and off)."""
+    """One ceiling light per room, under its ceiling lamps (else over its middle): its
+    lamps and switch turn it on and off; and a light of its own for each table or floor
+    lamp, at its shade."""
     out = []
+    lamps: dict[int, list[np.ndarray]] = {}
+    for part in layout.parts:
+        room = layout.room_of_part.get(part.node_id)
+        if part.lamp and part.class_name == "ceilinglamp" and part.boxes and room is not None:
+            lamps.setdefault(room, []).append(part.boxes[0].center)
+    r, g, b = ROOM_LIGHT
     for rid, box in sorted(layout.room_floors.items()):
-        x, y = box.center[:2]
+        x, y = np.mean(lamps[rid], axis=0)[:2] if rid in lamps else box.center[:2]
         out.append(f'<light name="room{rid}" pos="{x:.3f} {y:.3f} {LIGHT_HEIGHT}" '
-                   'dir="0 0 -1" directional="false" cutoff="75" exponent="2" '
-                   'diffuse="0.55 0.52 0.46" specular="0.15 0.15 0.15" '
-                   'attenuation="1 0.05 0.02" castshadow="false"/>')
+                   'dir="0 0 -1" directional="false" cutoff="85" exponent="1" '
+                   f'diffuse="{r} {g} {b}" specular="0.2 0.18 0.15" '
+                   f'attenuation="{_v(ROOM_FALLOFF)}" castshadow="false"/>')
+    r, g, b = LAMP_LIGHT
+    for part in layout.parts:
+        if part.lamp and render_kind(part.class_name) == "lamp" and part.boxes:
+            top = part.boxes[0].hi
+            c = part.boxes[0].center
+            out.append(f'<light name="lamp{part.node_id}" pos="{c[0]:.3f} {c[1]:.3f} '
+                       f'{top[2] - 0.08:.3f}" dir="0 0 -1" directional="false" cutoff="180" '
+                       f'diffuse="{r} {g} {b}" specular="0 0 0" '
+                       f'attenuation="{_v(LAMP_FALLOFF)}" castshadow="false"/>')
     return out
 
 
@@ -107,6 +138,7 @@ class SceneModel:
     lamp_mat: dict[int, int] = field(default_factory=dict)  # node id -> material id
     lamp_light: dict[int, int] = field(default_factory=dict)  # node id -> its room's light
     room_light: dict[int, int] = field(default_factory=dict)  # room id -> light id
+    light_room: dict[int, int] = field(default_factory=dict)  # light id -> its room id
     screen_geom: dict[int, int] = field(default_factory=dict)  # node id -> geom id
     screen_mats: tuple[int, int] = (-1, -1)  # (off, on) material ids
     joint_qpos: dict[str, int] = field(default_factory=dict)  # agent hinge -> qpos address
@@ -156,7 +188,8 @@ def scene_mjcf(layout: Layout, cameras: list[CameraSpec], agent: AgentShape,
     <quality shadowsize="{SHADOW_SIZE}" offsamples="0" numquads="1" numslices="12"
              numstacks="6"/>
     <map znear="0.002" zfar="3" shadowclip="6" shadowscale="0.6"/>
-    <headlight ambient="0.3 0.3 0.3" diffuse="0.3 0.3 0.3" specular="0.05 0.05 0.05"/>
+    <headlight ambient="{AMBIENT} {AMBIENT} {AMBIENT}" diffuse="{AMBIENT} {AMBIENT} {AMBIENT}"
+               specular="0.03 0.03 0.03"/>
   </visual>
   <default><geom contype="0" conaffinity="0"/></default>
   <asset>{"".join(assets)}</asset>
@@ -191,14 +224,22 @@ def _material_lamps(model, layout: Layout) -> dict[int, int]:
 
 
 def _lamp_lights(scene: SceneModel, graph: EnvironmentGraph) -> None:
-    """Each room's light, and the light each lamp turns on: its room's (several lamps
-    share one; the recorder lights it when any of them is on)."""
+    """Each room's light, and the light each lamp turns on: a table or floor lamp its
+    own, a ceiling or wall lamp its room's (several share one; the recorder lights it
+    when any of them is on)."""
     m = scene.model
+    light = mujoco.mjtObj.mjOBJ_LIGHT
     for rid in scene.layout.room_floors:
-        scene.room_light[rid] = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_LIGHT, f"room{rid}")
+        scene.room_light[rid] = mujoco.mj_name2id(m, light, f"room{rid}")
+        scene.light_room[scene.room_light[rid]] = rid
     for part in scene.layout.parts:
         room = graph.room_of(part.node_id)
-        if part.lamp and room in scene.room_light:
+        own = mujoco.mj_name2id(m, light, f"lamp{part.node_id}") if part.lamp else -1
+        if own >= 0:
+            scene.lamp_light[part.node_id] = own
+            if room is not None:
+                scene.light_room[own] = room
+        elif part.lamp and room in scene.room_light:
             scene.lamp_light[part.node_id] = scene.room_light[room]
 
 
@@ -207,6 +248,10 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
                 shots: Sequence[CameraSpec] = ()) -> SceneModel:
     """Compile a home with geometry into a `SceneModel` (cameras randomised by `seed`;
     `shots`: close-up cameras added after the room cameras, see `homesim.render.shots`)."""
+    if len(graph) > MAX_RENDER_NODES:
+        raise LimitError(f"the home has {len(graph):,} nodes, over the limit of "
+                         f"{MAX_RENDER_NODES:,} for rendering (MAX_RENDER_NODES)",
+                         "MAX_RENDER_NODES")
     layout = build_layout(graph, seed)
     if not layout.floors:
         raise HomesimError("the home has no floor boxes: rendering needs a home with 3D "

@@ -14,6 +14,7 @@ without cameras gets no close-up, nor does a step that no candidate view shows.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -30,12 +31,12 @@ from homesim.render.scene import SceneModel
 
 MARGIN = 1.3
 """The frame spans this many times the angular extent of hand and object."""
-MIN_FOVY = 8.0
+MIN_FOVY = 6.0
 MAX_FOVY = 80.0
 """Degrees: the narrowest and widest close-up."""
 FRAMED = 5
-"""Hand positions sampled along the second half of the reach (to the effect) that the
-shot must contain."""
+"""Hand positions sampled along the last quarter of the reach (to the effect) that the
+shot must contain (the whole second half made small objects, a faucet, too small)."""
 DOLLY = (0.0, 0.3, 0.55)
 """Each room camera is also tried moved this share of the way toward the action (at its
 height, inside the room, out of furniture)..."""
@@ -55,8 +56,19 @@ being seen counts more."""
 SEEN_SHARE = 0.006
 """A candidate showing the object on less than this share of the drawing does not show
 it (a little above the 0.5 % the interactions benchmark counts as covered)."""
-MIN_RANGE = 1.5
+MIN_RANGE = 1.1
 """Metres: a camera is not moved closer than this to the action."""
+RING = (1.3, 1.9)
+"""Metres: besides the room cameras, positions this far around the action are tried
+(every 30 degrees)..."""
+RING_HEIGHTS = (1.35, 1.9)
+"""... at these heights (metres)."""
+BODY_MAX = 0.35
+"""A close-up where the agent's body covers more than this share of the view is widened
+(`WIDER`), and tried after those where it does not: the hand and the object, not the
+agent's back, fill a close-up."""
+WIDER = (1.5, 2.2)
+"""Factors a close-up's field of view is widened by when the body fills it."""
 
 
 def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
@@ -92,12 +104,32 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
         for it, seen, aimed in plans:
             _pose(scene, timeline, it.peak, data)
             arm = _arm_bodies(scene, it.side)
-            drawn = [(*spare.view(renderer, data, spec, it, arm, seen), n)
-                     for n, (spec, _) in enumerate(aimed)]
-            best = max(drawn, key=lambda d: (_view_score(d[0], d[1], aimed[d[2]][0]), -d[2]))
-            if best[0] >= SEEN_SHARE or best[1]:
-                shots.append(aimed[best[2]][0])
+            best = _best_view(spare, renderer, data, it, arm, seen,
+                              [spec for spec, _ in aimed])
+            if best is not None:
+                shots.append(best)
     return shots
+
+
+def _best_view(spare: _SpareCamera, renderer: Renderer, data: mujoco.MjData,
+               it: Interaction, arm: frozenset[int], seen: int | None,
+               specs: list[CameraSpec]) -> CameraSpec | None:
+    """Of candidate views (drawn small), the one that shows the object and the hand with
+    the body covering at most `BODY_MAX` (a view the body fills is widened first); None
+    when none shows the object (`SEEN_SHARE`) or the hand."""
+    drawn = []
+    for n, spec in enumerate(specs):
+        for factor in (1.0, *WIDER):
+            if factor > 1.0:
+                if spec.fovy >= MAX_FOVY - 1e-6:
+                    break
+                spec = replace(spec, fovy=float(min(spec.fovy * factor, MAX_FOVY)))
+            share, hand, body = spare.view(renderer, data, spec, it, arm, seen)
+            drawn.append((_view_score(share, hand, body, spec), -n, share, hand, spec))
+            if body <= BODY_MAX:
+                break
+    _, _, share, hand, spec = max(drawn, key=lambda d: d[:2])
+    return spec if share >= SEEN_SHARE or hand else None
 
 
 def _seen_part(scene: SceneModel, timeline: Timeline, it: Interaction) -> int | None:
@@ -111,14 +143,16 @@ def _seen_part(scene: SceneModel, timeline: Timeline, it: Interaction) -> int | 
     return screen if switched else None
 
 
-def _view_score(share: float, hand: bool, spec: CameraSpec) -> float:
+def _view_score(share: float, hand: bool, body: float, spec: CameraSpec) -> float:
     """A drawn candidate's worth: first whether the object is seen at all (`SEEN_SHARE`:
-    a view where it hides behind the hand or furniture loses to any that shows it), then
-    the object seen well (up to `GOOD_SHARE`), the hand seen, more of the object; a view
-    too wide to frame them (at `MAX_FOVY`) counts less."""
+    a view where it hides behind the hand or furniture loses to any that shows it) and
+    the body not filling it (`BODY_MAX`), then the object seen well (up to `GOOD_SHARE`),
+    the hand seen, more of the object; a view too wide to frame them (at `MAX_FOVY`)
+    counts less."""
     cramped = spec.fovy >= MAX_FOVY - 1e-6
     seen = share >= SEEN_SHARE
-    return 2.0 * seen + min(share / GOOD_SHARE, 1.0) + 0.5 * hand + share - 0.5 * cramped
+    return (2.0 * seen + 1.5 * (body <= BODY_MAX) + min(share / GOOD_SHARE, 1.0) + 0.5 * hand
+            + share - 0.5 * cramped)
 
 
 class _SpareCamera:
@@ -131,10 +165,10 @@ class _SpareCamera:
 
     def view(self, renderer: Renderer, data: mujoco.MjData, spec: CameraSpec,
              it: Interaction, arm: frozenset[int], seen: int | None = None
-             ) -> tuple[float, bool]:
+             ) -> tuple[float, bool, float]:
         """Drawn from `spec` at the renderer's (small) size: the share of the view the
-        acted-on object covers (only geom `seen` of it, when given), and whether the hand
-        shows (its pixel is on the arm)."""
+        acted-on object covers (only geom `seen` of it, when given), whether the hand
+        shows (its pixel is on the arm), and the share the agent's body covers."""
         m = self.scene.model
         mat = np.stack([spec.xaxis, spec.yaxis, np.cross(spec.xaxis, spec.yaxis)], axis=1)
         quat = np.zeros(4)
@@ -143,8 +177,9 @@ class _SpareCamera:
         mujoco.mj_camlight(m, data)
         renderer.camera_moved(data, 0)  # cull for the candidate, not for camera 0
         ids, _ = renderer.ids_depth(data, 0)
+        nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
+        body = float(np.count_nonzero(nodes == self.scene.character_id)) / ids.size
         if seen is None:
-            nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
             share = float(np.count_nonzero(nodes == it.nodes[0])) / ids.size
         else:
             share = float(np.count_nonzero(ids == seen)) / ids.size
@@ -154,9 +189,9 @@ class _SpareCamera:
                         world_to_cam(data.cam_xpos[0], data.cam_xmat[0]))
         u, v = np.round(uv[0]).astype(int)
         if z[0] <= 0 or not (0 <= u < w and 0 <= v < h) or ids[v, u] < 0:
-            return share, False
+            return share, False, body
         g = int(ids[v, u])
-        return share, int(m.geom_bodyid[g]) in arm
+        return share, int(m.geom_bodyid[g]) in arm, body
 
     def restore(self) -> None:
         m = self.scene.model
@@ -180,19 +215,20 @@ def _positions(scene: SceneModel, room: int | None, subject: np.ndarray) -> list
     blockers = [b for p in scene.layout.parts
                 if p.class_name not in ("floor", "ceiling", "wall", "doorjamb")
                 for b in p.boxes]
-    # Every blocker at once (one array op per position, not one per blocker).
     centers = np.array([b.center for b in blockers]).reshape(-1, 3)
-    reach = np.array([b.half + 0.1 for b in blockers]).reshape(-1, 3)
+    reach = np.array([b.half for b in blockers]).reshape(-1, 3) + 0.1
 
     def fits(pos: np.ndarray) -> bool:
         return (floor is not None and float(np.linalg.norm(pos - subject)) >= MIN_RANGE
                 and bool(np.all(np.abs(pos[:2] - floor.center[:2]) <= floor.half[:2] - 0.2))
-                and not np.any(np.all(np.abs(pos - centers) < reach, axis=1)))
+                and not bool(np.any(np.all(np.abs(pos - centers) < reach, axis=1))))
 
     out = []
+    base = None
     for cam in scene.cameras:
         if cam.room_id != room or cam.shot >= 0:
             continue
+        base = base or cam
         out.append(cam)
         for angle in ORBIT:
             c, s = math.cos(angle), math.sin(angle)
@@ -207,6 +243,11 @@ def _positions(scene: SceneModel, room: int | None, subject: np.ndarray) -> list
                 low = np.r_[pos[:2], min(LOW_HEIGHT, pos[2])]
                 if fits(low):
                     out.append(replace(cam, pos=low))
+    if base is not None:  # a ring around the action, in the room
+        for r, a, z in itertools.product(RING, np.arange(12) * math.pi / 6, RING_HEIGHTS):
+            pos = np.r_[subject[:2] + r * np.array([math.cos(a), math.sin(a)]), z]
+            if fits(pos):
+                out.append(replace(base, pos=pos))
     return out
 
 
@@ -235,13 +276,14 @@ def node_corners(scene: SceneModel, data: mujoco.MjData, node: int) -> np.ndarra
 
 def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
                    data: mujoco.MjData) -> np.ndarray:
-    """What the shot must contain: the hand as it comes to the object; the object at the
+    """What the shot must contain: the hand as it comes to the object (the last quarter of
+    its reach); the object at the
     effect, and at the start of the reach too unless it rides in a hand (a carried
     object's place then would only widen the view); of where it goes (a put's table,
     fridge), the part within `NEAR_DEST` of it."""
     site = scene.hand_sites[it.side]
     pts = []
-    for f in np.linspace((it.start + it.peak) / 2, it.peak, FRAMED).round().astype(int):
+    for f in np.linspace((it.start + 3 * it.peak) / 4, it.peak, FRAMED).round().astype(int):
         _pose(scene, timeline, int(f), data)
         pts.append(data.site_xpos[site].copy()[None])
     for f in (it.start, it.peak):

@@ -40,11 +40,11 @@ from homesim.synth.phrasebook import (
     FIRST_STARTERS,
     LAST_STARTERS,
     LEADS,
-    NAMES,
     OPENERS,
     PHRASINGS,
     STARTERS,
 )
+from homesim.world.class_table import class_row
 
 
 @dataclass(frozen=True)
@@ -241,8 +241,10 @@ def _reorder(parts: list[Clause], rng: random.Random) -> list[Clause]:
 
 # ------------------------------------------------------------------ clauses -> words
 def names_for(class_name: str) -> tuple[str, ...]:
-    """What a description may call an object of this class (``television``: "TV", ...)."""
-    return NAMES.get(class_name, (class_name.replace("_", " "),))
+    """What a description may call an object of this class (``television``: "TV", ...):
+    its class-table row's names, else the class name with spaces."""
+    row = class_row(class_name)
+    return row.names if row is not None and row.names else (class_name.replace("_", " "),)
 
 
 @dataclass

@@ -1,4 +1,5 @@
-"""The words of `homesim.synth.describe`: phrasings per step pattern, names, joins, openers.
+"""The words of `homesim.synth.describe`: phrasings per step pattern, joins, openers (what
+people call each object class is the class table's ``names``, `homesim.world.class_table`).
 
 Phrasings are verb phrases in the base form, so they serve both voices (``grab the cup``,
 ``I grab the cup``). Slots name the objects: ``{x}`` may become a pronoun (``it``) when
@@ -86,52 +87,6 @@ LEADS: tuple[str, ...] = ("go to {x} and", "walk over to {x} and", "find {x} and
                           "walk up to {x} and", "go over to {x} and", "look for {x} and",
                           "make {my} way to {x} and", "get to {x} and")
 """Said before a clause in place of the walk to its object, when the walk is not left out."""
-
-UNITY_NAMES: dict[str, tuple[str, ...]] = {
-    "bathroomcabinet": ("cabinet", "bathroom cabinet"),
-    "bathroomcounter": ("counter", "bathroom counter"), "barsoap": ("soap", "bar of soap"),
-    "bellpepper": ("bell pepper", "pepper"), "breadslice": ("slice of bread", "bread"),
-    "candybar": ("candy bar", "chocolate bar"), "chocolatesyrup": ("chocolate syrup",),
-    "clothespants": ("pants", "trousers"), "clothespile": ("pile of clothes", "clothes"),
-    "clothesshirt": ("shirt",), "coffeemaker": ("coffee maker",),
-    "coffeepot": ("coffee pot",), "coffeetable": ("coffee table",),
-    "condimentbottle": ("sauce bottle", "condiment bottle"),
-    "condimentshaker": ("salt shaker", "shaker"), "cookingpot": ("pot", "cooking pot"),
-    "creamybuns": ("cream buns", "buns"), "cutleryfork": ("fork",),
-    "cutleryknife": ("knife",), "dishbowl": ("bowl",),
-    "dishwashingliquid": ("dish soap", "washing-up liquid"), "facecream": ("face cream",),
-    "fryingpan": ("frying pan", "pan"), "garbagecan": ("garbage can", "trash can", "bin"),
-    "hairproduct": ("hair product",), "kitchencabinets": ("kitchen cabinet", "cabinet"),
-    "kitchencounter": ("counter", "kitchen counter"),
-    "kitchentable": ("kitchen table", "table"), "lightswitch": ("light switch",),
-    "mincedmeat": ("minced meat", "mince"), "mousemat": ("mouse pad", "mousepad"),
-    "oventray": ("oven tray", "baking tray"), "papertray": ("paper tray",),
-    "poundcake": ("pound cake", "cake"), "remotecontrol": ("remote", "remote control"),
-    "stall": ("shower stall", "shower"), "toiletpaper": ("toilet paper",),
-    "towelrack": ("towel rack",), "tvstand": ("TV stand",),
-    "wallphone": ("phone", "wall phone"),
-    "wallpictureframe": ("picture", "painting", "picture frame"),
-    "washingmachine": ("washing machine",), "washingsponge": ("sponge",),
-    "waterglass": ("glass", "water glass"), "whippedcream": ("whipped cream",),
-    "wineglass": ("wine glass", "glass"),
-}
-"""What people call classes only the homes with geometry have (Unity's names, run
-together); a test keeps them out of the trimmed homes, whose synthetic programs and
-descriptions therefore stay as they were."""
-
-NAMES: dict[str, tuple[str, ...]] = {
-    "television": ("TV", "television", "telly"), "tv": ("TV",), "couch": ("sofa", "couch"),
-    "sofa": ("sofa", "couch"), "computer": ("PC", "computer"), "coffe_maker": ("coffee maker",),
-    "tablelamp": ("table lamp", "lamp"), "kitchen_counter": ("counter", "kitchen counter"),
-    "bathroom_counter": ("counter", "bathroom counter"), "wall_clock": ("clock", "wall clock"),
-    "filing_cabinet": ("file cabinet", "filing cabinet"), "home_office": ("office", "home office"),
-    "bookshelf": ("bookshelf", "bookcase"), "drawing": ("picture", "drawing"),
-    "mat": ("mat", "rug"), "phone": ("phone", "cellphone"), "light": ("light", "lights"),
-    "mousepad": ("mouse pad", "mousepad"), "livingroom": ("living room",),
-    "cellphone": ("phone", "cellphone"), "bathroom_cabinet": ("cabinet", "bathroom cabinet"),
-    **UNITY_NAMES,
-}
-"""Class name -> what people call it (else the class name with spaces: ``dining room``)."""
 
 EXTRAS: dict[str, tuple[str, ...]] = {
     "walk_room": ("to look around", "quickly", "slowly"),

@@ -78,17 +78,17 @@ def footprint(box: BoundingBox) -> Rect:
 
 def doorways(graph: EnvironmentGraph) -> list[Rect]:
     """Footprints of the openings between rooms: every door frame, and every door with no
-    frame at its place (generated homes have doors and no frames)."""
+    frame at its place (its footprint within 0.3 m of none)."""
     jambs = [footprint(n.bounding_box) for n in graph.nodes_of_class("doorjamb")
              if n.bounding_box is not None]
     out = list(jambs)
     for door in graph.nodes_of_class("door"):
         if door.bounding_box is None:
             continue
-        x, z = door.bounding_box.center[0], door.bounding_box.center[2]
-        if not any(j[0] - 0.3 <= x <= j[2] + 0.3 and j[1] - 0.3 <= z <= j[3] + 0.3
-                   for j in jambs):
-            out.append(footprint(door.bounding_box))
+        d = footprint(door.bounding_box)
+        if not any(min(d[2], j[2]) - max(d[0], j[0]) > -0.3
+                   and min(d[3], j[3]) - max(d[1], j[1]) > -0.3 for j in jambs):
+            out.append(d)
     return sorted(out)
 
 

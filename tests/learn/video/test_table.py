@@ -54,3 +54,36 @@ def test_train_resume_and_eval_video2prog(tiny_plan, tmp_path):
     assert text.startswith("# Table 3\n") and "Table 2" in text and " ± " in text
     assert "*.528*" in text and "*24.6*" in text  # the paper's PG (LCS+Sim), seen homes
     assert "--plan tiny --n 4" in text and "--seeds 2 --frame-size 32x24" in text
+
+
+def test_settings_file_replaces_fields_and_refuses_unknown_ones(tmp_path):
+    from homesim.errors import HomesimError
+    from homesim.learn.video.table import VideoRunConfig
+
+    path = tmp_path / "settings.json"
+    path.write_text('{"clip_lr": 0.003, "pg_epochs": 4, "clip_hidden": 128, "pg_lr": 1}')
+    cfg = VideoRunConfig("data").with_settings(path)
+    assert (cfg.clip_lr, cfg.pg_epochs, cfg.clip_hidden, cfg.pg_lr) == (0.003, 4, 128, 1)
+    assert cfg.data == "data" and cfg.mle_epochs == VideoRunConfig("data").mle_epochs
+    for text, words in (('{"clip_lrr": 1}', "'clip_lrr' is not a setting"),
+                        ('{"data": "x"}', "'data' is not a setting"),
+                        ('{"pg_epochs": 1.5}', "pg_epochs must be an integer"),
+                        ('[1]', "a JSON object"), ('{', "not a readable JSON")):
+        path.write_text(text)
+        with pytest.raises(HomesimError, match=words):
+            VideoRunConfig("data").with_settings(path)
+
+
+def test_train_subset_is_nested_and_keeps_store_order():
+    from homesim.learn.video.table import train_subset
+
+    class Ep:
+        def __init__(self, key):
+            self.key = key
+
+    eps = [Ep(f"train/ep-{i:06d}") for i in range(40)]
+    quarter, half = train_subset(eps, 0.25), train_subset(eps, 0.5)
+    assert len(quarter) == 10 and len(half) == 20 and train_subset(eps, 1.0) is eps
+    assert {e.key for e in quarter} < {e.key for e in half}
+    assert [e.key for e in half] == sorted(e.key for e in half)  # store order
+    assert {e.key for e in quarter} != {e.key for e in eps[:10]}  # not the first ten

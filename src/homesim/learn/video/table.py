@@ -23,10 +23,11 @@ numbers. ``OUT/train.json`` holds the config, the sizes and each stage's wall ti
 from __future__ import annotations
 
 import copy
+import hashlib
 import json
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -76,13 +77,27 @@ class VideoRunConfig:
     backbone_seed: int = 0
     frame_epochs: int = 6
     frames_per_epoch: int = 60000
+    frame_lr: float = 2e-3
+    frame_dropout: float = 0.3
     seg_epochs: int = 4
     seg_frames_per_epoch: int = 40000
+    seg_width: int = 16
+    seg_lr: float = 2e-3
     clip_epochs: int = 20
+    clip_lr: float = 1e-3
+    clip_feature: int = 128
+    clip_hidden: int = 256
+    clip_dropout: float = 0.3
     mle_epochs: int = 60
+    mle_lr: float = 2e-3
     pg_epochs: int = 10
     batch_size: int = 16
     pg_lr: float = 5e-4
+    sim_weight: float = 0.1
+    """The PG (LCS+Sim) reward's bonus when the program executes (`TrainConfig`)."""
+    train_share: float = 1.0
+    """Share of the training episodes used (a learning curve: the first of them in an
+    order fixed by their keys' hashes, `train_subset`); validation and test unchanged."""
     train_hop: float = C.TRAIN_HOP
     """Seconds between the starts of training clips (overlapping: twice the clips)."""
     word_dim: int = 64
@@ -94,6 +109,27 @@ class VideoRunConfig:
     @property
     def format(self) -> VideoFormat:
         return VideoFormat.parse(self.frame_size, self.fps)
+
+    def with_settings(self, path: Path) -> VideoRunConfig:
+        """These settings with the fields a JSON file names replaced (`--settings`)."""
+        try:
+            given = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as e:
+            raise HomesimError(f"--settings {path}: not a readable JSON file ({e})") from None
+        if not isinstance(given, dict):
+            raise HomesimError(f"--settings {path}: a JSON object of settings, not "
+                               f"{type(given).__name__}")
+        known = {f.name for f in fields(self)} - {"data", "seeds"}
+        for name, value in given.items():
+            if name not in known:
+                raise HomesimError(f"--settings {path}: {name!r} is not a setting of a video "
+                                   "run (the fields of VideoRunConfig but data and seeds)")
+            if not isinstance(value, type(getattr(self, name))) and not (
+                    isinstance(getattr(self, name), float) and isinstance(value, int)):
+                kind = {int: "an integer", float: "a number"}.get(type(getattr(self, name)),
+                                                                  "text")
+                raise HomesimError(f"--settings {path}: {name} must be {kind}, not {value!r}")
+        return replace(self, **given)
 
 
 @dataclass
@@ -109,7 +145,8 @@ class Run:
     seconds: dict[str, float] = field(default_factory=dict)
 
     def episodes(self, role: str) -> list[StoredEpisode]:
-        return [e for p in self.split.parts(role) for e in self.store.part(p)]
+        eps = [e for p in self.split.parts(role) for e in self.store.part(p)]
+        return train_subset(eps, self.config.train_share) if role == "train" else eps
 
     def say(self, line: str) -> None:
         if self.report:
@@ -118,6 +155,18 @@ class Run:
     def timed(self, name: str, start: float) -> None:
         self.seconds[name] = self.seconds.get(name, 0.0) + time.perf_counter() - start
         self.say(f"{name}: {time.perf_counter() - start:.0f} s")
+
+
+def train_subset(episodes: list[StoredEpisode], share: float) -> list[StoredEpisode]:
+    """The first `share` of `episodes` in an order fixed by their keys' hashes (nested:
+    a smaller share's episodes are in every larger one's), in store order."""
+    if share >= 1:
+        return episodes
+    if share <= 0:
+        raise HomesimError(f"train_share {share}: a share in (0, 1]")
+    ranked = sorted(episodes, key=lambda e: hashlib.sha256(e.key.encode()).digest())
+    kept = {e.key for e in ranked[:max(1, round(share * len(episodes)))]}
+    return [e for e in episodes if e.key in kept]
 
 
 def seed_dir(out: Path, seed: int) -> Path:
@@ -166,7 +215,8 @@ def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
     kind = "map" if data.ndim == 3 else "rgb"
     model_cfg = FrameCNNConfig(n[0], n[1], kind, len(run.store.classes),
                                epochs=cfg.frame_epochs, seed=cfg.backbone_seed,
-                               frames_per_epoch=cfg.frames_per_epoch)
+                               frames_per_epoch=cfg.frames_per_epoch, lr=cfg.frame_lr,
+                               dropout=cfg.frame_dropout)
     folder = run.out / "frames"
     folder.mkdir(parents=True, exist_ok=True)
     model, fitted = train_frame_cnn(
@@ -189,7 +239,8 @@ def _segmentation(run: Run) -> np.ndarray:
         return np.load(path, mmap_mode="r")
     start = time.perf_counter()
     cfg, store = run.config, run.store
-    seg_cfg = SegConfig(len(store.classes), epochs=cfg.seg_epochs, seed=cfg.backbone_seed,
+    seg_cfg = SegConfig(len(store.classes), width=cfg.seg_width, epochs=cfg.seg_epochs,
+                        lr=cfg.seg_lr, seed=cfg.backbone_seed,
                         frames_per_epoch=cfg.seg_frames_per_epoch)
     folder = run.out / "frames"
     folder.mkdir(parents=True, exist_ok=True)
@@ -251,8 +302,11 @@ def _clip_models(run: Run, seed: int, labels: C.Labels, features: dict[str, np.n
         if path.is_file():
             continue
         start = time.perf_counter()
+        rc = run.config
         cfg = C.ClipConfig(kind, inp, features[inp].shape[1], len(labels.actions),
-                           len(labels.steps), epochs=run.config.clip_epochs, seed=seed)
+                           len(labels.steps), feature=rc.clip_feature, epochs=rc.clip_epochs,
+                           lr=rc.clip_lr, seed=seed, hidden=rc.clip_hidden,
+                           dropout=rc.clip_dropout)
         model, fitted = C.train_clip_model(cfg, features[inp], train, labels, val,
                                            run.device, path.with_suffix(".ckpt"))
         _save_model(model, path, actions=labels.actions, steps=labels.steps,
@@ -298,7 +352,8 @@ def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> Non
                                       step_dim=cfg.step_dim)
         v2p.features = feats
         best = BestOnDev(v2p, val)
-        mle = TrainConfig(epochs=cfg.mle_epochs, batch_size=cfg.batch_size, seed=seed)
+        mle = TrainConfig(epochs=cfg.mle_epochs, batch_size=cfg.batch_size, lr=cfg.mle_lr,
+                          seed=seed)
         history = train_mle(v2p, train, mle, after_epoch=best if val else None)
         best.restore()
         v2p.meta.update(model="mle", input=inp, history=history, val=best.scores,
@@ -311,7 +366,8 @@ def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> Non
         start = time.perf_counter()
         pg = copy.deepcopy(v2p)
         pg_cfg = TrainConfig(epochs=run.config.pg_epochs, batch_size=run.config.batch_size,
-                             lr=run.config.pg_lr, seed=seed)
+                             lr=run.config.pg_lr, seed=seed,
+                             sim_weight=run.config.sim_weight)
         best = BestOnDev(pg, val, use_sim, pg_cfg.sim_weight)
         if val:
             best(-1)  # the MLE weights are a candidate too (epoch -1)

@@ -18,6 +18,7 @@ LOOKED_AT = frozenset({"tv", "computer", "wallpictureframe", "clock"})
 """What things FACE in the built-in homes."""
 STRUCTURE = {"wall": ("Walls", "PRE_WAL_WAL_Wall_01"), "floor": ("Floor", "Floor"),
              "ceiling": ("Ceiling", "PRE_CEI_Tile_01"), "door": ("Doors", "PRE_DOO_Door_01"),
+             "doorjamb": ("Doors", "PRE_DOO_Doorjamb_01"),
              "window": ("Windows", "PRE_Window_01")}
 
 

@@ -7,6 +7,8 @@
   and the renderer use (`homesim.world.floor`): rooms are joined by doors, every room has
   floor on the home's walkable floor, the character stands on it, and every piece of
   furniture has a standing spot on it (the spot grounding would choose);
+- no room is reachable only through a bathroom (a bathroom is never the way between two
+  other rooms);
 - every object is supported: ON or INSIDE something other than a room;
 - edges agree with the boxes (ON: resting on the top or hung on the face; INSIDE: the
   centre is in the box; CLOSE: the boxes are less than 1.5 m apart; BETWEEN: a door
@@ -105,6 +107,7 @@ def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
 
     doors = [n for n in graph if n.class_name == "door"]
     out = _connected(graph, doors)
+    out += through_bathroom(graph)
     plan = FloorPlan(graph)
     model = plan.model()
     on_main = model.rooms_on_main()
@@ -119,6 +122,28 @@ def _reachable(graph: EnvironmentGraph, fixtures: list[Node]) -> list[str]:
     out += [f"{n.label()} cannot be reached on foot (no free floor to stand at next to it)"
             for n in fixtures if plan.spot_near(n.id) is None]
     return out
+
+
+def through_bathroom(graph: EnvironmentGraph) -> list[str]:
+    """The rooms other than bathrooms that can be reached from the others only through a
+    bathroom (doors joining rooms, bathrooms left out)."""
+    rooms = {r for r in graph.room_ids if graph.node(r).class_name != "bathroom"}
+    if not rooms:
+        return []
+    links: dict[int, set[int]] = {r: set() for r in rooms}
+    for d in graph.nodes_of_class("door"):
+        ends = [r for r in graph.targets(d.id, "BETWEEN") if r in rooms]
+        if len(ends) == 2:
+            links[ends[0]].add(ends[1])
+            links[ends[1]].add(ends[0])
+    seen, todo = set(), [min(rooms)]
+    while todo:
+        r = todo.pop()
+        if r not in seen:
+            seen.add(r)
+            todo.extend(links[r] - seen)
+    return [f"{graph.node(r).label()} can be reached only through a bathroom"
+            for r in sorted(rooms - seen)]
 
 
 def _door_groups(graph: EnvironmentGraph, doors: list[Node]) -> dict[int, set[int]]:

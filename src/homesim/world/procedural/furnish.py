@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from homesim.world.class_table import class_row, classes_where
 from homesim.world.procedural.geometry import (
     DOOR_REACH,
     SLACK,
@@ -24,38 +25,13 @@ from homesim.world.procedural.plan import HEIGHT, Plan
 from homesim.world.procedural.stats import class_info, kind_objects
 from homesim.world.procedural.structure import INWARD, door_rects, side_box
 
-WALL_MOUNTED = frozenset({"lightswitch", "powersocket", "wallpictureframe", "walllamp",
-                          "wallshelf", "towelrack", "clock", "wallphone", "kitchencabinets",
-                          "stovefan", "bathroomcabinet"})
-CEILING_MOUNTED = frozenset({"ceilinglamp"})
-FLOOR_STANDING = frozenset({"coffeetable", "bathroomcounter", "kitchencounter", "closet",
-                            "bookshelf", "cabinet", "garbagecan", "computer"})
-REQUIRED: dict[str, tuple[str, ...]] = {
-    # Classes real programs use most, always present in rooms of these kinds.
-    "living_room": ("sofa", "tvstand", "tv", "coffeetable", "desk", "chair", "computer",
-                    "cpuscreen", "keyboard", "mouse", "remotecontrol", "bookshelf", "book",
-                    "lightswitch", "powersocket", "ceilinglamp"),
-    "kitchen": ("fridge", "stove", "kitchencounter", "sink", "faucet", "kitchencabinets",
-                "dishwasher", "microwave", "coffeemaker", "toaster", "kitchentable", "chair",
-                "plate", "waterglass", "dishwashingliquid", "lightswitch", "ceilinglamp",
-                "cookingpot", "fryingpan", "dishbowl", "cutleryfork", "cutleryknife"),
-    "bedroom": ("bed", "nightstand", "tablelamp", "pillow", "closet", "lightswitch",
-                "ceilinglamp", "book"),
-    "kids_bedroom": ("bed", "nightstand", "lightswitch", "ceilinglamp", "toy"),
-    "bathroom": ("toilet", "bathroomcounter", "sink", "faucet", "washingmachine", "towelrack",
-                 "towel", "toothbrush", "toothpaste", "barsoap", "lightswitch", "ceilinglamp"),
-    "dining_room": ("kitchentable", "chair", "plate", "lightswitch", "ceilinglamp"),
-    "home_office": ("desk", "chair", "computer", "cpuscreen", "keyboard", "mouse",
-                    "lightswitch", "ceilinglamp"),
-    "entrance_hall": ("closet", "lightswitch", "ceilinglamp"),
-}
-ANCHORS = {"chair": ("desk", "kitchentable"), "bench": ("kitchentable",),
-           "coffeetable": ("sofa",), "nightstand": ("bed",), "computer": ("desk",)}
-CENTRE = frozenset({"kitchentable", "coffeetable", "rug"})
 CAP = {"floor": 3, "wall": 4, "ceiling": 2}
 KEEP_OUT = 1.0
 """Depth (m) of the free zone in front of a door."""
 TRIES = 60
+ACROSS_SIDE = 1.5
+"""Metres a piece facing its anchor across the floor may stand to the side of it (a sofa
+still FACES the TV from there)."""
 
 
 @dataclass
@@ -67,30 +43,43 @@ class Entry:
 
 
 def mount_of(cls: str, fitted: str) -> str:
-    if cls in WALL_MOUNTED:
-        return "wall"
-    if cls in CEILING_MOUNTED:
-        return "ceiling"
-    if cls in FLOOR_STANDING:
-        return "floor"
+    """Where a class goes: its class-table row's ``mount`` when it has one, else as
+    fitted from the built-in homes (but what they hang on a wall or ceiling without a
+    mount of its own stands on or in furniture)."""
+    row = class_row(cls)
+    if row is not None and row.mount:
+        return row.mount
     return "item" if fitted in ("wall", "ceiling") else fitted
 
 
+def _tagged(cls: str, tag: str) -> bool:
+    row = class_row(cls)
+    return row is not None and tag in row.tags
+
+
+def anchors_of(cls: str) -> tuple[str, ...]:
+    """The classes a class stands beside (the class table's ``beside``)."""
+    row = class_row(cls)
+    return () if row is None else row.beside
+
+
 def draw_entries(rng: random.Random, kind: str) -> list[Entry]:
-    """What a room of this kind holds: each fitted class with its probability, the
-    `REQUIRED` ones always; counts drawn from those seen."""
-    required = set(REQUIRED.get(kind, ()))
+    """What a room of this kind holds: each fitted class with its probability, those the
+    class table requires in this kind always; counts drawn from those seen."""
+    required = classes_where(required=kind)
     out = []
     for obj in kind_objects(kind):
         cls = obj["class"]
         if cls not in required and rng.random() >= obj["p"]:
             continue
+        row = class_row(cls)
+        if row is not None and row.rooms and kind not in row.rooms and cls not in required:
+            continue  # furniture by room type: no sofa or nightstand in a kitchen
         mount = mount_of(cls, obj["mount"])
         count = rng.choice(obj["counts"])
         if mount in CAP:
             count = min(count, CAP[mount])
-        if cls in ("rug", "tv", "sofa", "bed", "fridge", "stove", "toilet", "desk",
-                   "computer", "kitchentable", "tvstand", "dishwasher", "washingmachine"):
+        if _tagged(cls, "single"):
             count = 1
         out.append(Entry(cls, mount, count, obj["parents"]))
     return out
@@ -181,34 +170,64 @@ class RoomFurnisher:
     def _floor_candidates(self, cls: str, w: float, h: float, d: float
                           ) -> Iterator[tuple[Box3, tuple[float, float]]]:
         rng, r = self.rng, self.interior
-        anchors = [k for k in self.fixtures if self.parts[k].cls in ANCHORS.get(cls, ())]
+        anchors = [k for k in self.fixtures if self.parts[k].cls in anchors_of(cls)]
         for t in range(TRIES):
-            if anchors and t < TRIES // 2:
-                a = self.parts[rng.choice(anchors)].box
-                side = rng.choice(("x0", "x1", "z0", "z1"))
+            if anchors and t < TRIES - 10 and _tagged(cls, "across"):
+                yield self._across(self.parts[rng.choice(anchors)], w, h, d)
+            elif anchors and t < TRIES // 2:
+                anchor = self.parts[rng.choice(anchors)]
+                a = anchor.box
+                side = rng.choice(_ends(anchor) if _tagged(cls, "end") else
+                                  _front(anchor) if _tagged(anchor.cls, "faced") else
+                                  ("x0", "x1", "z0", "z1"))
                 gap = rng.uniform(0.05, 0.25)
                 if side[0] == "x":
-                    z = rng.uniform(a[2], a[5])
+                    z = _along(rng, a[2], a[5], w)
                     x = a[0] - gap - d / 2 if side == "x0" else a[3] + gap + d / 2
                     yield box3(x - d / 2, 0, z - w / 2, x + d / 2, h, z + w / 2), (
                         (1.0, 0.0) if side == "x0" else (-1.0, 0.0))
                 else:
-                    x = rng.uniform(a[0], a[3])
+                    x = _along(rng, a[0], a[3], w)
                     z = a[2] - gap - d / 2 if side == "z0" else a[5] + gap + d / 2
                     yield box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (
                         (0.0, 1.0) if side == "z0" else (0.0, -1.0))
-            elif cls in CENTRE:
+            elif _tagged(cls, "centre"):
                 m = 0.6
                 x = rng.uniform(r[0] + m + w / 2, max(r[0] + m + w / 2, r[2] - m - w / 2))
                 z = rng.uniform(r[1] + m + d / 2, max(r[1] + m + d / 2, r[3] - m - d / 2))
                 yield box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (0.0, 1.0)
             else:
-                side = rng.choice(("x0", "x1", "z0", "z1"))
+                side = rng.choice(self._facing_sides(cls, anchors))
                 lo, hi = (r[1], r[3]) if side[0] == "x" else (r[0], r[2])
                 if hi - lo < w:
                     continue
                 start = rng.uniform(lo, hi - w)
                 yield side_box(r, side, start, start + w, d, 0.0, h), INWARD[side]
+
+    def _facing_sides(self, cls: str, anchors: list[int]) -> tuple[str, ...]:
+        """The walls a piece may stand against: for one that faces its anchor across the
+        floor (`across`), the wall facing the anchor when it has one; else any."""
+        if anchors and _tagged(cls, "across"):
+            n = self.parts[anchors[0]].normal
+            back = [side for side, inward in INWARD.items()
+                    if n is not None and inward == (-n[0], -n[1])]
+            if back:
+                return tuple(back)
+        return ("x0", "x1", "z0", "z1")
+
+    def _across(self, anchor: Part, w: float, h: float, d: float
+                ) -> tuple[Box3, tuple[float, float]]:
+        """A box w wide and d deep facing `anchor` (a sofa facing the TV stand) from
+        1.3-3.2 m in front of it, its front toward the anchor."""
+        a, n = anchor.box, anchor.normal or (0.0, 1.0)
+        gap = self.rng.uniform(1.3, 3.2)
+        if n[0]:  # the anchor faces along x: the box's width runs along z
+            x = (a[3] if n[0] > 0 else a[0]) + n[0] * (gap + d / 2)
+            z = (a[2] + a[5]) / 2 + self.rng.uniform(-ACROSS_SIDE, ACROSS_SIDE)
+            return box3(x - d / 2, 0, z - w / 2, x + d / 2, h, z + w / 2), (-n[0], 0.0)
+        z = (a[5] if n[1] > 0 else a[2]) + n[1] * (gap + d / 2)
+        x = (a[0] + a[3]) / 2 + self.rng.uniform(-ACROSS_SIDE, ACROSS_SIDE)
+        return box3(x - w / 2, 0, z - d / 2, x + w / 2, h, z + d / 2), (0.0, -n[1])
 
     def place_wall(self, cls: str) -> bool:
         info = class_info(cls)
@@ -291,6 +310,33 @@ class RoomFurnisher:
         self.fixtures.append(len(self.parts) - 1)
 
 
+def _along(rng: random.Random, lo: float, hi: float, width: float) -> float:
+    """Where along an anchor's side [lo, hi] a piece `width` wide goes: within the side
+    (its middle when it is the wider)."""
+    if hi - lo <= width:
+        return (lo + hi) / 2
+    return rng.uniform(lo + width / 2, hi - width / 2)
+
+
+def _front(anchor: Part) -> tuple[str, ...]:
+    """The side before a piece's front (a desk's chair stands there)."""
+    n = anchor.normal
+    if n is None:
+        return ("x0", "x1", "z0", "z1")
+    if n[0]:
+        return ("x1",) if n[0] > 0 else ("x0",)
+    return ("z1",) if n[1] > 0 else ("z0",)
+
+
+def _ends(anchor: Part) -> tuple[str, ...]:
+    """The sides at the ends of a piece (not its front or back): where a computer tower
+    stands beside its desk, out of the way of the legs of whoever sits at it."""
+    n = anchor.normal
+    if n is None:
+        return ("x0", "x1", "z0", "z1")
+    return ("z0", "z1") if n[0] else ("x0", "x1")
+
+
 def _side(normal: tuple[float, float] | None) -> str:
     for side, n in INWARD.items():
         if n == normal:
@@ -302,6 +348,17 @@ def _spans(p: Part, side: str, fp: Rect) -> bool:
     if side[0] == "x":
         return p.box[2] <= (fp[1] + fp[3]) / 2 <= p.box[5]
     return p.box[0] <= (fp[0] + fp[2]) / 2 <= p.box[3]
+
+
+def _rank(cls: str) -> int:
+    """Placing order: what a piece faces across the floor first (the TV stand), then that
+    piece (the sofa), then the rest, pieces standing beside others last."""
+    across = classes_where(tags="across")
+    if any(cls in anchors_of(a) for a in across):
+        return 0
+    if cls in across:
+        return 1
+    return 3 if anchors_of(cls) else 2
 
 
 def furnish_room(rng: random.Random, plan: Plan, parts: list[Part], room: int
@@ -316,7 +373,7 @@ def furnish_room(rng: random.Random, plan: Plan, parts: list[Part], room: int
         return -w * d
 
     floor = sorted((e for e in entries if e.mount == "floor"), key=lambda e: (
-        e.cls in ANCHORS, e.cls == "rug", area(e), e.cls))
+        _rank(e.cls), e.cls == "rug", area(e), e.cls))
     for e in floor:
         for _ in range(e.count):
             f.place_floor(e.cls)

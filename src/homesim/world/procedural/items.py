@@ -5,14 +5,11 @@ from __future__ import annotations
 
 import random
 
+from homesim.world.class_table import classes_where
 from homesim.world.classes import ClassKnowledge, class_names_for
 from homesim.world.procedural.furnish import Entry
 from homesim.world.procedural.parts import Part, box3, overlap3
 from homesim.world.procedural.stats import class_info
-
-SURFACE_CLASSES = frozenset({"kitchencounter", "kitchentable", "coffeetable", "desk",
-                             "nightstand", "bathroomcounter", "tvstand", "wallshelf",
-                             "bookshelf", "cabinet"})
 
 
 def place_items(rng: random.Random, parts: list[Part], room: int, entries: list[Entry],
@@ -77,7 +74,8 @@ def _candidates(here: _Room, e: Entry, kb: ClassKnowledge, final: bool
                 if parts[k].cls in names and _may_hold(parts[k].cls, pl.relation)]
     if out:
         return out
-    return [(k, "ON", 1) for k in others if parts[k].cls in SURFACE_CLASSES]
+    surfaces = classes_where(tags="surface")
+    return [(k, "ON", 1) for k in others if parts[k].cls in surfaces]
 
 
 def _may_hold(parent: str, relation: str) -> bool:

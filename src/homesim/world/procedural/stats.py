@@ -21,8 +21,16 @@ def stats() -> dict[str, Any]:
 
 
 def kind_sizes(kind: str) -> list[list[float]]:
-    """Observed (x, z) sizes (m) of rooms of this kind (scaled for derived kinds)."""
+    """Observed (x, z) sizes (m) of rooms of this kind: their floors' extents in the
+    built-in homes (scaled for derived kinds)."""
     return stats()["kinds"][kind]["sizes"]
+
+
+def kind_area(kind: str) -> tuple[float, float]:
+    """The smallest and largest floor area (m2) of rooms of this kind in the built-in
+    homes (scaled for derived kinds)."""
+    lo, hi = stats()["kinds"][kind]["area"]
+    return float(lo), float(hi)
 
 
 def room_class(kind: str) -> str:

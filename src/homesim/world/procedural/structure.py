@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+from homesim.world.doors import door_swing
+from homesim.world.graph import BoundingBox
 from homesim.world.procedural.geometry import Rect
 from homesim.world.procedural.parts import Part, box3
 from homesim.world.procedural.plan import (
@@ -54,12 +56,12 @@ def build_shell(plan: Plan) -> list[Part]:
                                   kind="structure"))
     for d in plan.doors:
         if d.other is not None and d.room < d.other:
-            door = _door(plan, d)
-            parts.append(door)
+            jamb, door = _door(plan, d)
+            parts += [jamb, door]
             # A floor tile across the threshold: walking (and the renderer's grid) needs
             # floor under the doorway, between the two rooms' tiles.
             # It reaches 0.3 m into both rooms so it overlaps their tiles on any grid.
-            db = door.box
+            db = jamb.box
             dx, dz = (0.3, 0.0) if d.side[0] == "x" else (0.0, 0.3)
             parts.append(Part("floor", d.room, box3(db[0] - dx, -0.001, db[2] - dz,
                                                     db[3] + dx, 0.0, db[5] + dz),
@@ -76,7 +78,10 @@ def build_shell(plan: Plan) -> list[Part]:
     return parts
 
 
-def _door(plan: Plan, d: Opening) -> Part:
+def _door(plan: Plan, d: Opening) -> tuple[Part, Part]:
+    """The door frame of an opening (across both rooms' walls) and its door: OPEN, BETWEEN
+    the two rooms, its box the box of its swing into room `d.room`
+    (`homesim.world.doors.door_swing`)."""
     rect = plan.rooms[d.room].rect
     box = side_box(rect, d.side, d.lo, d.hi, WALL, 0.0, DOOR_HEIGHT)
     # The door leaf spans both rooms' walls: extend the box across the boundary.
@@ -87,9 +92,20 @@ def _door(plan: Plan, d: Opening) -> Part:
     else:
         lo[axis] = round(lo[axis] - WALL, 4)
     assert d.other is not None
-    return Part("door", d.room, (lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]),
-                normal=INWARD[d.side], states=("OPEN",), kind="structure",
-                between=(d.room, d.other))
+    frame = (lo[0], lo[1], lo[2], hi[0], hi[1], hi[2])
+    jamb = Part("doorjamb", d.room, frame, normal=INWARD[d.side], kind="structure")
+    inner = plan.rooms[d.room].interior
+    swing = door_swing(_bbox(frame), ((inner[0] + inner[2]) / 2, (inner[1] + inner[3]) / 2))
+    (cx, cy, cz), (sx, sy, sz) = swing.center, swing.size
+    box = (round(cx - sx / 2, 4), round(cy - sy / 2, 4), round(cz - sz / 2, 4),
+           round(cx + sx / 2, 4), round(cy + sy / 2, 4), round(cz + sz / 2, 4))
+    return jamb, Part("door", d.room, box, normal=INWARD[d.side], states=("OPEN",),
+                      kind="structure", between=(d.room, d.other))
+
+
+def _bbox(b: tuple[float, ...]) -> BoundingBox:
+    return BoundingBox(((b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2),
+                       (b[3] - b[0], b[4] - b[1], b[5] - b[2]))
 
 
 def _segments(lo: float, hi: float, gaps: list[tuple[float, float]]
