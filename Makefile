@@ -27,8 +27,11 @@ demo: setup
 	rm -rf out/demo
 	$(BIN)/homesim render --home scene1 --out out/demo --width 320 --height 240 --fps 12 --preview
 
+# The writer's model is fitted once here (a minute; nothing to do when it is there), so that
+# no test and no request of the editor's e2e test pays for a fit.
 test: lint
 	$(BIN)/homesim data fetch
+	$(BIN)/homesim learn fit-writer
 	HOMESIM_REQUIRE_DATA=1 HOMESIM_REQUIRE_E2E=1 $(BIN)/python -m pytest
 
 # Static checks, also the first part of `make test`: ruff, mypy, radon's complexity gate,

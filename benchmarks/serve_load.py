@@ -1,25 +1,33 @@
-"""Small-request latency of ``homesim serve`` while heavy and adversarial clients run.
+"""Small-request latency of ``homesim serve`` at 16 concurrency, alone and beside each
+adversary.
 
-Starts the real server (``homesim serve``: uvicorn, worker processes) in a subprocess on a
-free loopback port, then times small requests (a Check and a Run of "watch TV", 5 steps,
-scene1, alternating) one after another in four scenarios:
+Starts the real server (``homesim serve``: uvicorn, worker pools) in a subprocess on a free
+loopback port. A timing process keeps 16 keep-alive connections busy with small requests
+(a Check and a Run of "watch TV", 5 steps, scene1, alternating; a light asyncio client, so
+the client's own CPU stays small) and times each. Scenarios:
 
 - alone;
-- under 16 clients sending 256 KiB one-line programs back to back;
-- under 48 clients asking for renders (320x240 key frames of "watch TV") and fetching
+- slow clients: 64 clients trickling headers or bodies, one byte every 0.5 s;
+- big bodies: 16 clients sending 256 KiB one-line programs back to back;
+- renders: 48 clients asking for renders (320x240 key frames of "watch TV") and fetching
   their frames;
-- under 64 slow clients trickling headers or bodies, one byte every 0.5 s.
+- 40 writes: 40 clients asking ``POST /api/write`` back to back (the writer's model must
+  be fitted: ``homesim learn fit-writer``; the table says how many were written);
+- 4 gen-N clients: 4 clients each listing the objects of, and running "watch TV" in, a new
+  generated home (``gen-SEED``, seeds counting up) back to back.
 
-The load runs in a separate process, so its threads do not slow the timing client. Prints
-p50/p99 per scenario and each p99's ratio to the p99 alone; the goal is p99 <= 50 ms in
-every scenario. Loopback only; bounded in requests and time; stops by itself.
+Each load runs in its own process. Prints p50/p99/max per scenario and each p99's ratio to
+the p99 alone; the goal is p99 <= 50 ms in every scenario. Loopback only; bounded in
+requests and time; stops by itself. Time it on a quiet machine and say the load.
 
-    nice python benchmarks/serve_load.py [--requests 200] [--warmup 3]
+    nice python benchmarks/serve_load.py [--requests 50] [--warmup 3]
 """
 
 from __future__ import annotations
 
 import argparse
+import asyncio
+import json
 import multiprocessing
 import os
 import socket
@@ -36,8 +44,9 @@ import httpx
 from homesim.examples import DEMO_HOME, load_example
 
 GOAL_MS = 50.0
+CONCURRENCY = 16
 SRC = Path(__file__).resolve().parents[1] / "src"
-LOAD_LIMIT_S = 120.0  # a load process stops by itself after this, whatever happens
+LOAD_LIMIT_S = 180.0  # a load process stops by itself after this, whatever happens
 
 
 def free_port() -> int:
@@ -68,22 +77,26 @@ def _until(stop, seconds: float = LOAD_LIMIT_S) -> Callable[[], bool]:
     return lambda: not stop.is_set() and time.monotonic() < end
 
 
-def _large_client(url: str, running: Callable[[], bool], counts: dict) -> None:
+def _count(counts: dict, key: object) -> None:
+    counts[key] = counts.get(key, 0) + 1
+
+
+def _large_client(url: str, running: Callable[[], bool], counts: dict, i: int) -> None:
     program = "[Walk] <tv> (1) " * (250 * 1024 // 16)  # one line, about 250 KiB
     with httpx.Client(base_url=url, timeout=60) as client:
         while running():
             r = client.post("/api/validate", json={"program": program, "home": DEMO_HOME})
-            counts[r.status_code] = counts.get(r.status_code, 0) + 1
+            _count(counts, r.status_code)
             if r.status_code == 503:
                 time.sleep(0.1)
 
 
-def _render_client(url: str, running: Callable[[], bool], counts: dict) -> None:
+def _render_client(url: str, running: Callable[[], bool], counts: dict, i: int) -> None:
     body = {"program": str(load_example("watch_tv")), "home": DEMO_HOME}
     with httpx.Client(base_url=url, timeout=60) as client:
         while running():
             r = client.post("/api/render", json=body)
-            counts[r.status_code] = counts.get(r.status_code, 0) + 1
+            _count(counts, r.status_code)
             if r.status_code != 202:
                 time.sleep(0.5)
                 continue
@@ -97,31 +110,58 @@ def _render_client(url: str, running: Callable[[], bool], counts: dict) -> None:
                 shown = len(job["frames"])
 
 
-def _slow_client(url: str, running: Callable[[], bool], counts: dict, body: bool) -> None:
+def _slow_client(url: str, running: Callable[[], bool], counts: dict, i: int) -> None:
     port = int(url.rsplit(":", 1)[1])
     start = (b"POST /api/validate HTTP/1.1\r\nHost: 127.0.0.1\r\ncontent-length: 100000\r\n\r\n{"
-             if body else b"GET /api/homes HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")
+             if i % 2 else b"GET /api/homes HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")
     while running():
         try:
             with socket.create_connection(("127.0.0.1", port), timeout=5) as sock:
                 sock.sendall(start)
-                counts["connections"] = counts.get("connections", 0) + 1
+                _count(counts, "connections")
                 while running():
                     time.sleep(0.5)
                     sock.sendall(b"a")
         except OSError:  # the server cut us off: come back
-            counts["cut off"] = counts.get("cut off", 0) + 1
+            _count(counts, "cut off")
+
+
+def _write_client(url: str, running: Callable[[], bool], counts: dict, i: int) -> None:
+    body = {"title": "Watch TV", "description": "Turn on the TV and watch it from the sofa."}
+    with httpx.Client(base_url=url, timeout=120) as client:
+        while running():
+            r = client.post("/api/write", json=body)
+            _count(counts, r.status_code if r.status_code != 200 else "written")
+            if r.status_code == 503:
+                time.sleep(0.2)
+
+
+def _generated_client(url: str, running: Callable[[], bool], counts: dict, i: int) -> None:
+    program = str(load_example("watch_tv"))
+    seed = 1000 + 1000 * i
+    with httpx.Client(base_url=url, timeout=60) as client:
+        while running():
+            home = f"gen-{seed}"
+            seed += 1
+            r = client.get(f"/api/homes/{home}/objects")
+            _count(counts, r.status_code)
+            r = client.post("/api/execute", json={"program": program, "home": home,
+                                                  "ground": True})
+            _count(counts, r.status_code)
+            if r.status_code == 503:
+                time.sleep(0.1)
+
+
+LOADS = {"large": _large_client, "render": _render_client, "slow": _slow_client,
+         "write": _write_client, "generated": _generated_client}
 
 
 def run_load(kind: str, url: str, clients: int, stop, ready, report) -> None:
     """Start `clients` threads of one kind; report what they got when told to stop."""
     running = _until(stop)
     counts: dict = {}
-    targets = {"large": lambda i: _large_client(url, running, counts),
-               "render": lambda i: _render_client(url, running, counts),
-               "slow": lambda i: _slow_client(url, running, counts, body=bool(i % 2))}
-    threads = [threading.Thread(target=targets[kind], args=(i,), daemon=True)
-               for i in range(clients)]
+    threads = [threading.Thread(target=LOADS[kind], args=(url, running, counts, i),
+                                daemon=True) for i in range(clients)]
     for t in threads:
         t.start()
     ready.set()
@@ -132,29 +172,55 @@ def run_load(kind: str, url: str, clients: int, stop, ready, report) -> None:
 
 
 # ------------------------------------------------------------------ timing
-def time_small(url: str, n: int) -> list[float]:
+def _requests() -> list[bytes]:
     text = str(load_example("watch_tv"))
-    requests = [("/api/validate", {"program": text, "home": DEMO_HOME}),
-                ("/api/execute", {"program": text, "home": DEMO_HOME})]
     out = []
-    with httpx.Client(base_url=url, timeout=60) as client:
-        for i in range(n):
-            path, body = requests[i % 2]
-            t0 = time.perf_counter()
-            r = client.post(path, json=body)
-            out.append((time.perf_counter() - t0) * 1000)
-            assert r.status_code == 200, r.text
+    for path, body in (("/api/validate", {"program": text, "home": DEMO_HOME}),
+                       ("/api/execute", {"program": text, "home": DEMO_HOME})):
+        data = json.dumps(body).encode()
+        out.append(f"POST {path} HTTP/1.1\r\nHost: 127.0.0.1\r\ncontent-type: application/"
+                   f"json\r\ncontent-length: {len(data)}\r\n\r\n".encode() + data)
     return out
 
 
-def percentile(values: list[float], q: float) -> float:
+async def _connection(port: int, n: int, offset: int, times: list[float]) -> None:
+    reader, writer = await asyncio.open_connection("127.0.0.1", port)
+    requests = _requests()
+    try:
+        for i in range(n):
+            t0 = time.perf_counter()
+            writer.write(requests[(i + offset) % 2])
+            head = await reader.readuntil(b"\r\n\r\n")
+            length = next(int(line.split(b":")[1]) for line in head.split(b"\r\n")
+                          if line.lower().startswith(b"content-length:"))
+            await reader.readexactly(length)
+            times.append((time.perf_counter() - t0) * 1000)
+            if not head.startswith(b"HTTP/1.1 200"):
+                raise SystemExit(f"a small request failed: {head[:80]!r}")
+    finally:
+        writer.close()
+
+
+def time_small(port: int, n: int) -> list[float]:
+    """`n` small requests on each of `CONCURRENCY` connections at once; milliseconds."""
+    times: list[float] = []
+
+    async def all_of_them() -> None:
+        await asyncio.gather(*(_connection(port, n, c, times) for c in range(CONCURRENCY)))
+
+    asyncio.run(all_of_them())
+    return times
+
+
+def percentile(values: list[float], q: int) -> float:
     return statistics.quantiles(values, n=100, method="inclusive")[q - 1] if len(values) > 1 \
         else values[0]
 
 
 def scenario(url: str, kind: str | None, clients: int, n: int, warmup: float) -> tuple:
+    port = int(url.rsplit(":", 1)[1])
     if kind is None:
-        return time_small(url, n), {}
+        return time_small(port, n), {}
     ctx = multiprocessing.get_context("spawn")
     stop, ready, report = ctx.Event(), ctx.Event(), ctx.Queue()
     load = ctx.Process(target=run_load, args=(kind, url, clients, stop, ready, report),
@@ -163,21 +229,28 @@ def scenario(url: str, kind: str | None, clients: int, n: int, warmup: float) ->
     ready.wait(60)
     time.sleep(warmup)  # let the load reach its steady state
     try:
-        times = time_small(url, n)
+        times = time_small(port, n)
     finally:
         stop.set()
-        counts = report.get(timeout=60)
+        counts = report.get(timeout=120)
         load.join(timeout=30)
         if load.is_alive():
             load.kill()
     return times, counts
 
 
+SCENARIOS = [("alone", None, 0), ("64 slow clients", "slow", 64),
+             ("16 big bodies", "large", 16), ("48 renders", "render", 48),
+             ("40 writes", "write", 40), ("4 gen-N clients", "generated", 4)]
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--requests", type=int, default=200, help="small requests timed")
+    parser.add_argument("--requests", type=int, default=50,
+                        help=f"small requests timed per connection ({CONCURRENCY} at once)")
     parser.add_argument("--warmup", type=float, default=3.0, help="seconds of load first")
     args = parser.parse_args()
+    load_before = os.getloadavg()[0]
     port = free_port()
     server = start_server(port)
     url = f"http://127.0.0.1:{port}"
@@ -185,12 +258,9 @@ def main() -> None:
         # Warm up: the server's start-up thread imports the renderer and starts the fork
         # server of its workers (seconds of CPU); then load the home and fill caches.
         time.sleep(2 * args.warmup)
-        time_small(url, 50)
+        time_small(port, 10)
         rows = []
-        for name, kind, clients in [("alone", None, 0),
-                                    ("16 large programs", "large", 16),
-                                    ("48 renders", "render", 48),
-                                    ("64 slow clients", "slow", 64)]:
+        for name, kind, clients in SCENARIOS:
             times, counts = scenario(url, kind, clients, args.requests, args.warmup)
             rows.append((name, percentile(times, 50), percentile(times, 99), max(times),
                          counts))
@@ -198,12 +268,13 @@ def main() -> None:
         server.terminate()
         server.wait(timeout=15)
     base = rows[0][2]
-    print(f"small requests (Check/Run of watch TV), {args.requests} per scenario, "
-          f"{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.1f}")
-    print(f"{'scenario':<20} {'p50 ms':>7} {'p99 ms':>7} {'max ms':>7} {'p99/alone':>9}  "
+    print(f"small requests (Check/Run of watch TV), {CONCURRENCY} at once, "
+          f"{args.requests * CONCURRENCY} per scenario; {os.cpu_count()} CPUs, load average "
+          f"{load_before:.1f} before, {os.getloadavg()[0]:.1f} after")
+    print(f"{'scenario':<18} {'p50 ms':>7} {'p99 ms':>7} {'max ms':>7} {'p99/alone':>9}  "
           "load answers")
     for name, p50, p99, worst, counts in rows:
-        print(f"{name:<20} {p50:7.1f} {p99:7.1f} {worst:7.1f} {p99 / base:9.2f}  "
+        print(f"{name:<18} {p50:7.1f} {p99:7.1f} {worst:7.1f} {p99 / base:9.2f}  "
               f"{dict(sorted(counts.items(), key=str))}")
     met = all(p99 <= GOAL_MS for _, _, p99, _, _ in rows)
     print(f"goal p99 <= {GOAL_MS:g} ms in every scenario: {'met' if met else 'NOT met'}")

@@ -46,7 +46,8 @@ def tiny_home() -> EnvironmentGraph:
 @pytest.fixture(scope="session")
 def shared_data() -> Path:
     if not SHARED_DATA.is_dir():
-        pytest.skip(f"shared data not found at {SHARED_DATA}")
+        pytest.skip(f"shared data not found at {SHARED_DATA} (see the README: seven tests "
+                    "need ../shared/data/virtualhome)")
     return SHARED_DATA
 
 

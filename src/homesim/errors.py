@@ -21,6 +21,16 @@ def excerpt(text: str, limit: int = EXCERPT_CHARS) -> str:
     return text if len(text) <= limit else text[:limit] + "…"
 
 
+def one_line(text: str, limit: int = EXCERPT_CHARS) -> str:
+    """`text` with its whitespace runs (line breaks too) folded to one space, cut as
+    `excerpt` does: a message quoting another library's error stays one line.
+
+    >>> one_line("a\\n  b", 3)
+    'a b'
+    """
+    return excerpt(" ".join(text.split()), limit)
+
+
 class HomesimError(Exception):
     """Base class of every error homesim raises on bad input."""
 

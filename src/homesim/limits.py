@@ -58,8 +58,20 @@ scored."""
 MAX_GRAPH_BYTES = 256 * 1024 * 1024
 """Largest environment graph file (bytes of JSON, after gunzip)."""
 
+MAX_DATA_FILE_BYTES = 256 * 1024 * 1024
+"""Largest other input file: a JSONL data set of programs, a file of plans to score, a
+data set's json (``dataset.json``, a shard's json), in bytes."""
+
 MAX_JSON_DEPTH = 32
 """Deepest nesting of JSON arrays and objects in a graph or request (a graph needs 4)."""
+
+MAX_NODE_ID = 2**31 - 1
+"""Largest node id of a graph (ids index 32-bit arrays in render: segmentation, MuJoCo
+names); ids are at least 0."""
+
+MAX_RENDER_NODES = 4000
+"""Most nodes of a home that is rendered (an apartment has ~450): MuJoCo compiles the scene
+in one call that cannot be interrupted, minutes for tens of thousands of boxes."""
 
 MAX_COORD = 1.0e4
 """Largest absolute bounding-box coordinate, in metres."""
@@ -114,6 +126,9 @@ MAX_WALK_CELLS = 16_000_000
 400 m x 400 m; an apartment has ~30 000). A home spread wider is refused before the grid
 is allocated (a 1 byte per cell array)."""
 
+MAX_EPISODES = 1_000_000
+"""Most episodes of one activity video data set (``homesim dataset generate --n``)."""
+
 RENDER_WORKERS = 1
 """Render requests that run at the same time (each holds an OpenGL context)."""
 
@@ -139,6 +154,24 @@ PROGRAM_WORKERS = 1
 
 PROGRAM_QUEUE = 8
 """Large-program requests that may wait for a program worker; more are refused with 503."""
+
+PROGRAM_TIMEOUT_S = 30.0
+"""Longest a program worker may take for one request (a large program, or any request on
+a generated home) before it is killed and the client told so."""
+
+WORKER_MEMORY_BYTES = 3 * 1024**3
+"""Memory (``RLIMIT_DATA``) of each of the server's worker processes: program workers,
+writer workers and render jobs. A job needing more fails with one line."""
+
+WRITE_WORKERS = 1
+"""Worker processes that write programs for descriptions (``POST /api/write``); each keeps
+the writer's model loaded."""
+
+WRITE_QUEUE = 4
+"""Write requests that may wait for a writer worker; more are refused with 503."""
+
+WRITE_TIMEOUT_S = 60.0
+"""Longest one write may take (the model loaded: about a second; loading it: seconds)."""
 
 LARGE_BODIES_AT_ONCE = 1
 """Requests with bodies over `INLINE_PROGRAM_CHARS` bytes that the server reads and answers

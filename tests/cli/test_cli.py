@@ -176,3 +176,28 @@ def test_help_has_no_hard_line_breaks_or_rst(command, capsys, monkeypatch):
                    if (c.name or c.callback.__name__) == name)
         for paragraph in tidy_help(cmd.help).split("\n\n"):
             assert paragraph.replace("\\[", "[") in out  # rich prints \[ as [
+
+
+@pytest.mark.parametrize("args", [
+    ["run", "{dev}", "--home", "scene1"],
+    ["run", "{fifo}", "--home", "scene1"],
+    ["run", "{program}", "--graph", "{dev}"],
+    ["run", "{program}", "--graph", "{fifo}"],
+    ["goals", "check", "{dev}", "--task", "27_2"],
+    ["eval", "plans", "{fifo}"],
+])
+def test_devices_and_fifos_are_refused_at_once(tmp_path, capsys, args):
+    """D2: /dev/zero was read until the OOM killer came; a FIFO without a writer hung."""
+    import os
+    import time
+
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    program = tmp_path / "p.txt"
+    program.write_text("[Walk] <tv> (1)\n")
+    names = {"dev": "/dev/zero", "fifo": str(fifo), "program": str(program)}
+    t0 = time.monotonic()
+    assert main([a.format(**names) for a in args]) == 2
+    assert time.monotonic() - t0 < 5
+    err = capsys.readouterr().err
+    assert "not a regular file" in err and "\n" not in err.strip()

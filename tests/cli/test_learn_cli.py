@@ -71,7 +71,7 @@ def writer_on_small_data(small_writer, monkeypatch):
     """`homesim learn write` answers with the small writer (not one fitted on all 518)."""
     from homesim.learn.rerank import program_writer as writer
 
-    monkeypatch.setattr(writer, "real_writer", lambda: small_writer)
+    monkeypatch.setattr(writer, "real_writer", lambda fit=True: small_writer)
     return small_writer
 
 
@@ -109,3 +109,22 @@ def test_write_reads_the_description_from_stdin(writer_on_small_data, monkeypatc
     assert main(["learn", "write", "-", "--title", "Turn on light"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("Turn on light\nSwitch on the light.\n\n[") and "<light>" in out
+
+
+def test_write_bad_text_is_refused_before_the_model_loads(monkeypatch, capsys, tmp_path):
+    """D12: ``homesim learn write $'\\xff tv'`` (a byte not UTF-8: a lone surrogate in
+    argv) exited 70, and only after the writer was loaded or fitted."""
+    from homesim.learn.rerank import program_writer
+
+    def no_model(fit=True):
+        raise AssertionError("the model was loaded for a text that is refused")
+
+    monkeypatch.setattr(program_writer, "real_writer", no_model)
+    assert main(["learn", "write", "\udcff tv"]) == 2
+    assert "description: not valid text" in capsys.readouterr().err
+    assert main(["learn", "write", "tv", "--title", "\ud800"]) == 2
+    assert "title: not valid text" in capsys.readouterr().err
+    out = tmp_path / "x.txt"
+    out.write_text("keep")
+    assert main(["learn", "write", "watch tv", "--out", str(out)]) == 2
+    assert "pass --force" in capsys.readouterr().err and out.read_text() == "keep"

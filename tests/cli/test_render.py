@@ -84,3 +84,64 @@ def test_a_grounded_program_naming_nodes_of_another_class_is_refused(tmp_path, c
     assert code == 2
     err = " ".join(capsys.readouterr().err.split())
     assert "step 1 [Walk] <tv> (1.410): <tv> (1) is node 410, a light, not a tv" in err
+
+
+def _rendering(parent, name="rec"):
+    """The temporary folder of a render to parent/name, once it holds a frame."""
+    for d in parent.glob(f".homesim-render-{name}-*"):
+        frames = d / "frames"
+        if frames.is_dir() and any(frames.iterdir()):
+            return d
+    return None
+
+
+@pytest.mark.parametrize("signum", ["SIGINT", "SIGTERM", "SIGKILL"])
+def test_an_interrupted_render_leaves_nothing_that_blocks_a_rerun(tmp_path, signum, capsys):
+    """D6: Ctrl-C left video.mp4 with 239 of 401 frames and frames/ without meta.json, and
+    the folder was then refused ("already holds a recording"); SIGKILL left a 48-byte
+    undecodable video.mp4."""
+    import signal
+
+    from homesim.render import gl_available, load_recording
+    from tests.cli.subprocess_cli import start_cli, wait_for
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    out = tmp_path / "rec"
+    args = ["render", "--home", "scene1", "--out", str(out), "--width", "32", "--height",
+            "24", "--fps", "30"]
+    proc = start_cli(args)
+    wait_for(lambda: _rendering(tmp_path) is not None, proc, timeout=240)
+    proc.send_signal(getattr(signal, signum))
+    proc.communicate(timeout=60)
+    assert proc.returncode in (128 + getattr(signal, signum), -signal.SIGKILL)
+    assert not out.exists()
+    left = [p.name for p in tmp_path.iterdir()]
+    if signum == "SIGKILL":  # no clean-up is possible; the next render removes it
+        assert len(left) == 1 and left[0].startswith(".homesim-render-rec-p")
+    else:
+        assert left == []
+    assert main([*args[:-2], "--fps", "2"]) == 0  # the same folder, at once
+    assert load_recording(out).num_frames > 0
+    assert [p.name for p in tmp_path.iterdir()] == ["rec"]  # SIGKILL's leftover is gone
+
+
+def test_render_into_an_empty_or_other_folder(tmp_path, graph_file):
+    from homesim.render import gl_available, load_recording
+
+    if not gl_available():
+        pytest.skip("no OpenGL context")
+    prog = tmp_path / "p.txt"
+    prog.write_text("[Walk] <tv> (22)\n")
+    args = ["render", str(prog), "--graph", str(graph_file), "--width", "32", "--height",
+            "24", "--fps", "5"]
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert main([*args, "--out", str(empty)]) == 0 and load_recording(empty).num_frames > 0
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "notes.txt").write_text("mine")
+    assert main([*args, "--out", str(other)]) == 0 and load_recording(other).num_frames > 0
+    assert (other / "notes.txt").read_text() == "mine"
+    assert main([*args, "--out", str(other)]) == 2  # a recording is never replaced
+    assert not any(p.name.startswith(".homesim-") for p in tmp_path.iterdir())

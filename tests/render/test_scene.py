@@ -24,3 +24,23 @@ def test_scene_maps_every_geom_to_a_node_and_class(box_home):
 def test_trimmed_home_without_geometry_is_refused(tiny_home):
     with pytest.raises(HomesimError, match="no floor boxes"):
         build_scene(tiny_home, AGENTS["male1"])
+
+
+def test_a_home_over_the_node_limit_is_refused_before_compiling(box_home):
+    """D11: a 100 000-node home made MuJoCo compile for 15+ min, deaf to SIGTERM."""
+    import time
+
+    from homesim.errors import LimitError
+    from homesim.limits import MAX_RENDER_NODES
+    from homesim.world.graph import EnvironmentGraph
+
+    data = box_home.to_dict()
+    first = max(n["id"] for n in data["nodes"]) + 1
+    data["nodes"] += [{"id": first + i, "class_name": "cup",
+                       "bounding_box": {"center": [0, 0.5, 0], "size": [0.1, 0.1, 0.1]}}
+                      for i in range(MAX_RENDER_NODES)]
+    big = EnvironmentGraph.from_dict(data)
+    t0 = time.monotonic()
+    with pytest.raises(LimitError, match="over the limit of 4,000 for rendering"):
+        build_scene(big, AGENTS["male1"])
+    assert time.monotonic() - t0 < 1

@@ -29,3 +29,10 @@ def test_configured_names_and_any(watch_tv):
     assert lan.get("/api/homes", headers={"host": "localhost"}).status_code == 400
     anyone = TestClient(create_app(allowed_hosts=["*"]), base_url="http://evil.example")
     assert anyone.get("/api/homes").status_code == 200
+
+
+@pytest.mark.parametrize("host", ["[::1]evil.com", "[::1]:8000evil", "localhost:evil",
+                                  "localhost:8000:1", "[::1]]", "[::1", "localhost:"])
+def test_a_loopback_name_with_something_after_it_is_refused(client, host):
+    """D16: ``Host: [::1]evil.com`` was served (the name was cut at the bracket)."""
+    assert client.get("/api/homes", headers={"host": host}).status_code == 400

@@ -246,6 +246,19 @@ def test_video_request_fps_is_bounded(watch_tv):
         assert client.app.state.renders.jobs == {}
 
 
+@pytest.mark.parametrize(("width", "height"), [(17, 16), (16, 17)])
+def test_a_video_of_odd_sides_is_refused_before_it_is_queued(watch_tv, width, height):
+    """D15: width 17 was accepted (202) and the job then failed with 422."""
+    with _client(source=coloured_frames, video_source=fake_video) as client:
+        r = client.post("/api/render/video", json={
+            "program": watch_tv, "home": "scene1", "width": width, "height": height})
+        assert r.status_code == 422 and "must be even" in r.json()["error"]["message"]
+        assert client.app.state.renders.jobs == {}
+        r = client.post("/api/render", json={  # key frames are PNGs: any side will do
+            "program": watch_tv, "home": "scene1", "width": width, "height": height})
+        assert r.status_code == 202
+
+
 @pytest.mark.render
 def test_video_with_the_real_renderer_is_a_playable_mp4(watch_tv, tmp_path):
     gl = pytest.importorskip("homesim.render.gl")

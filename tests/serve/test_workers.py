@@ -8,9 +8,10 @@ import time
 import pytest
 
 from homesim.limits import INLINE_PROGRAM_CHARS
+from homesim.serve.pool import ProgramPool
 from homesim.serve.programs import validate
 from homesim.serve.schemas import ProgramRequest
-from homesim.serve.workers import ProgramPool, answer_in_worker
+from homesim.serve.workers import answer_in_worker
 
 
 def test_a_large_program_is_answered_by_a_worker_like_a_small_one(client):

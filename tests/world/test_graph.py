@@ -59,6 +59,9 @@ def broken(mutate):
          r"edges\[14\]: unknown relation 'NEAR'"),
         (broken(lambda d: d["nodes"][3].update(id="11")), r"nodes\[3\]: 'id' must be an integer"),
         (broken(lambda d: d["nodes"][3].update(id=True)), r"'id' must be an integer"),
+        (broken(lambda d: d["nodes"][3].update(id=2**31)),  # D10: OverflowError in render
+         r"nodes\[3\]: 'id' 2147483648 is outside 0..2147483647 \(MAX_NODE_ID"),
+        (broken(lambda d: d["nodes"][3].update(id=-1)), r"'id' -1 is outside 0.."),
         (broken(lambda d: d["nodes"][3].update(states="OPEN")),
          r"nodes\[3\] \(id 11\): 'states' must be a list of strings"),
         (broken(lambda d: d["nodes"][3].update(class_name="")), r"'class_name' must be a non-empty"),
@@ -98,7 +101,7 @@ def test_broken_files(tmp_path):
         EnvironmentGraph.load(tmp_path / "missing.json")
     big = tmp_path / "big.json"
     big.write_text(json.dumps(tiny_home_dict()))
-    with pytest.raises(GraphError, match=r"over the 0 MiB limit"):
+    with pytest.raises(GraphError, match=r"over the limit of 10 bytes for a graph \(MAX_GRAPH_BYTES\)"):
         EnvironmentGraph.load(big, max_bytes=10)
     binary = tmp_path / "bin.json"
     binary.write_bytes(b"\xff\xfe\x00garbage")

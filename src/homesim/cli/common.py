@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 from rich.console import Console
 
-from homesim.errors import HomesimError, LimitError
+from homesim.errors import HomesimError
+from homesim.files import read_text_limited
 from homesim.limits import MAX_PROGRAM_BYTES
 from homesim.program.model import Program
 from homesim.program.parse import parse_program
@@ -28,18 +28,7 @@ def read_program(path: str) -> Program:
         except UnicodeDecodeError:
             raise HomesimError(f"{source}: not UTF-8 text") from None
     else:
-        p = Path(path)
-        try:
-            size = p.stat().st_size
-            if size > MAX_PROGRAM_BYTES:
-                raise LimitError(f"{path}: file of {size} bytes, over the limit of "
-                                 f"{MAX_PROGRAM_BYTES // 1024} KiB for a program "
-                                 "(MAX_PROGRAM_BYTES)", "MAX_PROGRAM_BYTES")
-            text = p.read_text(encoding="utf-8")
-        except UnicodeDecodeError:
-            raise HomesimError(f"{path}: not UTF-8 text") from None
-        except OSError as e:
-            raise HomesimError(f"{path}: cannot read program ({e.strerror})") from None
+        text = read_text_limited(path, MAX_PROGRAM_BYTES, "MAX_PROGRAM_BYTES", "program")
         source = path
     return parse_program(text, source=source)
 

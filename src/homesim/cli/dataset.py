@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.markup import escape
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
@@ -133,7 +134,8 @@ def _generate_one(config, out: Path, workers: int, ray_address: str | None, t0: 
             _advance(bar, task, done, total, outcome)
 
         return generate_dataset(config, out, workers=workers, ray_address=ray_address,
-                                progress=progress)
+                                progress=progress, notice=lambda line: bar.console.print(
+                                    f"note: {escape(line)}"))
 
 
 def _generate_plan(name: str, config, out: Path, workers: int, ray_address: str | None,
@@ -159,13 +161,14 @@ def replay(
     root: Annotated[Path, typer.Argument(help="Data set folder.")],
     key: Annotated[str, typer.Argument(help="Episode key (ep-000042) or index.")],
     out: Annotated[Path, typer.Option(help="Tar file to write the episode to.")],
+    force: Annotated[bool, typer.Option(help="Replace --out if it exists.")] = False,
 ) -> None:
     """Render one episode again from its recorded choices and say whether its bytes equal
-    the stored ones."""
+    the stored ones. OUT is written only when the episode is made."""
     from homesim.dataset.replay import replay_from_dataset
     from homesim.dataset.spec import FORMAT
 
-    outcome, recorded = replay_from_dataset(root, key, out)
+    outcome, recorded = replay_from_dataset(root, key, out, force)
     expected = recorded.sha256
     if not outcome.ok:
         raise HomesimError(f"{outcome.key}: failed again ({outcome.stage}: {outcome.reason})")
@@ -184,7 +187,7 @@ def replay(
 def verify(root: Annotated[Path, typer.Argument(help="Data set folder, or a plan folder "
                                                    "(every part is verified).")]) -> None:
     """Check every shard's checksum, every episode's checksum and frame counts, and the
-    manifest."""
+    manifest; each fault found is one line naming the file (and member)."""
     from homesim.dataset.plan import read_plan
     from homesim.dataset.verify import verify_dataset
 
@@ -193,8 +196,8 @@ def verify(root: Annotated[Path, typer.Argument(help="Data set folder, or a plan
     problems = 0
     for folder in folders:
         report = verify_dataset(folder)
-        for p in report.problems[:20]:
-            console.print(f"[red]problem[/]: {p}", markup=True)
+        for p in report.problems:
+            console.print(f"[red]problem[/]: {escape(p)}")
         problems += len(report.problems)
         if not report.problems:
             console.print(f"[green]ok[/]: {folder}: {report.shards} shards, "

@@ -12,8 +12,8 @@ from rich.table import Table
 
 from homesim.cli.common import console, read_graph, read_program
 from homesim.errors import DataError, HomesimError
-from homesim.files import check_target, write_text
-from homesim.limits import MAX_PLAN_DEPTH, deeper_than
+from homesim.files import check_target, read_text_limited, write_text
+from homesim.limits import MAX_DATA_FILE_BYTES, MAX_PLAN_DEPTH, deeper_than
 from homesim.world.graph import EnvironmentGraph
 
 if TYPE_CHECKING:
@@ -165,10 +165,11 @@ def _read_plans(path: Path) -> list:
     too_deep = DataError(f"{path}: nested deeper than {MAX_PLAN_DEPTH} levels "
                          "(MAX_PLAN_DEPTH); expected a JSON list of {identifier, llm_output}")
     try:
-        records = json.loads(path.read_text(encoding="utf-8"))
+        records = json.loads(read_text_limited(path, MAX_DATA_FILE_BYTES,
+                                               "MAX_DATA_FILE_BYTES", "plans"))
     except RecursionError:  # deeper than the parser goes
         raise too_deep from None
-    except (OSError, ValueError) as e:
+    except ValueError as e:
         raise DataError(f"{path}: cannot read plans ({e})") from None
     if deeper_than(records, MAX_PLAN_DEPTH):
         raise too_deep

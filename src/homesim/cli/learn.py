@@ -455,6 +455,28 @@ def rules(
                   f"{len(scores)} programs, {exact} exact; parsing took {seconds:.1f} s")
 
 
+@app.command("fit-writer")
+def fit_writer() -> None:
+    """Fit the program writer's model on the real programs once (needs 'homesim data
+    fetch'; about a minute on an idle machine) and keep it in the data directory, where
+    'homesim learn write' and the editor's Write button ('POST /api/write', which never
+    fits it) read it. Does nothing when it is there already."""
+    import time
+
+    from homesim.learn.rerank import program_writer
+
+    t0 = time.perf_counter()
+    try:
+        program_writer.real_writer(fit=False)
+        console.print("the program writer's model is there already")
+        return
+    except program_writer.WriterNotFitted:
+        pass
+    program_writer.real_writer(fit=True)
+    console.print(f"[green]ok[/]: the program writer's model fitted in "
+                  f"{time.perf_counter() - t0:.0f} s")
+
+
 @app.command("write")
 def write(
     description: Annotated[str, typer.Argument(
@@ -473,20 +495,28 @@ def write(
     seed: Annotated[int, typer.Option(help="Seed of preparation and grounding.")] = 0,
 ) -> None:
     """Write a program for a description with the reranker fitted on the real programs
-    (needs 'homesim data fetch'; the first call fits it, about half a minute) and run it in
-    the home: prints the program (ungrounded, as 'homesim run' reads it)."""
+    (needs 'homesim data fetch'; 'homesim learn fit-writer' fits it once, about a minute on
+    an idle machine, else the first call does) and run it in the home: prints the program
+    (ungrounded, as 'homesim run' reads it)."""
     import json
     import sys
 
     from homesim.cli.common import err_console, read_graph
     from homesim.examples import DEMO_HOME
-    from homesim.learn.rerank.program_writer import write_program
+    from homesim.learn.rerank import program_writer
 
     if description == "-":
         description = sys.stdin.read(MAX_DESCRIPTION_CHARS + 1)
     target = check_target(out, force) if out is not None else None
     g, gname = read_graph(graph, home, DEMO_HOME)
-    written = write_program(description, g, title=title, seed=seed)
+    program_writer.check_text("description", description)
+    program_writer.check_title(title)
+    try:
+        program_writer.real_writer(fit=False)
+    except program_writer.WriterNotFitted:
+        err_console.print(f"fitting the program writer's model first (once; "
+                          f"'{program_writer.FIT_STEP}' does it ahead)", markup=False)
+    written = program_writer.write_program(description, g, title=title, seed=seed)
     if target is not None:
         write_text(target, str(written.program) + "\n", force=force)
     if as_json:

@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import multiprocessing.util
 import os
+import shutil
 import signal
 import sys
-from typing import Annotated
+import tempfile
+from pathlib import Path
+from typing import Annotated, Any
 
 import typer
 
 from homesim.cli.common import console
 from homesim.errors import HomesimError
+from homesim.processes import Reaper
 
 LOOPBACK = "127.0.0.1"
 
@@ -44,7 +49,7 @@ def serve(
 
         from homesim.serve import create_app
         from homesim.serve.hosts import LOOPBACK_HOSTS
-        from homesim.serve.server import uvicorn_config
+        from homesim.serve.renders import RenderJobs
         from homesim.serve.static import BUILD_HINT, default_static_dir, is_built
     except ModuleNotFoundError as e:
         # No brackets in the text: the CLI prints errors as rich markup.
@@ -57,7 +62,23 @@ def serve(
     console.print(f"homesim editor on [bold]http://{host}:{port}/[/] (API docs at /docs); "
                   "Ctrl-C stops it")
     hosts = allowed_host or [*LOOPBACK_HOSTS, *served_names(host)]
-    app = create_app(allowed_hosts=hosts)
+    # Killed with SIGKILL, the server runs no clean-up: the reaper then stops its workers
+    # (fork server, resource tracker, render and pool workers) and removes the frames.
+    with Reaper() as reaper:
+        frames = Path(tempfile.mkdtemp(prefix="homesim-render-"))
+        reaper.remove_on_death(frames)
+        reaper.remove_on_death(multiprocessing.util.get_temp_dir())  # the fork server's
+        try:
+            _run(uvicorn, create_app(allowed_hosts=hosts, render_jobs=RenderJobs(root=frames)),
+                 host, port, log_level, reaper)
+        finally:
+            shutil.rmtree(frames, ignore_errors=True)
+
+
+def _run(uvicorn: Any, app: Any, host: str, port: int, log_level: str, reaper: Reaper
+         ) -> None:
+    from homesim.serve.server import uvicorn_config
+
     server = uvicorn.Server(uvicorn_config(app, host, port, log_level))
     try:
         server.run()
@@ -66,16 +87,18 @@ def serve(
     except (SystemExit, KeyboardInterrupt) as e:  # uvicorn re-raises SIGTERM / Ctrl-C
         if server.started:
             exit_now(128 + signal.SIGINT if isinstance(e, KeyboardInterrupt)
-                     else e.code if isinstance(e.code, int) else 1)
+                     else e.code if isinstance(e.code, int) else 1, reaper)
         raise
     if server.started:
-        exit_now(0)
+        exit_now(0, reaper)
 
 
-def exit_now(code: int) -> None:
+def exit_now(code: int, reaper: Reaper | None = None) -> None:
     """End a server that has shut down (workers stopped, frames deleted) without the
     interpreter's teardown of its ~800 modules (mujoco, numpy, ...), which takes 0.5-3 s
     on a busy machine and would make a stop slower than `SHUTDOWN_GRACE_S` promises."""
+    if reaper is not None:
+        reaper.close()
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(code)

@@ -136,8 +136,9 @@ each other over small frames. The pixels are the same."""
 
 
 def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> Outcome:
-    """Make the episode and write it as a tar at `path` (atomically); a failure is an
-    `Outcome` with its reason, never an exception (Ctrl-C and kills still stop it)."""
+    """Make the episode and write it as a tar at `path` (atomically: a failure leaves
+    `path` as it was); a failure is an `Outcome` with its reason, never an exception
+    (Ctrl-C and kills still stop it)."""
     os.environ.setdefault("LP_NUM_THREADS", RASTER_THREADS)
     t0 = time.perf_counter()
     try:
@@ -150,8 +151,6 @@ def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> 
     except Exception as e:  # a bug of ours: record it, keep the run going
         outcome = Outcome(spec.key, spec.index, False, "internal",
                           _one_line(f"{type(e).__name__}: {e}"))
-    if not outcome.ok:
-        path.unlink(missing_ok=True)
     return Outcome(**{**outcome.__dict__, "seconds": time.perf_counter() - t0})
 
 

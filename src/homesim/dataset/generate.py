@@ -3,13 +3,17 @@
 Resumable and exact: each episode's choices come from the seed and its index alone, each
 file is written atomically, and a restart with the same options skips what is done (shards
 whose checksum matches, staged episodes whose members hash as recorded). So a run killed at
-any point and restarted gives the same bytes as a run never stopped.
+any point and restarted, at once or later, gives the same bytes as a run never stopped.
+
+Options, homes and programs are checked before the folder is touched: a mistyped command
+leaves nothing that would block the corrected one.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Generator, Sequence
+from contextlib import closing
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -18,7 +22,7 @@ from homesim.dataset.episode import Outcome, write_episode_file
 from homesim.dataset.layout import Layout, dumps, shard_name
 from homesim.dataset.manifest import write_manifest
 from homesim.dataset.plan import PLAN_FILE, Plan, part_configs, plan_record
-from homesim.dataset.runners import RayOptions, ray_outcomes, serial_outcomes
+from homesim.dataset.runners import Notice, RayOptions, ray_outcomes, serial_outcomes
 from homesim.dataset.spec import FORMAT, DatasetConfig, EpisodeSpec, plan_episodes
 from homesim.errors import DataError, HomesimError
 from homesim.files import write_text
@@ -56,15 +60,15 @@ def check_homes(homes: Sequence[str]) -> None:
         open_home(home)
 
 
-def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
-    """(id, text) of the config's programs: ``synth`` samples `n` from the grammar with the
-    config's seed, drawing each in one of its homes; else a data set file (JSONL), a folder
-    of program files or one program file."""
+def load_programs(config: DatasetConfig, count: int | None = None) -> list[tuple[str, str]]:
+    """(id, text) of the config's programs: ``synth`` samples `n` (or the first `count`)
+    from the grammar with the config's seed, drawing each in one of its homes; else a data
+    set file (JSONL), a folder of program files or one program file."""
     if config.programs == "synth":
         from homesim.synth import generate
 
         return [(p.id, str(p.program))
-                for p in generate(config.n, config.seed, homes=config.homes)]
+                for p in generate(count or config.n, config.seed, homes=config.homes)]
     from homesim.knowledge.datasets import ActivityDataset
 
     source = config.programs
@@ -73,7 +77,7 @@ def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
         ds = ActivityDataset.from_folder(path)
     elif path.suffix == ".jsonl":
         ds = ActivityDataset.from_jsonl(path)
-    elif path.is_file():
+    elif path.exists():  # a file, or something else: read_limited says what
         ds = ActivityDataset.from_file(path)
     else:
         raise HomesimError(f"--programs {source}: no such file or folder (or 'synth')")
@@ -81,25 +85,35 @@ def load_programs(config: DatasetConfig) -> list[tuple[str, str]]:
 
 
 def generate_dataset(config: DatasetConfig, out: str | Path, *, workers: int = 2,
-                     ray_address: str | None = None, progress: Progress | None = None
-                     ) -> Summary:
+                     ray_address: str | None = None, progress: Progress | None = None,
+                     notice: Notice | None = None) -> Summary:
     """Make the data set `config` describes in `out` (resuming what is there).
 
     ``workers=0`` makes episodes one by one in this process; otherwise each is a Ray task
-    (Ray started here with `workers` CPUs, or the cluster at `ray_address`)."""
-    check_homes(config.homes)
+    (Ray started here with `workers` CPUs, or the cluster at `ray_address`; a local Ray
+    that does not start: in this process, and `notice` gets one line saying so)."""
+    if workers < 0:
+        raise HomesimError(f"--workers must be 0 (no Ray) or more, got {workers}")
+    check_homes(config.homes)  # these three before the folder is touched
+    specs = plan_episodes(config, load_programs(config))
     layout = Layout(out)
     layout.open(config)
-    specs = plan_episodes(config, load_programs(config))
-    job = _Job(layout, config, specs, progress)
-    todo = job.resume()
-    if workers == 0 and ray_address is None:
-        outcomes: Iterator[Outcome] = serial_outcomes(todo, config, layout.root)
-    else:
-        outcomes = ray_outcomes(todo, config, layout.root, RayOptions(workers, ray_address))
-    for outcome in outcomes:
-        job.record(outcome)
-    return job.finish()
+    try:
+        job = _Job(layout, config, specs, progress)
+        todo = job.resume()
+        if workers == 0 and ray_address is None:
+            outcomes: Generator[Outcome, None, None] = serial_outcomes(todo, config,
+                                                                       layout.root)
+        else:
+            outcomes = ray_outcomes(todo, config, layout.root,
+                                    RayOptions(workers, ray_address), notice)
+        with closing(outcomes):  # stops Ray before the tidying below, however we leave
+            for outcome in outcomes:
+                job.record(outcome)
+        return job.finish()
+    finally:
+        layout.tidy()
+        layout.close()
 
 
 class _Job:

@@ -8,8 +8,9 @@ import io
 from pathlib import Path
 from typing import Any
 
-from homesim.errors import DataError
-from homesim.files import write_bytes
+from homesim.errors import DataError, HomesimError, one_line
+from homesim.files import read_limited, write_bytes
+from homesim.limits import MAX_DATA_FILE_BYTES
 
 MODALITY_COLUMNS = ("bytes_class", "bytes_depth", "bytes_flow", "bytes_instance",
                     "bytes_json", "bytes_pose", "bytes_rgb")
@@ -28,13 +29,22 @@ def write_manifest(rows: list[dict[str, Any]], path: Path) -> None:
 
 
 def read_manifest(path: str | Path) -> list[dict[str, Any]]:
-    """The rows of a manifest, in episode order."""
+    """The rows of a manifest, in episode order; `DataError` naming the file and why when
+    it is not a regular file (links not followed), over `MAX_DATA_FILE_BYTES` or not a
+    Parquet table of rows."""
+    import pyarrow as pa
     import pyarrow.parquet as pq
 
     try:
-        return list(pq.read_table(path).to_pylist())
-    except (OSError, ValueError) as e:
-        raise DataError(f"{path}: cannot read the manifest ({e})") from None
+        data = read_limited(path, MAX_DATA_FILE_BYTES, "MAX_DATA_FILE_BYTES", "manifest",
+                            follow_links=False)
+        rows = pq.read_table(pa.BufferReader(data)).to_pylist()
+    except HomesimError as e:
+        raise DataError(str(e)) from None
+    except (OSError, ValueError, pa.ArrowException) as e:
+        raise DataError(f"{path}: cannot read the manifest "
+                        f"({one_line(str(e) or type(e).__name__, 120)})") from None
+    return [r if isinstance(r, dict) else {} for r in rows]
 
 
 def _schema(pa: Any) -> Any:

@@ -23,8 +23,9 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
+from homesim.dataset.layout import read_json
 from homesim.dataset.spec import AGENT_NAMES, DatasetConfig
-from homesim.errors import HomesimError
+from homesim.errors import DataError, HomesimError
 
 PLAN_FILE = "plan.json"
 PLAN_FORMAT = "homesim-plan/1"
@@ -204,12 +205,11 @@ class PlanFolder:
 def read_plan(root: str | Path) -> PlanFolder | None:
     """The plan of a plan folder, or None for a folder without ``plan.json``."""
     path = Path(root) / PLAN_FILE
-    if not path.is_file():
+    if not path.exists() and not path.is_symlink():
         return None
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise HomesimError(f"{path}: cannot read ({e})") from None
+    data = read_json(path)  # a regular file, bounded; DataError in one line
+    if not isinstance(data, dict):
+        raise DataError(f"{path}: expected a JSON object")
     if data.get("format") != PLAN_FORMAT:
         raise HomesimError(f"{path}: format {data.get('format')!r}, not {PLAN_FORMAT}")
     return PlanFolder(Path(root), Plan.from_dict(data["plan"], str(path)))

@@ -1,18 +1,30 @@
 """Where episodes are made: in this process (`serial_outcomes`) or as Ray tasks
 (`ray_outcomes`), local by default or on a cluster. Both yield outcomes as episodes finish;
-the worker writes the episode's staging files itself, so only small rows travel back."""
+the worker writes the episode's staging files itself, so only small rows travel back.
+
+A local Ray that does not start is tried `RAY_START_ATTEMPTS` times, then the episodes are
+made in this process, with one line saying so. A task lost with its worker or node is
+submitted again (`TASK_ATTEMPTS`). A local Ray's processes are watched by a
+`homesim.processes.Reaper`, so they end with us even when we are killed; Ray's handlers
+of SIGINT and SIGTERM are replaced by the ones we had (Ctrl-C and SIGTERM unwind our stack,
+without Ray's crash dump)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+import signal
+import threading
+import time
+from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from homesim.dataset.episode import Outcome, write_episode_file
 from homesim.dataset.layout import Layout, dumps
 from homesim.dataset.spec import DatasetConfig, EpisodeSpec
 from homesim.errors import HomesimError
 from homesim.files import write_text
+from homesim.processes import Reaper
 
 TASK_MEMORY = 2 * 1024**3
 """Memory (bytes) each episode task declares to Ray: the scheduler runs no more tasks on a
@@ -26,19 +38,32 @@ TAIL_PER_SLOT = 4
 MAX_CALLS = 16
 """A Ray worker process is replaced after this many episodes: whatever a renderer leaks
 (GL contexts, caches) is given back."""
+RAY_START_ATTEMPTS = 3
+"""Tries to start a local Ray (at a high load it can time out) before making the
+episodes in this process instead."""
+RAY_START_PAUSE_S = 2.0
+"""Seconds between two tries."""
+TASK_ATTEMPTS = 3
+"""Submissions of an episode whose worker or node was lost, before the run stops."""
+
+Notice = Callable[[str], None]
+"""Called with one line for the user (the CLI prints it)."""
 
 
 def stage_episode(spec: EpisodeSpec, config: DatasetConfig, root: str) -> Outcome:
     """Make one episode into the staging folder of the data set at `root`: its tar (if it
-    worked), then its row."""
+    worked), then its row; holding ``staging/`` shared meanwhile (`Layout.writing`)."""
     layout = Layout(root)
-    outcome = write_episode_file(spec, config, layout.staged_tar(spec.key))
-    write_text(layout.staging / f"{spec.key}.json", dumps(outcome.to_row(spec)))
+    with layout.writing():
+        outcome = write_episode_file(spec, config, layout.staged_tar(spec.key))
+        if not outcome.ok:  # a tar of an earlier try that no longer hashes as recorded
+            layout.staged_tar(spec.key).unlink(missing_ok=True)
+        write_text(layout.staging / f"{spec.key}.json", dumps(outcome.to_row(spec)))
     return outcome
 
 
 def serial_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
-                    ) -> Iterator[Outcome]:
+                    ) -> Generator[Outcome, None, None]:
     """Episodes one after another in this process (``--workers 0``)."""
     for spec in specs:
         yield stage_episode(spec, config, str(root))
@@ -51,29 +76,101 @@ class RayOptions:
 
 
 def ray_outcomes(specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path,
-                 options: RayOptions) -> Iterator[Outcome]:
+                 options: RayOptions, notice: Notice | None = None
+                 ) -> Generator[Outcome, None, None]:
     """Episodes as Ray tasks (one CPU each, a GPU share with EGL where there are GPUs),
-    at most two per worker in flight."""
+    at most two per worker in flight. A local Ray that does not start: the episodes are
+    made in this process (`notice` gets one line saying so)."""
     ray = _import_ray()
     started = not ray.is_initialized()
-    if started:
-        _init(ray, options)
+    reaper = Reaper() if started and not options.address else None
     try:
-        gpus = float(ray.cluster_resources().get("GPU", 0))
-        task = ray.remote(max_calls=MAX_CALLS)(stage_episode).options(
-            num_cpus=1, num_gpus=TASK_GPU if gpus > 0 else 0, memory=TASK_MEMORY,
-            max_retries=1, runtime_env={"env_vars": task_environment(gpus > 0)})
-        slots = max(1, int(ray.cluster_resources().get("CPU", 1))) * 2
-        todo = submission_stack(specs, tail=TAIL_PER_SLOT * slots)
-        pending: list = []
-        while todo or pending:
-            while todo and len(pending) < slots:
-                pending.append(task.remote(todo.pop(), config, str(root.resolve())))
-            done, pending = ray.wait(pending, num_returns=1)
-            yield ray.get(done[0])
+        if started:
+            try:
+                _start(ray, options)
+            except RayStartFailed as e:
+                if options.address:
+                    raise HomesimError(str(e)) from None
+                (notice or (lambda line: None))(
+                    f"{e}; making the episodes in this process instead (as --workers 0)")
+                yield from serial_outcomes(specs, config, root)
+                return
+        with _Signals() as signals:
+            try:
+                yield from _ray_tasks(ray, specs, config, root)
+            except SystemExit:
+                signals.raise_caught()  # what our handler raised, before Ray replaced it
+                raise
     finally:
         if started:
             ray.shutdown()
+        if reaper is not None:
+            reaper.close()
+
+
+def _ray_tasks(ray: Any, specs: Sequence[EpisodeSpec], config: DatasetConfig, root: Path
+               ) -> Generator[Outcome, None, None]:
+    gpus = float(ray.cluster_resources().get("GPU", 0))
+    task = ray.remote(max_calls=MAX_CALLS)(stage_episode).options(
+        num_cpus=1, num_gpus=TASK_GPU if gpus > 0 else 0, memory=TASK_MEMORY,
+        max_retries=0, runtime_env={"env_vars": task_environment(gpus > 0)})
+    slots = max(1, int(ray.cluster_resources().get("CPU", 1))) * 2
+    todo = submission_stack(specs, tail=TAIL_PER_SLOT * slots)
+    pending: dict[Any, EpisodeSpec] = {}
+    tries: dict[int, int] = {}
+    folder = str(root.resolve())
+    while todo or pending:
+        while todo and len(pending) < slots:
+            spec = todo.pop()
+            tries[spec.index] = tries.get(spec.index, 0) + 1
+            pending[task.remote(spec, config, folder)] = spec
+        done, _ = ray.wait(list(pending), num_returns=1)
+        spec = pending.pop(done[0])
+        try:
+            yield ray.get(done[0])
+        except ray.exceptions.RayError as e:  # the worker or its node was lost
+            if tries[spec.index] >= TASK_ATTEMPTS:
+                raise HomesimError(f"{spec.key}: its Ray task failed {TASK_ATTEMPTS} times; "
+                                   f"the last: {_first_line(e)}") from None
+            todo.append(spec)
+
+
+class _Signals:
+    """Notes which of SIGINT and SIGTERM arrived, then calls our handler as before. Ray
+    turns an exception raised by a handler while it waits into ``SystemExit(1)``;
+    `raise_caught` raises the handler's own again (KeyboardInterrupt, or the CLI's
+    exit 143)."""
+
+    def __init__(self) -> None:
+        self.caught: int | None = None
+        self.handlers: dict[int, Callable[[int, Any], Any]] = {}
+
+    def __enter__(self) -> _Signals:
+        for signum, handler in _our_handlers().items():
+            if callable(handler):
+                self.handlers[signum] = handler
+                signal.signal(signum, self._note)
+        return self
+
+    def _note(self, signum: int, frame: Any) -> None:
+        self.caught = signum
+        self.handlers[signum](signum, frame)
+
+    def raise_caught(self) -> None:
+        if self.caught is not None:
+            self.handlers[self.caught](self.caught, None)
+
+    def __exit__(self, *exc: object) -> None:
+        for signum, handler in self.handlers.items():
+            signal.signal(signum, handler)
+
+
+def _first_line(e: BaseException) -> str:
+    return (str(e).strip().splitlines() or [type(e).__name__])[0][:300]
+
+
+class RayStartFailed(Exception):
+    """Ray did not start (after `RAY_START_ATTEMPTS` tries, for a local one)."""
 
 
 def task_environment(gpu: bool) -> dict[str, str]:
@@ -107,12 +204,46 @@ def _import_ray():
     return ray
 
 
-def _init(ray, options: RayOptions) -> None:
+def _start(ray: Any, options: RayOptions, attempts: int = RAY_START_ATTEMPTS,
+           pause: float = RAY_START_PAUSE_S) -> None:
+    """Start (or join) Ray, trying a local one `attempts` times; keep our SIGINT and
+    SIGTERM handlers (Ray's own print a crash dump)."""
+    if not options.address and options.workers < 1:
+        raise HomesimError("--workers must be at least 1 for Ray (0 runs without Ray)")
+    handlers = _our_handlers()
+    last: Exception | None = None
+    try:
+        for attempt in range(1, (1 if options.address else attempts) + 1):
+            try:
+                _init(ray, options)
+                return
+            except Exception as e:  # Ray raises many kinds; all mean "not up"
+                ray.shutdown()  # whatever part of it did start
+                last = e
+                if attempt < attempts:
+                    time.sleep(pause)
+        where = options.address or "a local Ray"
+        tries = "" if options.address else f" ({attempts} tries)"
+        raise RayStartFailed(f"{where} did not start{tries}: "
+                             f"{_first_line(last) if last else 'no reason given'}")
+    finally:
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
+
+
+def _our_handlers() -> dict[int, Any]:
+    """Python's SIGINT and SIGTERM handlers now (none off the main thread: signals are
+    the main thread's)."""
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    return {s: h for s in (signal.SIGINT, signal.SIGTERM)
+            if (h := signal.getsignal(s)) is not None}
+
+
+def _init(ray: Any, options: RayOptions) -> None:
     if options.address:
         ray.init(address=options.address, log_to_driver=False, configure_logging=False)
         return
-    if options.workers < 1:
-        raise HomesimError("--workers must be at least 1 for Ray (0 runs without Ray)")
     # Tasks return small rows (the episodes go to disk): a small object store will do.
     ray.init(num_cpus=options.workers, num_gpus=_local_gpus(), include_dashboard=False,
              log_to_driver=False, configure_logging=False,

@@ -11,10 +11,11 @@ from __future__ import annotations
 
 import random
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from homesim.errors import HomesimError
+from homesim.errors import DataError, HomesimError, LimitError
+from homesim.limits import MAX_EPISODES
 
 AGENT_NAMES: tuple[str, ...] = ("male1", "female1", "male2", "female2")
 """The four agents of `homesim.render.agent.AGENTS` (a test keeps the two equal)."""
@@ -93,6 +94,9 @@ class DatasetConfig:
                                f"{', '.join(MODALITIES)}")
         if self.n < 1 or self.gt_stride < 1 or self.shard_size < 1:
             raise HomesimError("--n, --gt-stride and --shard-size must be at least 1")
+        if max(self.n, self.gt_stride, self.shard_size) > MAX_EPISODES:
+            raise LimitError(f"--n, --gt-stride and --shard-size must be at most "
+                             f"{MAX_EPISODES:,} (MAX_EPISODES)", "MAX_EPISODES")
         if not self.homes:
             raise HomesimError("no homes to choose from")
         bad = [a for a in self.agents if a not in AGENT_NAMES]
@@ -110,13 +114,14 @@ class DatasetConfig:
         return d
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> DatasetConfig:
-        names = {f.name for f in fields(cls)}
-        d = {k: v for k, v in data.items() if k in names}
-        for key in ("modalities", "homes", "agents"):
-            if key in d:
-                d[key] = tuple(d[key])
-        return cls(**d)
+    def from_dict(cls, data: Any) -> DatasetConfig:
+        """The config a data set's json recorded; `DataError` naming the field that is
+        missing or of the wrong type."""
+        d = typed_fields(data, _CONFIG_TYPES, "config", required=False)
+        try:
+            return cls(**d)
+        except HomesimError as e:
+            raise DataError(f"config: {e}") from None
 
     @classmethod
     def from_profile(cls, profile: str, **options: Any) -> DatasetConfig:
@@ -159,12 +164,44 @@ class EpisodeSpec:
         return d
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> EpisodeSpec:
-        names = {f.name for f in fields(cls)} - {"extra"}
-        missing = names - set(data)
-        if missing:
-            raise HomesimError(f"episode spec lacks {sorted(missing)[0]!r}")
-        return cls(**{k: data[k] for k in names})
+    def from_dict(cls, data: Any) -> EpisodeSpec:
+        return cls(**typed_fields(data, _SPEC_TYPES, "episode spec"))
+
+
+_CONFIG_TYPES: dict[str, type] = {
+    "programs": str, "n": int, "seed": int, "width": int, "height": int, "fps": int,
+    "modalities": tuple, "gt_stride": int, "homes": tuple, "shard_size": int, "format": str,
+    "agents": tuple}
+_SPEC_TYPES: dict[str, type] = {
+    "index": int, "program_id": str, "program": str, "home": str, "agent": str,
+    "render_seed": int, "ground_seed": int, "placement_seed": int, "moves": int,
+    "speed": float}
+
+
+def typed_fields(data: Any, types: dict[str, type], what: str, required: bool = True
+                 ) -> dict[str, Any]:
+    """The fields of JSON object `data` named in `types`, each checked to be of its type
+    (``tuple``: a list of strings; ``float``: any number); `DataError` naming the first
+    that is not. Missing fields are an error when `required`, else left out."""
+    if not isinstance(data, dict):
+        raise DataError(f"{what}: expected a JSON object")
+    out: dict[str, Any] = {}
+    for name, kind in types.items():
+        if name not in data:
+            if required:
+                raise DataError(f"{what} lacks {name!r}")
+            continue
+        value = data[name]
+        if kind is tuple and isinstance(value, list) and all(isinstance(v, str)
+                                                             for v in value):
+            value = tuple(value)
+        elif kind is float and type(value) in (int, float):
+            value = float(value)
+        elif type(value) is not kind:
+            wanted = "a list of strings" if kind is tuple else kind.__name__
+            raise DataError(f"{what}: {name!r} must be {wanted}, got {str(value)[:40]!r}")
+        out[name] = value
+    return out
 
 
 def episode_key(index: int) -> str:

@@ -50,7 +50,14 @@ class MemberHash:
         self._h = hashlib.sha256()
 
     def add(self, name: str, data: bytes) -> None:
-        self._h.update(f"{name}\0{len(data)}\0".encode())
+        self.start(name, len(data))
+        self._h.update(data)
+
+    def start(self, name: str, size: int) -> None:
+        """Begin a member of `size` bytes (then `update` with its bytes, in pieces)."""
+        self._h.update(f"{name}\0{size}\0".encode(errors="surrogateescape"))
+
+    def update(self, data: bytes) -> None:
         self._h.update(data)
 
     def hexdigest(self) -> str:

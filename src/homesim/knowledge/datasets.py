@@ -27,9 +27,10 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any, overload
 
-from homesim.errors import DataError, HomesimError
-from homesim.files import atomic_write
+from homesim.errors import DataError, HomesimError, LimitError
+from homesim.files import atomic_write, read_text_limited
 from homesim.knowledge.fetch import dataset_dir, verify
+from homesim.limits import MAX_DATA_FILE_BYTES
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program, parse_steps
@@ -168,11 +169,11 @@ def _check(program: Program, where: str) -> Program:
 def _read_text(path: Path) -> str:
     """A file's UTF-8 text (a BOM is dropped); `DataError` naming the file if unreadable."""
     try:
-        return path.read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as e:
-        raise DataError(f"{path}: not UTF-8 text (byte {e.start})") from None
-    except OSError as e:
-        raise DataError(f"{path}: cannot read ({e.strerror or e})") from None
+        return read_text_limited(path, MAX_DATA_FILE_BYTES, "MAX_DATA_FILE_BYTES")
+    except LimitError:
+        raise
+    except HomesimError as e:
+        raise DataError(str(e)) from None
 
 
 def read_program_file(path: Path) -> Program:

@@ -12,6 +12,7 @@ position's).
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -82,7 +83,9 @@ class ArmIK:
                        for name in scene.joint_qpos}
         lo, hi = self._range["spine_pitch"]
         self._range["spine_pitch"] = (lo, min(hi, MAX_LEAN))
-        self._jacp = np.zeros((3, m.nv))
+        self._solver = _agent_only(scene) or m
+        self._solver_data = mujoco.MjData(self._solver)
+        self._jacp = np.zeros((3, self._solver.nv))
 
     def hand(self, pose: Pose, side: str) -> np.ndarray:
         """World position of a hand for a pose."""
@@ -128,22 +131,30 @@ class ArmIK:
     def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
         names = arm_joints(side, lean) + (wrist_joints(side) if grasp else ())
-        q = {n: pose.joints.get(n, 0.0) for n in names}
+        values = [float(pose.joints.get(n, 0.0)) for n in names]
         site = (self.scene.palm_sites if grasp else self.scene.hand_sites)[side]
         body = int(self.model.site_bodyid[site])
         offset = np.zeros(3) if grip is None else np.asarray(grip, float)
-        jacr = np.zeros((3, self.model.nv))
+        model, data = self._solver, self._solver_data
+        jacr = np.zeros((3, model.nv))
+        cols = [self._dof[n] for n in names]
+        addrs = [self.scene.joint_qpos[n] for n in names]
+        ranges = [self._range[n] for n in names]
+        eye = DAMPING**2 * np.eye(9 if grasp is not None else 3)
+        # Only the solved joints change: the rest of the pose is written once.
+        write_qpos(data.qpos, pose, self.scene.joint_qpos)
+        qpos = data.qpos
         err = np.inf
         for _ in range(ITERATIONS * (2 if grasp else 1)):
-            write_qpos(self.data.qpos, pose.with_joints(**q), self.scene.joint_qpos)
-            mujoco.mj_kinematics(self.model, self.data)
-            mujoco.mj_comPos(self.model, self.data)
-            rot = self.data.xmat[body].reshape(3, 3)
-            point = self.data.site_xpos[site] + rot @ offset
+            for addr, value in zip(addrs, values, strict=True):
+                qpos[addr] = value
+            mujoco.mj_kinematics(model, data)
+            mujoco.mj_comPos(model, data)
+            rot = data.xmat[body].reshape(3, 3)
+            point = data.site_xpos[site] + rot @ offset
             e = target - point
             err = float(np.linalg.norm(e))
-            mujoco.mj_jac(self.model, self.data, self._jacp, jacr, point, body)
-            cols = [self._dof[n] for n in names]
+            mujoco.mj_jac(model, data, self._jacp, jacr, point, body)
             jac = self._jacp[:, cols]
             if grasp is not None:
                 turns = _turns(rot, side, grasp)
@@ -155,11 +166,10 @@ class ArmIK:
             elif err < TOLERANCE:
                 break
             # dq = J^T (J J^T + damping^2 I)^-1 e
-            dq = jac.T @ np.linalg.solve(jac @ jac.T + DAMPING**2 * np.eye(len(e)), e)
-            for n, d in zip(names, dq, strict=True):
-                lo, hi = self._range[n]
-                q[n] = float(np.clip(q[n] + np.clip(d, -0.3, 0.3), lo, hi))
-        return pose.with_joints(**q), err
+            dq = jac.T @ np.linalg.solve(jac @ jac.T + eye, e)
+            values = [float(min(max(v + min(max(d, -0.3), 0.3), lo), hi))
+                      for v, d, (lo, hi) in zip(values, dq, ranges, strict=True)]
+        return pose.with_joints(**dict(zip(names, values, strict=True))), err
 
     def held_point(self, pose: Pose, side: str, grip: np.ndarray | None) -> np.ndarray:
         """World position of the point at `grip` in the hand's body frame (the hand site
@@ -168,9 +178,41 @@ class ArmIK:
         return hand if grip is None else hand + rot @ grip
 
 
+def _agent_only(scene: SceneModel) -> mujoco.MjModel | None:
+    """The agent alone, compiled from the scene's MJCF without the home: the same bodies,
+    joints, sites and addresses (the agent is the world body's first child), so the
+    solver's kinematics are the scene's at a fraction of the cost (no home geoms to
+    place). None when the scene has no MJCF or the ids would differ."""
+    xml, files = scene.mjcf
+    if not xml:
+        return None
+    root = ET.fromstring(xml)
+    world = root.find("worldbody")
+    if world is None:
+        return None
+    for child in list(world):
+        if child.get("name") != "agent":
+            world.remove(child)
+    model = mujoco.MjModel.from_xml_string(ET.tostring(root, encoding="unicode"), files)
+    full = scene.model
+    same = (model.nq <= full.nq and model.nbody <= full.nbody and model.nsite <= full.nsite
+            and all(model.joint(f"a:{n}").qposadr[0] == a for n, a in scene.joint_qpos.items())
+            and all(model.site(i).name == full.site(i).name for i in range(model.nsite))
+            and all(model.body(i).name == full.body(i).name for i in range(model.nbody)))
+    return model if same else None
+
+
 def _turns(rot: np.ndarray, side: str, grasp: Grasp) -> tuple[np.ndarray, np.ndarray]:
     """Rotation vectors (axis times sine of the angle) taking the palm's normal onto
     `grasp.palm` and the fingers' direction onto `grasp.fingers`."""
     palm = rot[:, 1] * (-1.0 if side == "l" else 1.0)  # the palm faces the body: +-y
     fingers = -rot[:, 2]
-    return np.cross(palm, grasp.palm), np.cross(fingers, grasp.fingers)
+    return _cross(palm, grasp.palm), _cross(fingers, grasp.fingers)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b of two 3-vectors (the products and differences of `np.cross`, without its
+    per-call overhead: this runs ~10^5 times an episode)."""
+    a0, a1, a2 = a.tolist()
+    b0, b1, b2 = b.tolist()
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])

@@ -13,7 +13,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from homesim.errors import HomesimError
+from homesim.errors import HomesimError, LimitError
+from homesim.limits import MAX_RENDER_NODES
 from homesim.render.agent import HINGES, JOINTS, AgentShape, agent_mjcf
 from homesim.render.cameras import CameraSpec, room_cameras
 from homesim.render.gl import mujoco
@@ -247,6 +248,10 @@ def build_scene(graph: EnvironmentGraph, agent: AgentShape, *, seed: int = 0,
                 shots: Sequence[CameraSpec] = ()) -> SceneModel:
     """Compile a home with geometry into a `SceneModel` (cameras randomised by `seed`;
     `shots`: close-up cameras added after the room cameras, see `homesim.render.shots`)."""
+    if len(graph) > MAX_RENDER_NODES:
+        raise LimitError(f"the home has {len(graph):,} nodes, over the limit of "
+                         f"{MAX_RENDER_NODES:,} for rendering (MAX_RENDER_NODES)",
+                         "MAX_RENDER_NODES")
     layout = build_layout(graph, seed)
     if not layout.floors:
         raise HomesimError("the home has no floor boxes: rendering needs a home with 3D "

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from collections.abc import AsyncIterator, Iterable
 from contextlib import asynccontextmanager
@@ -11,11 +12,24 @@ from fastapi import FastAPI
 
 from homesim.limits import BODY_TIMEOUT_S
 from homesim.serve import homes, programs, renders, writer
-from homesim.serve.errors import CatchBugs, SafeJSONResponse, install_error_handlers
+from homesim.serve.errors import ApiError, CatchBugs, SafeJSONResponse, install_error_handlers
 from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
 from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit, LargeBodyGate
+from homesim.serve.pool import ProgramPool, WriterPool
 from homesim.serve.static import default_static_dir, mount_editor
-from homesim.serve.workers import ProgramPool, warm_up
+from homesim.serve.workers import worker_context
+
+
+def warm_up() -> None:
+    """Start the fork server now (it imports `PRELOAD`, a second or two), not on the
+    first request that needs a worker; and look for the renderer (imports mujoco).
+    Here, not in `workers`, which the routers' modules import."""
+    with contextlib.suppress(ApiError):  # no renderer: POST /api/render answers 501
+        programs.keyframe_renderer()
+    if worker_context().get_start_method() == "forkserver":
+        from multiprocessing import forkserver
+
+        forkserver.ensure_running()
 
 
 @asynccontextmanager
@@ -24,13 +38,15 @@ async def _lifespan(app: FastAPI) -> AsyncIterator[None]:
     yield
     app.state.renders.close()
     app.state.programs.close()
+    app.state.writer.close()
 
 
 def create_app(static_dir: Path | None = None,
                max_body_bytes: int = MAX_BODY_BYTES,
                body_timeout: float = BODY_TIMEOUT_S,
                allowed_hosts: Iterable[str] = LOOPBACK_HOSTS,
-               render_jobs: renders.RenderJobs | None = None) -> FastAPI:
+               render_jobs: renders.RenderJobs | None = None,
+               writer_pool: WriterPool | None = None) -> FastAPI:
     """Build the editor's web app.
 
     Args:
@@ -39,6 +55,7 @@ def create_app(static_dir: Path | None = None,
         body_timeout: bodies not received within this many seconds get 408.
         allowed_hosts: Host header names served (default: loopback names; ``*``: any).
         render_jobs: the render queue (default: one with the limits of `homesim.limits`).
+        writer_pool: the writer workers (default: the limits of `homesim.limits`).
     """
     from homesim.version import __version__
 
@@ -46,6 +63,7 @@ def create_app(static_dir: Path | None = None,
                   default_response_class=SafeJSONResponse,
                   description="Check and run homesim programs; serves the block editor.")
     app.state.programs = ProgramPool()
+    app.state.writer = writer_pool or WriterPool()
     app.state.renders = render_jobs or renders.RenderJobs()
     install_error_handlers(app)
     app.include_router(homes.router)

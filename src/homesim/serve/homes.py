@@ -5,14 +5,17 @@ from __future__ import annotations
 from functools import lru_cache
 from typing import Any
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
+from fastapi.responses import Response
+from starlette.concurrency import run_in_threadpool
 
 from homesim.errors import GraphError
 from homesim.examples import DEMO_HOME
 from homesim.program import ACTIONS, Category, actions_in
-from homesim.serve.errors import ApiError
+from homesim.serve.errors import ApiError, SafeJSONResponse
+from homesim.serve.pool import answer_or_gone
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.homes import home_names, load_home
+from homesim.world.homes import home_names, is_generated, load_home
 
 router = APIRouter(prefix="/api", tags=["catalog"])
 LISTED_GENERATED = 3
@@ -86,6 +89,10 @@ def _objects(name: str) -> dict[str, Any]:
 
 
 @router.get("/homes/{name}/objects")
-def list_objects(name: str) -> dict[str, Any]:
-    """Every object of a home (not the character) with its room, sorted by room and class."""
-    return _objects(name)
+async def list_objects(name: str, http: Request) -> Response:
+    """Every object of a home (not the character) with its room, sorted by room and class;
+    a generated home is made in a program worker (`homesim.serve.pool`)."""
+    if is_generated(name):
+        return await answer_or_gone(http.app.state.programs, _objects, name,
+                                    http.is_disconnected)
+    return SafeJSONResponse(await run_in_threadpool(_objects, name))

@@ -7,6 +7,7 @@ page's own name is made to resolve to 127.0.0.1, and the browser then sends requ
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from typing import Any
 
@@ -16,16 +17,23 @@ LOOPBACK_HOSTS = ("localhost", "127.0.0.1", "[::1]")
 """Names a loopback server answers to by default."""
 
 
+_HOST = re.compile(r"(\[[0-9a-f:.]+\]|[^\[\]:]+)(?::[0-9]{1,5})?")
+"""A Host header: a bracketed IPv6 address or a name, then at most a numeric port."""
+
+
 def host_name(header: str) -> str:
     """The name in a Host header, without the port, lower case; IPv6 keeps its brackets.
+    A header of another shape (``[::1]evil.com``, ``localhost:x``) is returned whole, so
+    it matches no allowed name.
 
     >>> host_name("LocalHost:8000"), host_name("[::1]:8000"), host_name("127.0.0.1")
     ('localhost', '[::1]', '127.0.0.1')
+    >>> host_name("[::1]evil.com")
+    '[::1]evil.com'
     """
     header = header.strip().lower()
-    if header.startswith("["):
-        return header[:header.find("]") + 1] if "]" in header else header
-    return header.rsplit(":", 1)[0] if header.count(":") == 1 else header
+    match = _HOST.fullmatch(header)
+    return match.group(1) if match else header
 
 
 class HostCheck:

@@ -26,10 +26,12 @@ from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.serve.errors import ApiError, SafeJSONResponse
 from homesim.serve.homes import get_home
+from homesim.serve.pool import answer_or_gone
 from homesim.serve.results import program_json, step_lines
 from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest, VideoRequest
 from homesim.sim.execute import binding_problems
 from homesim.world.graph import EnvironmentGraph
+from homesim.world.homes import is_generated
 
 router = APIRouter(prefix="/api", tags=["programs"])
 
@@ -111,8 +113,12 @@ def video_renderer() -> Callable[..., Any]:
 
 
 def render_plan(request: RenderRequest) -> dict[str, Any]:
-    """Check a render request before queueing it: the program parses, the home exists and
-    frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the line of each key frame."""
+    """Check a render request before queueing it: a video's sides are even, the program
+    parses, the home exists and frames x pixels are within `MAX_RENDER_PIXEL_FRAMES`; the
+    line of each key frame."""
+    if isinstance(request, VideoRequest) and (request.width % 2 or request.height % 2):
+        raise ApiError(422, "render", f"image size {request.width}x{request.height}: width "
+                       "and height of a video must be even (H.264)")
     program, lines = parse_request(request.program)
     get_home(request.home)
     pixel_frames = len(program.steps) * request.width * request.height
@@ -160,12 +166,19 @@ def is_large(request: ProgramRequest | ExecuteRequest | RenderRequest) -> bool:
     return len(request.program) > INLINE_PROGRAM_CHARS
 
 
+def is_heavy(request: ProgramRequest | ExecuteRequest | RenderRequest) -> bool:
+    """A request for a program worker: a large program, or a generated home (making one
+    takes ~0.5 s of CPU, which the server process must not spend)."""
+    return is_large(request) or (request.home is not None and is_generated(request.home))
+
+
 async def answer(http: Request, handler: Callable[[Any], dict[str, Any]], request: Any
                  ) -> Response:
     """`handler(request)` as a JSON answer: in a thread, or in a program worker process
-    when the program is large."""
-    if is_large(request):
-        return await http.app.state.programs.answer(handler, request)
+    when the request is heavy (`is_heavy`)."""
+    if is_heavy(request):
+        return await answer_or_gone(http.app.state.programs, handler, request,
+                                    http.is_disconnected)
     return SafeJSONResponse(await run_in_threadpool(handler, request))
 
 

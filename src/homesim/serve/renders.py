@@ -22,9 +22,11 @@ from __future__ import annotations
 import asyncio
 import atexit
 import json
+import math
 import os
 import secrets
 import shutil
+import signal
 import tempfile
 import time
 from collections.abc import Callable, Iterable
@@ -42,13 +44,21 @@ from homesim.limits import (
     RENDER_QUEUE,
     RENDER_TIMEOUT_S,
     RENDER_WORKERS,
+    WORKER_MEMORY_BYTES,
 )
 from homesim.serve import programs
 from homesim.serve.errors import ApiError, SafeJSONResponse, error_of
 from homesim.serve.images import encode_png
-from homesim.serve.programs import is_large, render_frames, render_plan, render_video_file
+from homesim.serve.pool import answer_or_gone
+from homesim.serve.programs import is_heavy, render_frames, render_plan, render_video_file
 from homesim.serve.schemas import RenderRequest, VideoRequest
-from homesim.serve.workers import ProcessContext, busy, lower_priority, worker_context
+from homesim.serve.workers import (
+    ProcessContext,
+    busy,
+    limit_memory,
+    lower_priority,
+    worker_context,
+)
 
 router = APIRouter(prefix="/api", tags=["programs"])
 
@@ -76,11 +86,21 @@ def _write_atomically(path: Path, data: bytes) -> None:
     os.replace(part, path)
 
 
-def run_job(source: FrameSource, request: Any, out_dir: str) -> None:
+def limit_worker(timeout: float | None) -> None:
+    """A render worker's own limits: lower priority, `WORKER_MEMORY_BYTES`, and an alarm
+    that ends it a little after `timeout` even if the server that should stop it is gone."""
+    lower_priority()
+    limit_memory(WORKER_MEMORY_BYTES)
+    if timeout:
+        signal.alarm(math.ceil(timeout) + 2)
+
+
+def run_job(source: FrameSource, request: Any, out_dir: str, timeout: float | None = None
+            ) -> None:
     """The body of a render worker process: PNGs as frames come, then ``done.json`` or
     ``error.json`` (status and error body, as the API answers them)."""
     out = Path(out_dir)
-    lower_priority()
+    limit_worker(timeout)
     try:
         count = 0
         for index, rgb in source(request):
@@ -110,11 +130,12 @@ class _ProgressFile:
             _write_atomically(self.path, json.dumps({"done": done, "total": total}).encode())
 
 
-def run_video_job(source: VideoSource, request: Any, out_dir: str) -> None:
+def run_video_job(source: VideoSource, request: Any, out_dir: str,
+                  timeout: float | None = None) -> None:
     """The body of a video worker process: the MP4 (complete, or not there at all) and
     ``progress.json`` as it goes, then ``done.json`` or ``error.json``."""
     out = Path(out_dir)
-    lower_priority()
+    limit_worker(timeout)
     try:
         part = out / "video.part.mp4"  # the extension tells ffmpeg the container
         frames = source(request, str(part), _ProgressFile(out / PROGRESS))
@@ -189,7 +210,7 @@ class RenderJobs:
                  queue: int = RENDER_QUEUE, timeout: float = RENDER_TIMEOUT_S,
                  keep_jobs: int = RENDER_KEEP_JOBS, keep_s: float = RENDER_KEEP_S,
                  context: ProcessContext | None = None,
-                 video_source: VideoSource = render_video_file):
+                 video_source: VideoSource = render_video_file, root: Path | None = None):
         self.source = source
         self.video_source = video_source
         self.context = context
@@ -199,7 +220,7 @@ class RenderJobs:
         self.keep_jobs = keep_jobs
         self.keep_s = keep_s
         self.jobs: dict[str, Job] = {}
-        self._root: Path | None = None
+        self._root: Path | None = root
         self._supervisor: asyncio.Task[None] | None = None
         atexit.register(self.close)
 
@@ -258,6 +279,7 @@ class RenderJobs:
                        retry_after=5)
         if self._root is None:
             self._root = Path(tempfile.mkdtemp(prefix="homesim-render-"))
+        self._root.mkdir(parents=True, exist_ok=True)
         job_id = secrets.token_hex(8)
         job = Job(job_id, self._root / job_id, request, lines, kind)
         self.jobs[job_id] = job
@@ -297,7 +319,7 @@ class RenderJobs:
             target, source = ((run_video_job, self.video_source) if job.kind == "video"
                               else (run_job, self.source))
             job.process = (self.context or worker_context()).Process(
-                target=target, args=(source, job.request, str(job.folder)),
+                target=target, args=(source, job.request, str(job.folder), self.timeout),
                 name=f"homesim-render-{job.id}", daemon=True)
             job.process.start()
             job.state, job.started = "running", time.monotonic()
@@ -365,11 +387,12 @@ async def _queue(request: RenderRequest, http: Request, kind: str) -> Response:
     """Check a render request (501 without the render extra) and queue it; 202."""
     # In a thread: the first look imports mujoco (seconds), which must not stop the loop.
     await run_in_threadpool(programs.keyframe_renderer)  # 501 without the render extra
-    if is_large(request):
-        checked = await http.app.state.programs.answer(render_plan, request)
+    if is_heavy(request):
+        checked = await answer_or_gone(http.app.state.programs, render_plan, request,
+                                       http.is_disconnected)
         if checked.status_code != 200:
             return checked
-        plan = json.loads(checked.body)
+        plan = json.loads(bytes(checked.body))
     else:
         plan = await run_in_threadpool(render_plan, request)
     job = _jobs(http).submit(request, plan["lines"], kind)

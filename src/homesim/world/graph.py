@@ -22,9 +22,16 @@ from typing import Any, TypeGuard, cast
 
 import orjson
 
-from homesim.errors import GraphError, excerpt
-from homesim.files import write_bytes, write_text
-from homesim.limits import MAX_COORD, MAX_GRAPH_BYTES, MAX_JSON_DEPTH, MAX_SIZE, deeper_than
+from homesim.errors import GraphError, HomesimError, excerpt
+from homesim.files import read_limited, write_bytes, write_text
+from homesim.limits import (
+    MAX_COORD,
+    MAX_GRAPH_BYTES,
+    MAX_JSON_DEPTH,
+    MAX_NODE_ID,
+    MAX_SIZE,
+    deeper_than,
+)
 from homesim.world.index import HomeIndex, index_edges
 from homesim.world.node import BoundingBox, Edge, Node
 from homesim.world.vocab import CHARACTER_CLASS, INSIDE, RELATIONS
@@ -114,16 +121,10 @@ class EnvironmentGraph:
         Every `GraphError` names the file and says why in one line."""
         path = Path(path)
         try:
-            size = path.stat().st_size
-        except OSError as e:
-            raise GraphError(f"{path}: cannot read graph file ({e.strerror})") from None
-        if size > max_bytes:
-            raise GraphError(
-                f"{path}: file is {size / 2**20:.0f} MiB, over the {max_bytes / 2**20:.0f} MiB "
-                "limit for a graph (MAX_GRAPH_BYTES)"
-            )
+            raw = read_limited(path, max_bytes, "MAX_GRAPH_BYTES", "graph")
+        except HomesimError as e:
+            raise GraphError(str(e)) from None
         try:
-            raw = path.read_bytes()
             if path.suffix == ".gz":
                 # Read at most the limit: a small .gz file can unpack to gigabytes.
                 with gzip.GzipFile(fileobj=io.BytesIO(raw)) as f:
@@ -343,6 +344,9 @@ def _node_from_dict(raw: Any, where: str, i: int) -> Node:
     if type(raw_id) is not int and not _is_int(raw_id):
         raise GraphError(f"{_node_where(where, i)}: 'id' must be an integer, got {raw_id!r:.60}")
     node_id = cast(int, raw_id)
+    if not 0 <= node_id <= MAX_NODE_ID:
+        raise GraphError(f"{_node_where(where, i)}: 'id' {excerpt(str(node_id))} is outside 0.."
+                         f"{MAX_NODE_ID} (MAX_NODE_ID: ids index 32-bit arrays in render)")
     class_name = raw.get("class_name")
     if not isinstance(class_name, str) or not class_name.strip():
         raise GraphError(f"{_node_where(where, i, node_id)}: 'class_name' must be a non-empty "

@@ -10,7 +10,7 @@ from homesim.learn.eval.ledger import FinalRun
 def test_a_run_round_trips_through_the_ledger_and_the_markdown(tmp_path):
     a = FinalRun("2025-01-02T03:04:05Z", "abc1234", ("real",), (100, 101, 102))
     b = FinalRun.now("def5678+dirty", ("real", "synthetic"), (100, 101))
-    assert b.when.endswith("Z") and len(b.when) == 20
+    assert b.when.endswith("Z") and len(b.when) == 27  # to the microsecond
     assert ledger.read(tmp_path) == []
     ledger.record(tmp_path, a)
     ledger.record(tmp_path, b)
@@ -20,6 +20,15 @@ def test_a_run_round_trips_through_the_ledger_and_the_markdown(tmp_path):
     assert "was run 1 time for" in "\n".join(ledger.section([a]))
     assert ledger.listed("no list here") == []
     assert ledger.merged([b, a], [a]) == [a, b]  # once each, oldest first
+
+
+def test_two_runs_in_one_second_are_counted_twice():
+    """Runs stamped to the second merged into one when started in the same second (the
+    CLI test of the locked seeds failed on a fast machine: 'was run 2 times' read 1)."""
+    first = FinalRun("2025-01-02T03:04:05.000001Z", "abc1234", ("real",), (100,))
+    second = FinalRun("2025-01-02T03:04:05.500000Z", "abc1234", ("real",), (100,))
+    assert ledger.merged([second], [first, second]) == [first, second]
+    assert ".".join(FinalRun.now("abc1234", ("real",), (100,)).when.split(".")[1:]) != ""
 
 
 def test_a_broken_ledger_is_one_line(tmp_path):

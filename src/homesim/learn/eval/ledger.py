@@ -36,8 +36,8 @@ class FinalRun:
 
     @classmethod
     def now(cls, commit: str, datasets: tuple[str, ...], seeds: tuple[int, ...]) -> FinalRun:
-        """A run starting now."""
-        when = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+        """A run starting now (to the microsecond: two runs in one second are two runs)."""
+        when = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%S.%fZ")
         return cls(when, commit, tuple(datasets), tuple(seeds))
 
     def item(self) -> str:

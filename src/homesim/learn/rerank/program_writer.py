@@ -3,11 +3,14 @@ program, as a tool (``homesim learn write``, ``POST /api/write``, `write_program
 
 The model is `reranker.Reranker` fitted on the 518 real programs (queries hide only their own
 program, as on the stratified split: docs/results.md gives what it scores on unseen
-descriptions). Fitting takes about half a minute; the fitted model is kept in the data
-directory (``$HOMESIM_DATA/models``, a pickle that only homesim writes), keyed by what it
-was fitted from, and read back by later calls. A written program is ungrounded
-(``<television> (1)``) and is run in the home asked for through `run_program`: of the best
-`RerankConfig.check_executable` candidates the first that runs there is written.
+descriptions). Fitting takes about a minute on an idle machine and is done once, by
+``homesim learn fit-writer`` (`FIT_STEP`; ``make test`` runs it after ``homesim data
+fetch``); the fitted model is kept in the data directory (``$HOMESIM_DATA/models``, a
+pickle that only homesim writes), keyed by what it was fitted from, and read back by later
+calls. The server never fits it (``POST /api/write`` says which step to run instead).
+A written program is ungrounded (``<television> (1)``) and is run in the home asked for
+through `run_program`: of the best `RerankConfig.check_executable` candidates the first
+that runs there is written.
 """
 
 from __future__ import annotations
@@ -149,6 +152,11 @@ def check_text(field: str, text: str) -> str:
         raise LimitError(f"{field}: {len(text)} characters, over the limit of "
                          f"{MAX_DESCRIPTION_CHARS} (MAX_DESCRIPTION_CHARS)",
                          "MAX_DESCRIPTION_CHARS")
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as e:  # a lone surrogate: from bytes not UTF-8, or "\ud800"
+        raise HomesimError(f"{field}: not valid text (character {e.start + 1} is not "
+                           "Unicode; give UTF-8 text)") from None
     folded = " ".join(text.split())
     if not folded:
         raise HomesimError(f"{field}: empty")
@@ -176,17 +184,34 @@ def model_path(key: str, root: Path | None = None) -> Path:
     return (root or data_root()) / "models" / f"writer-{key}.pkl"
 
 
-def load_writer(examples: list[Example] | None = None, root: Path | None = None
-                ) -> ProgramWriter:
+FIT_STEP = "homesim learn fit-writer"
+"""The command that fits the writer's model once, ahead of any request or test."""
+
+
+class WriterNotFitted(HomesimError):
+    """The writer's model is not in the data directory, and was not to be fitted here."""
+
+
+def is_fitted(root: Path | None = None) -> bool:
+    """Whether the writer's model on the real programs is in the data directory (fitted by
+    `FIT_STEP`); reads the real programs for their key, not the model."""
+    return model_path(examples_key(real_examples()), root).is_file()
+
+
+def load_writer(examples: list[Example] | None = None, root: Path | None = None,
+                fit: bool = True) -> ProgramWriter:
     """The writer fitted on `examples` (default: the real programs, which need ``homesim
     data fetch``), read from the data directory when it was fitted before, else fitted and
-    kept there."""
+    kept there (or, without `fit`, `WriterNotFitted` naming `FIT_STEP`)."""
     if examples is None:
         examples = real_examples()
     path = model_path(examples_key(examples), root)
     stored = _read_stored(path)
     if stored is not None:
         return stored
+    if not fit:
+        raise WriterNotFitted(f"the program writer's model is not built yet: run "
+                              f"'{FIT_STEP}' once (about a minute)")
     writer = ProgramWriter.fit(examples)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -211,20 +236,22 @@ _LOADING = threading.Lock()
 
 
 @cache
-def _real_writer() -> ProgramWriter:
-    return load_writer()
+def _real_writer(fit: bool) -> ProgramWriter:
+    return load_writer(fit=fit)
 
 
-def real_writer() -> ProgramWriter:
+def real_writer(fit: bool = True) -> ProgramWriter:
     """The writer fitted on the real programs, once per process (threads wait for the
-    first to load it)."""
+    first to load it); without `fit`, `WriterNotFitted` when it was never fitted."""
     with _LOADING:
-        return _real_writer()
+        return _real_writer(fit)
 
 
 def write_program(description: str, home: EnvironmentGraph | str = "scene1",
                   title: str | None = None, seed: int = SEED) -> Written:
     """Write a program for `description` (and `title`) and run it in `home` (a built-in
     home's name or a graph), with the writer fitted on the real programs."""
+    check_text("description", description)  # bad text is refused before the model loads
+    check_title(title)
     graph = load_home(home) if isinstance(home, str) else home
     return real_writer().write(description, graph, title=title, seed=seed)
