@@ -306,6 +306,9 @@ def table(
                                        "with --final also N locked seeds from 100.")] = 5,
     synth_n: Annotated[int, typer.Option(help="Synthetic programs (one set, seed 0).")] = 2000,
     mle_epochs: Annotated[int, typer.Option(help="MLE epochs of the seq2seq model.")] = 12,
+    mle: Annotated[bool, typer.Option(
+        help="Train the seq2seq model and score its rows (real data); --no-mle trains none and "
+             "keeps its rows already scored under OUT (CPU).")] = True,
     model: Annotated[bool, typer.Option(help="Train and score the learned rows (real data); "
                                         "--no-model scores the baselines only.")] = True,
     markdown: Annotated[Path | None, typer.Option(help="Also write the tables here.")] = None,
@@ -315,6 +318,12 @@ def table(
     only_cached: Annotated[bool, typer.Option(
         help="Compute nothing: summarise the runs and rows already scored under OUT.")
     ] = False,
+    dev_cached: Annotated[bool, typer.Option(
+        help="Score no development run: their tables summarise the runs and rows already "
+             "scored under OUT (with --final, only the locked seeds are scored).")] = False,
+    workers: Annotated[int, typer.Option(
+        help="Score this many runs at once, each in its own process (the figures are the "
+             "same).")] = 1,
     final: Annotated[bool, typer.Option(
         help="Also score and print the locked test seeds (100, 101, ...). Never while "
              "choosing anything: every such run is recorded in OUT/final-runs.jsonl and "
@@ -341,19 +350,43 @@ def table(
         ledger.record(out, entry)
         console.print(f"[yellow]locked test[/]: final run recorded in {out / ledger.LEDGER}")
         runs = [entry]
-    dev = _blocks(tuple(range(seeds)), *settings)
-    locked = _blocks(locked_seeds(seeds), *settings, final=True) if final else None
+    dev_seeds = () if dev_cached else tuple(range(seeds))
+    if workers > 1 and not only_cached:
+        _score_in_parallel(dev_seeds, locked_seeds(seeds) if final else (), datasets, synth_n,
+                           mle_epochs, out, device, model, mle, workers, threads)
+    dev = _blocks(tuple(range(seeds)), *settings[:-1], only_cached or dev_cached, mle=mle)
+    locked = _blocks(locked_seeds(seeds), *settings, final=True, mle=mle) if final else None
     seconds = time.perf_counter() - start
     console.print(f"evaluated in {seconds:.0f} s wall time")
     if markdown is not None:
         _write_evaluation(markdown, dev, locked, runs, seconds, only_cached, out, device,
-                          seeds, force)
+                          seeds, force, dev_cached)
+
+
+def _score_in_parallel(dev: tuple[int, ...], locked: tuple[int, ...],
+                       datasets: tuple[str, ...], synth_n: int, mle_epochs: int, out: Path,
+                       device: str, model: bool, mle: bool, workers: int, threads: int) -> None:
+    """Score the runs of the table at the `dev` and `locked` seeds in `workers` processes
+    (the locked ones first), the data sets' sentence vectors cached first; `_blocks` then
+    reads them back."""
+    from homesim.learn.eval.experiment import RunSpec, load_examples, preload_vectors, run_all
+    from homesim.learn.eval.splits import SPLITS
+
+    if workers > 1 and device != "cpu":
+        raise HomesimError("--workers above 1 runs on the CPU only (--device cpu)")
+    for name in datasets:
+        preload_vectors(load_examples(name, synth_n), out / name / "vectors.npz")
+    specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in (*locked, *dev)
+             for name in datasets for split in (SPLITS if name == "real" else ("stratified",))]
+    for spec in run_all(specs, out, workers, device, model, bool(locked), mle, threads):
+        console.print(f"scored {spec.dataset} {spec.split} seed {spec.seed}")
 
 
 def _blocks(seed_list: tuple[int, ...], datasets: tuple[str, ...], synth_n: int,
             mle_epochs: int, out: Path, device: str, model: bool, only_cached: bool,
-            final: bool = False) -> dict[str, dict[str, dict]]:
-    """Data set -> split -> summary block of the runs at `seed_list`, printed as they come."""
+            final: bool = False, mle: bool = True) -> dict[str, dict[str, dict]]:
+    """Data set -> split -> summary block of the runs at `seed_list`, printed as they come
+    (`mle`: training the seq2seq model where none is cached)."""
     from homesim.learn.eval.experiment import RunSpec, block
     from homesim.learn.eval.goals import beaten
     from homesim.learn.eval.splits import SPLITS
@@ -362,7 +395,7 @@ def _blocks(seed_list: tuple[int, ...], datasets: tuple[str, ...], synth_n: int,
     for name in datasets:
         for split in SPLITS if name == "real" else ("stratified",):
             specs = [RunSpec(name, split, seed, synth_n, mle_epochs) for seed in seed_list]
-            runs = _runs(specs, out, device, model, only_cached, final)
+            runs = _runs(specs, out, device, model, only_cached, final, mle)
             if not runs:
                 console.print(f"[yellow]skipped[/] {name} {split}: no run scored in {out}")
                 continue
@@ -373,7 +406,7 @@ def _blocks(seed_list: tuple[int, ...], datasets: tuple[str, ...], synth_n: int,
 
 def _write_evaluation(markdown: Path, dev: dict, locked: dict | None, runs: list,
                       seconds: float, only_cached: bool, out: Path, device: str, seeds: int,
-                      force: bool) -> None:
+                      force: bool, dev_cached: bool = False) -> None:
     """Write the evaluation markdown: the locked part made now (with --final) or kept from
     the file it replaces, the development seeds' tables, Table 2 kept."""
     from homesim.learn.eval import ledger
@@ -388,7 +421,10 @@ def _write_evaluation(markdown: Path, dev: dict, locked: dict | None, runs: list
         part = kept_locked_part(old)
     note = (f"Summarised with --only-cached from the runs scored under {out} so far; a row "
             f"with fewer than {seeds} seeds had not finished for the others."
-            if only_cached else "")
+            if only_cached else
+            f"The development seeds' tables summarise the runs scored under {out} before this "
+            f"run (--dev-cached); a row with fewer than {seeds} seeds had not been scored for "
+            "the others." if dev_cached else "")
     text = evaluation_markdown(dev, _machine(device), _versions(),
                                None if only_cached else seconds, note, str(out), part)
     write_text(markdown, with_table2(markdown, text), force=force)
@@ -396,7 +432,7 @@ def _write_evaluation(markdown: Path, dev: dict, locked: dict | None, runs: list
 
 
 def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bool,
-          final: bool = False) -> list[dict]:
+          final: bool = False, mle: bool = True) -> list[dict]:
     """Each spec's run: scored now (reusing what is cached), or only what is cached; locked
     seeds only with `final`."""
     from homesim.learn.eval.experiment import cached_run, run
@@ -411,7 +447,7 @@ def _runs(specs: list, out: Path, device: str, with_model: bool, only_cached: bo
         with _bar() as bar:
             runs.append(run(spec, out, device, with_model,
                             _Reporter(bar, f"{spec.dataset} {spec.split} seed {spec.seed}"),
-                            final))
+                            final, mle))
     return runs
 
 

@@ -38,21 +38,19 @@ def lcs_length(a: Sequence[Hashable], b: Sequence[Hashable]) -> int:
     0
     """
     if len(a) < len(b):
-        a, b = b, a  # keep the DP row as short as possible
-    if not b:
-        return 0
-    # One row of the classic DP table: row[j] = LCS of a[:i] and b[:j].
-    row = [0] * (len(b) + 1)
+        a, b = b, a  # the bit row spans the shorter sequence
+    # Bit-parallel (Allison-Dix / Hyyro): bit j of `row` is 0 where the LCS of the prefix of a
+    # read so far and b[:j + 1] grows at j; one big-integer step per item of a, exact and
+    # about ten times faster than the classic DP table in Python (the reranker's hot loop).
+    masks: dict[Hashable, int] = {}
+    for j, y in enumerate(b):
+        masks[y] = masks.get(y, 0) | (1 << j)
+    full = (1 << len(b)) - 1
+    row = full
     for x in a:
-        diagonal = 0  # row[j - 1] of the previous row
-        for j, y in enumerate(b, start=1):
-            above = row[j]
-            if x == y:
-                row[j] = diagonal + 1
-            elif row[j - 1] > above:
-                row[j] = row[j - 1]
-            diagonal = above
-    return row[-1]
+        matched = row & masks.get(x, 0)
+        row = ((row + matched) | (row - matched)) & full
+    return len(b) - row.bit_count()
 
 
 def normalized_lcs(a: Sequence[Hashable], b: Sequence[Hashable]) -> float:

@@ -134,6 +134,12 @@ def test_locked_seeds_only_with_final_and_every_final_run_is_counted(tmp_path, c
     assert main([*base, "--final", "--only-cached"]) == 0
     assert "was run 2 times for" in md.read_text()
     assert len(ledger.listed(md.read_text())) == 2
+    before = (tmp_path / "synthetic" / "stratified" / "seed0" / "scores.json").read_bytes()
+    assert main([*base, "--final", "--dev-cached", "--workers", "2"]) == 0
+    text = md.read_text()
+    assert "was run 3 times for" in text and "(--dev-cached)" in text
+    assert "(locked test seeds 100)" in text and "(development seeds 0)" in text
+    assert (tmp_path / "synthetic" / "stratified" / "seed0" / "scores.json").read_bytes() == before
 
 
 def test_a_cached_row_of_another_model_version_is_scored_again(tmp_path, monkeypatch):
@@ -149,3 +155,33 @@ def test_a_cached_row_of_another_model_version_is_scored_again(tmp_path, monkeyp
     again = run(spec, tmp_path, with_model=False)["rows"]
     assert calls == [1] and again["Title-medoid"]["version"] == 2
     assert again["NN (title)"] == run(spec, tmp_path, with_model=False)["rows"]["NN (title)"]
+
+
+def test_without_mle_no_model_is_trained_and_its_scored_rows_are_kept(tmp_path, monkeypatch):
+    from homesim.learn.eval import experiment
+
+    monkeypatch.setattr(experiment, "MLE_DATASETS", ("synthetic",))
+    spec = RunSpec("synthetic", "stratified", 0, synth_n=30, mle_epochs=1, embeddings="none")
+    rows = run(spec, tmp_path, with_model=False, with_mle=False)["rows"]
+    assert not any(name in rows for name in experiment.MLE_ROWS)
+    assert not (spec.folder(tmp_path) / "mle.pt").exists()
+    trained = run(spec, tmp_path, with_model=False)["rows"]  # no reranker: quick
+    assert not any(name in trained for name in experiment.MLE_ROWS)  # with_model off
+    trained = run(spec, tmp_path)["rows"]
+    kept = run(spec, tmp_path, with_mle=False)["rows"]
+    assert list(kept) == list(trained)  # the seq2seq rows kept, in the table's order
+    assert kept["MLE (seq2seq)"] == trained["MLE (seq2seq)"]
+
+
+def test_runs_scored_in_parallel_processes_score_the_same(tmp_path):
+    import json
+
+    def table(out, workers):
+        args = ["learn", "table", "--out", str(out), "--data", "synthetic", "--seeds", "2",
+                "--synth-n", "30", "--no-model", "--workers", str(workers)]
+        assert main(args) == 0
+        return [json.loads((out / "synthetic" / "stratified" / f"seed{k}" / "scores.json")
+                           .read_text())["rows"] for k in (0, 1)]
+
+    assert _examples({"rows": table(tmp_path / "a", 2)[1]}) == _examples(
+        {"rows": table(tmp_path / "b", 1)[1]})

@@ -22,6 +22,26 @@ def test_a_run_round_trips_through_the_ledger_and_the_markdown(tmp_path):
     assert ledger.merged([b, a], [a]) == [a, b]  # once each, oldest first
 
 
+def test_the_start_is_read_from_the_clock_to_the_microsecond(monkeypatch):
+    """Identity is (start, commit): at one-second resolution a quick second final run (as in
+    test_experiment's, on a fast machine) merged into the first and was not counted."""
+    from datetime import datetime, timezone
+
+    clock = iter([datetime(2026, 1, 2, 3, 4, 5, 100, timezone.utc),
+                  datetime(2026, 1, 2, 3, 4, 5, 90000, timezone.utc)])
+
+    class Clock:
+        @staticmethod
+        def now(tz):
+            return next(clock)
+
+    monkeypatch.setattr(ledger, "datetime", Clock)
+    first = FinalRun.now("abc1234", ("real",), (100,))
+    second = FinalRun.now("abc1234", ("real",), (100,))
+    listed = ledger.listed("\n".join(ledger.section([first])))
+    assert ledger.merged(listed, [second]) == [first, second]
+
+
 def test_two_runs_in_one_second_are_counted_twice():
     """Runs stamped to the second merged into one when started in the same second (the
     CLI test of the locked seeds failed on a fast machine: 'was run 2 times' read 1)."""

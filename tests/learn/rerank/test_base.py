@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 
 from homesim.knowledge.datasets import ActivityProgram
-from homesim.learn.rerank.base import Bank, Query
+from homesim.learn.rerank.base import Bank, Query, feature_names
 from homesim.program.model import Program
 from tests.learn.rerank.test_reranker import LAMP, TV, _example
 
@@ -32,6 +32,20 @@ def test_candidates_include_the_median_of_the_querys_activity():
     medoid = bank.train[bank.medoid(np.arange(3))].program
     median = tuple(step_tokens(Medians(references, np.ones(3)).median(medoid)))
     assert median not in bank.tokens
-    best = {tau: int(np.argmax(query.weights[tau] @ bank.lcs)) for tau in bank.config.taus}
-    assert median in {tuple(step_tokens(p)) for _, p in query._medians(best)}
+    assert query._typical() is not None and tuple(step_tokens(query._typical()[1])) == median
     assert median in {c.tokens for c in query.candidates if c.edited}
+    assert query.candidates[query.typical].tokens == median  # the typical program
+    features = dict(zip(feature_names(bank.config), query.features()[query.typical],
+                        strict=True))
+    assert features["typical program"] == 1.0
+    assert features["log words beyond the title"] == np.log1p(1)  # "wash fae": "fae"
+
+
+def test_an_unseen_activity_is_typically_its_nearest_activity(tiny_splits):
+    bank = Bank(tiny_splits.train)
+    e = tiny_splits.train[0]
+    query = Query(bank, e, ~bank.hidden(e, "activity"))  # its activity hidden
+    assert not len(query.activity_programs())
+    shown = query.typical_programs()
+    assert len(shown) and len({bank.train[k].activity for k in shown}) == 1
+    assert bank.train[int(shown[0])].activity != e.activity

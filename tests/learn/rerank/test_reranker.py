@@ -53,3 +53,38 @@ def test_the_settings_are_saved_with_the_model_and_read_from_it(tiny_splits):
 def test_settings_that_cannot_work_are_refused():
     with pytest.raises(ValueError, match="position_tau"):
         RerankConfig(taus=(0.02, 0.05, 0.3))
+
+
+def test_when_no_candidate_runs_the_steps_of_the_best_that_run_are_written(tiny_splits):
+    from homesim.learn.rerank.reranker import runnable_part
+
+    def runs(p: Program) -> bool:  # a home where nothing can be switched on
+        return not any(s.action.key == "SWITCHON" for s in p.steps)
+
+    tv = Program.parse(TV)
+    assert [str(s) for s in runnable_part(tv, runs).steps] == [str(s) for s in tv.steps[:2]]
+    assert runnable_part(tv, lambda p: not p.steps).steps == ()
+    train, test = tiny_splits.train, tiny_splits.test
+    model = Reranker.fit(train, "program", config=RerankConfig(check_executable=1))
+    for example in test[:3]:
+        chosen = model.choose(example, runs)
+        assert runs(chosen)
+
+
+def test_a_bare_title_gets_the_typical_program_unedited(tiny_splits):
+    import math
+
+    from homesim.learn.eval.titles import title_only
+
+    train, test = tiny_splits.train, tiny_splits.test
+    config = RerankConfig(typical_margins=(math.inf,))  # the typical program at every level
+    model = Reranker.fit(train, "program", config=config)
+    assert model.typical_margins == (math.inf,) * 3
+    for example in test[:3]:
+        bare = title_only(example)
+        query, ranked = model.ranked(bare)
+        typical = query.candidates[query.typical].program
+        assert ranked[0] is typical
+        assert model.choose(bare, lambda p: True).steps == typical.steps  # unedited
+        elsewhere = model.choose(bare, lambda p, t=typical: p.steps != t.steps)
+        assert elsewhere.steps != typical.steps  # where it does not run: as for any text

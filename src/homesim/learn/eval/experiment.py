@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -162,13 +162,22 @@ def model_jobs(splits: Splits, seed: int, t2p: Text2Prog) -> list[Job]:
             fitted["model"] = RetrieveEdit.fit(splits.train, splits.dev)
         return fitted["model"]
 
-    return [
-        ("MLE (seq2seq)", lambda: t2p.predict(test)),
-        ("MLE + constrained decoding", lambda: t2p.predict(test, constrained=True)),
-        ("Retrieve-and-edit", lambda: retrieval().predict(test)),
-        ("Consensus (MLE + retrieval)",
-         lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)),
-    ]
+    return list(zip(MLE_ROWS, (
+        lambda: t2p.predict(test),
+        lambda: t2p.predict(test, constrained=True),
+        lambda: retrieval().predict(test),
+        lambda: Consensus.fit(t2p, retrieval(), splits.dev, seed).predict(test)), strict=True))
+
+
+MLE_ROWS = ("MLE (seq2seq)", "MLE + constrained decoding", "Retrieve-and-edit",
+            "Consensus (MLE + retrieval)")
+"""The rows of `model_jobs`, in order."""
+
+
+def _not_scored(name: str) -> Callable[[], list[Program]]:
+    def job() -> list[Program]:
+        raise HomesimError(f"{name}: not scored, and no seq2seq model trained (--no-mle)")
+    return job
 
 
 TITLE_ROW = "Reranker, title only"
@@ -242,10 +251,11 @@ def cached_run(spec: RunSpec, out: Path, final: bool = False) -> dict | None:
 
 
 def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
-        report: Report | None = None, final: bool = False) -> dict:
+        report: Report | None = None, final: bool = False, with_mle: bool = True) -> dict:
     """Score every row of one run (`with_model`: also the learned rows this data set gets,
     `MLE_DATASETS` and `RERANK_DATASETS`); rows already in ``scores.json`` for the same spec are
     kept (so baselines scored without the model are reused, and an interrupted run resumes).
+    Without `with_mle` no seq2seq model is trained: its rows are those already scored, if any.
     A locked seed only with `final` (`splits.check_unlocked`).
     """
     check_unlocked(spec.seed, final)
@@ -257,11 +267,13 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
         if spec.matches(old.get("spec")):
             rows = old["rows"]
     splits = load_run_splits(spec, out / spec.dataset / "vectors.npz", final)
-    t2p = (mle_model(spec, splits, folder, device, report)
-           if with_model and spec.dataset in MLE_DATASETS else None)
+    mle = with_model and spec.dataset in MLE_DATASETS
+    t2p = mle_model(spec, splits, folder, device, report) if mle and with_mle else None
     jobs = baseline_jobs(splits, spec.seed)
     if t2p is not None:
         jobs += model_jobs(splits, spec.seed, t2p)
+    elif mle:  # not trained this time: the seq2seq rows already scored keep their place
+        jobs += [(name, _not_scored(name)) for name in MLE_ROWS if name in rows]
     if with_model and spec.dataset in RERANK_DATASETS:
         jobs += rerank_jobs(splits, spec.split)
     if spec.dataset != "real":
@@ -282,6 +294,39 @@ def run(spec: RunSpec, out: Path, device: str = "cpu", with_model: bool = True,
     data["rows"] = {**ordered, **{k: v for k, v in rows.items() if k not in ordered}}
     save()
     return {**data, "rows": ordered}
+
+
+def run_all(specs: list[RunSpec], out: Path, workers: int, device: str = "cpu",
+            with_model: bool = True, final: bool = False, with_mle: bool = True,
+            threads: int = 1) -> Iterator[RunSpec]:
+    """Score every spec's run (`run`) in `workers` processes at once (spawned, torch at
+    `threads` threads each), yielding each spec as its run is done; the scores land in
+    each run's ``scores.json``, where `run` and `cached_run` read them. Each run is the
+    same as alone. The data sets' sentence vectors must be cached already
+    (`preload_vectors`), so that no two processes write them."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(_run_in_worker, spec, out, device, with_model, final, with_mle,
+                               threads): spec for spec in specs}
+        for future in as_completed(futures):
+            future.result()
+            yield futures[future]
+
+
+def _run_in_worker(spec: RunSpec, out: Path, device: str, with_model: bool, final: bool,
+                   with_mle: bool, threads: int) -> None:
+    import os
+
+    # scikit-learn's trees use every core through OpenMP unless told: beside other workers
+    # on a loaded machine its threads wait on each other (set before OpenMP starts)
+    os.environ["OMP_NUM_THREADS"] = str(threads)
+    import torch
+
+    torch.set_num_threads(threads)  # as the CLI sets its own process (`cli.learn._torch`)
+    torch.use_deterministic_algorithms(True)
+    run(spec, out, device, with_model, None, final, with_mle)
 
 
 def block(runs: list[dict], beat: dict[str, tuple[str, ...]]) -> dict:

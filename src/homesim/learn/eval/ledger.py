@@ -27,7 +27,8 @@ _ITEM = re.compile(r"^- (\S+), commit (\S+), data (\S+), seeds (\d+)-(\d+)$")
 
 @dataclass(frozen=True)
 class FinalRun:
-    """One ``--final`` run: when it started (ISO 8601 UTC), the commit, data sets, seeds."""
+    """One ``--final`` run: when it started (ISO 8601 UTC, to the microsecond: two runs within
+    one second are two runs), the commit, data sets, seeds."""
 
     when: str
     commit: str

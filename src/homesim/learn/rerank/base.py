@@ -23,6 +23,7 @@ from homesim.learn.rerank.candidates import drops, mention_order, substitutions
 from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.lexicon import ObjectLexicon, actions, classes, words
 from homesim.learn.rerank.median import Medians, uniform_median
+from homesim.learn.rerank.support import words_beyond_title
 from homesim.program.metrics import normalized_lcs, step_tokens
 from homesim.program.model import Program
 from homesim.world.vocab import ROOM_NAMES
@@ -35,7 +36,8 @@ def feature_names(config: RerankConfig) -> tuple[str, ...]:
             "abs log length ratio", "source similarity", "source description cosine",
             "source title cosine", "steps with named objects", "named classes missing",
             "log implicit rate", "mention order", "classes", "log length x log words",
-            "named actions used", "actions named", "source words cosine")
+            "named actions used", "actions named", "source words cosine", "typical program",
+            "log words beyond the title")
 
 
 @dataclass(frozen=True)
@@ -134,11 +136,28 @@ class Query:
         self.verbs = self.bank.lexicon.actions(self.example.text)
         self.overlap = self.bank.bags @ _bag(self.example.text, self.bank.idf)
         self.near = np.argsort(-self.weights[cfg.taus[1]], kind="stable")[:cfg.near]
+        self.beyond = np.log1p(words_beyond_title(self.example))
+        self.typical_tokens: tuple | None = None
         self.candidates = self._candidates(sims)
+        self.typical = next((i for i, c in enumerate(self.candidates)
+                             if c.tokens == self.typical_tokens), -1)
+        """Index of the typical program among the candidates (`support`); -1: none."""
 
     def activity_programs(self) -> np.ndarray:
         """Indices of the training programs of the query's activity that it may see."""
         return np.flatnonzero(self.allowed & self.bank.activity_mask(self.example.activity))
+
+    def typical_programs(self) -> np.ndarray:
+        """The training programs the typical program is the median of (`support`): those of
+        the query's activity that it may see, or if none, those of the activity of the
+        nearest title it may see (MiniLM cosine; ties: the first)."""
+        same = self.activity_programs()
+        seen = np.flatnonzero(self.allowed)
+        if len(same) or not len(seen):
+            return same
+        nearest = int(seen[int(np.argmax(self.bank.title[seen] @ self.title))])
+        return np.flatnonzero(self.allowed & self.bank.activity_mask(
+            str(self.bank.activities[nearest])))
 
     def _candidates(self, sims: np.ndarray) -> list[Candidate]:
         cfg = self.bank.config
@@ -172,22 +191,31 @@ class Query:
         for j, p in self._medians(best):
             if p.steps:
                 add(p, j, True)
+        typical = self._typical()
+        if typical is not None:
+            add(typical[1], typical[0], True)
+            self.typical_tokens = tuple(step_tokens(typical[1]))
         return out
+
+    def _typical(self) -> tuple[int, Program] | None:
+        """(start, median) of `typical_programs`, started from their medoid; None when there
+        are none or the median is empty."""
+        bank, same = self.bank, self.typical_programs()
+        if not len(same):
+            return None
+        start = bank.medoid(same)
+        median = uniform_median([bank.train[k].program for k in same],
+                                bank.train[start].program, bank.config.median)
+        return (start, median) if median.steps else None
 
     def _medians(self, best: dict[float, int]) -> list[tuple[int, Program]]:
         """(start, median) pairs: the median of the `near` nearest neighbours under each tau's
-        weights, started from that tau's best expected-LCS program (`best`), and the median
-        of the programs of the query's activity (uniform weights) started from their medoid."""
+        weights, started from that tau's best expected-LCS program (`best`)."""
         bank, out, cfg = self.bank, [], self.bank.config
         references = [bank.train[k].program for k in self.near]
         for tau in cfg.taus:
             medians = Medians(references, self.weights[tau][self.near], cfg.median)
             out.append((best[tau], medians.median(bank.train[best[tau]].program)))
-        same = self.activity_programs()
-        if len(same):
-            start = bank.medoid(same)
-            out.append((start, uniform_median([bank.train[k].program for k in same],
-                                              bank.train[start].program, cfg.median)))
         return out
 
     def features(self) -> np.ndarray:
@@ -219,7 +247,8 @@ class Query:
                 mention_order(steps_with, named, self.example.text), len(used),
                 np.log(max(len(c.tokens), 1)) * np.log(n_words),
                 len(acts & self.verbs) / max(len(self.verbs), 1),
-                len(acts & self.verbs) / max(len(acts), 1), float(self.overlap[c.source])]
+                len(acts & self.verbs) / max(len(acts), 1), float(self.overlap[c.source]),
+                float(c.tokens == self.typical_tokens), float(self.beyond)]
 
 
 

@@ -65,6 +65,16 @@ class RerankConfig:
     delete_threshold: float = 0.2
     """Steps the deleter gives less than this probability of being in the truth are
     deleted (`deletion`)."""
+    reduced: tuple[int, ...] = (0, 4)
+    """The trees also learn from each training description cut to this many words (0: the
+    title alone; `support.reduced`), so that they know what a short text supports."""
+    support_edges: tuple[int, ...] = (1, 6)
+    """Words beyond the title that start each support level above 0 (`support.support_level`):
+    the title alone, up to five more words, more."""
+    typical_margins: tuple[float, ...] = (0.0, 0.01, 0.02, 0.03, 0.05, 0.1, float("inf"))
+    """The margins `support.choose_margins` chooses from by cross-validation, one for each
+    support level: the typical program is written when its score is less than the margin
+    behind the best one's (inf: always)."""
 
     def __post_init__(self) -> None:
         if self.position_tau not in self.taus or len(self.taus) < 3:

@@ -23,20 +23,23 @@ from homesim.program.model import Program
 
 
 def fit_editors(bank: Bank, holdout: str, queries: list[tuple[int, Query]],
-                groups: list[tuple[np.ndarray, np.ndarray]], delete: bool = False
-                ) -> tuple[Inserter | None, Deleter | None]:
+                groups: list[tuple[np.ndarray, np.ndarray]], delete: bool = False,
+                best: np.ndarray | None = None) -> tuple[Inserter | None, Deleter | None]:
     """The `insertion.Inserter` and `deletion.Deleter` learned from the training queries
     (`queries`: (index in training, query), their `groups` in order) without a copy in
     training, each with its cross-fitted choice, what it may read of the folds it is not in
     (`folds.Known`), and for the deleter the steps inserted by an inserter fitted on
-    those folds (`delete`; else None). The deleter is None too unless its deletions,
+    those folds (`delete`; else None). `best`: each query's cross-fitted choice when
+    already known (index among its candidates; default: `cross_fitted_best` of `groups`).
+    The deleter is None too unless its deletions,
     cross-fitted (`cross_deleted`), raise those queries' mean steps LCS: on the stratified
     split they did at all five seeds, without their activity at three of five
     (docs/learn.md)."""
     config = bank.config
     fold_of, known = fold_knowledge(bank.train, holdout, config)
     query_folds = [int(fold_of[i]) for i, _ in queries]
-    best = cross_fitted_best(groups, query_folds, config)
+    if best is None:
+        best = cross_fitted_best(groups, query_folds, config)
     chosen = [(q, known[f], q.candidates[b], f) for (_, q), f, b
               in zip(queries, query_folds, best, strict=True)
               if b >= 0 and not has_copy(bank, q.example)]

@@ -40,14 +40,16 @@ from homesim.version import __version__
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 
-FORMAT = 8
+FORMAT = 9
 """Bumped when what a stored model holds, or the candidates its trees were fitted on,
 change (a stored model of another format is fitted again); 2: the reranker's medians; 3:
 its inserter of the steps the text says; 4: the inserter's phrase-to-clause cosines; 5: its
 deleter, kept where its own cross-validation finds it pays; 6: the deleter's
 phrase-to-text cosines; 7: `homesim.learn` as packages (the pickled classes moved; the
 reranker lost its unused likelihood field); 8: the settings saved with the model
-(`RerankConfig` in its bank, the title vote's temperature in the writer)."""
+(`RerankConfig` in its bank, the title vote's temperature in the writer); 9: what the text
+supports (`support`: trees also fitted on descriptions cut short, the typical program as a
+candidate and a feature, its margins by support level)."""
 SEED = 0
 """Seed of preparation and grounding when a written program is run."""
 

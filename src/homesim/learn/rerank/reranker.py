@@ -14,17 +14,21 @@ For a description x (the settings named here are fields of `config.RerankConfig`
    does not name (nor a room) left out, singly, and all such classes that training usually
    names (implicit rate below `chain_implicit`) left out at once. Last the *medians*
    (`median.Medians`): under each tau, the step sequence of highest expected LCS to the
-   `near` nearest neighbours, searched from that tau's best program; and the median of the
-   programs of the query's activity, searched from their medoid (`base.Query`).
+   `near` nearest neighbours, searched from that tau's best program; and the *typical
+   program*: the median of the programs of the query's activity, searched from their
+   medoid, or of the nearest title's activity when the query's is not there (`support`).
 3. **Score.** Gradient-boosted regression trees (`trees`) over features of (x, candidate)
    (`base.feature_names`): the expected LCS under each tau against the `near` nearest
    neighbours, the share of named classes the candidate uses and of its classes that are
    named, how often its unnamed classes are left implicit in training, whether the mention
    order agrees, its length against the neighbours' and the text's, its source's
-   similarity, whether it was edited.
-4. **Choice.** The best-scoring candidate that executes in the example's home
-   (`execution.executable`, checked best-first among `check_executable`; the best one if
-   none does).
+   similarity, whether it was edited, whether it is the typical program, how many words the
+   description says beyond the title.
+4. **Choice.** The best-scoring candidate, or the typical program when its score is within
+   the margin of the text's support level (`support`: the title alone, a few words, more),
+   that executes in the example's home
+   (`execution.executable`, checked best-first among `check_executable`; if none does, the
+   steps of the best one that run there, `runnable_part`), so the answer always executes.
 5. **Insertion.** The steps the text says that the choice lacks and that a classifier
    finds likely, inserted where the neighbours have them (`insertion`), when the result
    still executes there.
@@ -37,13 +41,16 @@ The trees regress the candidates' steps LCS to the truth, centred within each de
 the description's mean; they are fitted on training descriptions each queried against the
 rest of the training set with what the split hides removed: for the stratified split the
 training programs equal to its own, for leave-activities-out every program of its
-activity. Their settings (`trees`) were chosen by 5-fold cross-validation over those
-training queries and on the dev split, never on test. Everything is deterministic.
+activity; each also cut to its title alone and to its first four words (`support.reduced`),
+so that they learn what a short text supports. The typical program's margins are chosen by
+cross-validation over those same queries (`support.choose_margins`). The trees' settings
+(`trees`) were chosen by 5-fold cross-validation over the training queries and on the dev
+split, never on test. Everything is deterministic.
 
 Modules: `config` (every setting), `base` (the bank, the query, its candidates and
-features), `candidates` (the substitutions and drops), `median`, `lexicon`, `trees` (the
-scorer), `insertion` and `deletion` (the editors), `folds` and `editors` (how the editors
-learn without a leak).
+features), `candidates` (the substitutions and drops), `median`, `lexicon`, `support` (what
+a short text supports), `trees` (the scorer), `insertion` and `deletion` (the editors),
+`folds` and `editors` (how the editors learn without a leak).
 """
 
 from __future__ import annotations
@@ -61,8 +68,10 @@ from homesim.learn.rerank.base import Bank, Query, labelled
 from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.deletion import Deleter
 from homesim.learn.rerank.editors import fit_editors
+from homesim.learn.rerank.folds import folds
 from homesim.learn.rerank.insertion import Inserter
-from homesim.learn.rerank.trees import design, fit_trees
+from homesim.learn.rerank.support import Scored, choose_margins, gated, reduced, support_level
+from homesim.learn.rerank.trees import best_of, cross_fitted_scores, design, fit_trees
 from homesim.program.model import Program
 
 if TYPE_CHECKING:
@@ -84,6 +93,10 @@ class Reranker:
     deleter: Deleter | None = None
     """With it, the steps of the choice (after insertion) that neither the text nor the
     neighbours support are deleted (`deletion`)."""
+    typical_margins: tuple[float, ...] = ()
+    """For each support level of the text (`support.support_level`), the typical program is
+    chosen when its score is less than this behind the best candidate's (`support.gated`;
+    chosen by cross-validation, `support.choose_margins`); none: never."""
 
     @classmethod
     def fit(cls, train: list[Example], holdout: str, insert: bool = True,
@@ -92,22 +105,39 @@ class Reranker:
         `HOLDOUTS`), with `config` (default: `RerankConfig()`); `insert`: with the
         `insertion.Inserter` of the steps the text says, `delete`: also the
         `deletion.Deleter` of unsupported steps, fitted on the same queries and kept only
-        when, cross-fitted, it raises their mean steps LCS (`editors.fit_editors`)."""
+        when, cross-fitted, it raises their mean steps LCS (`editors.fit_editors`). The
+        trees also learn from the descriptions cut short (`support`), and the margin of
+        the typical program is chosen by cross-validation over all those queries."""
         bank = Bank(train, config or RerankConfig())
-        groups, queries = [], []
+        fold_of = folds(train, holdout, bank.config.folds)
+        queries, short = [], []
         for i, example in enumerate(train):
-            query = Query(bank, example, ~bank.hidden(example, holdout))
+            allowed = ~bank.hidden(example, holdout)
+            query = Query(bank, example, allowed)
             if query.candidates:
-                groups.append(labelled(query))
                 queries.append((i, query))
-        editors = (fit_editors(bank, holdout, queries, groups, delete) if insert
-                   else (None, None))
-        return cls(bank, fit_trees(groups, bank.config), *editors)
+                short += [(i, q) for q in (Query(bank, reduced(example, n), allowed)
+                                           for n in bank.config.reduced) if q.candidates]
+        everything = queries + short
+        groups = [labelled(q) for _, q in everything]
+        scores = cross_fitted_scores(groups, [fold_of[i] for i, _ in everything], bank.config)
+        margins = choose_margins(_scored(everything, groups, scores), bank.config.typical_margins,
+                                 len(bank.config.support_edges) + 1)
+        full = len(queries)
+        editors = (fit_editors(bank, holdout, queries, groups[:full], delete,
+                               best_of(scores[:full])) if insert else (None, None))
+        return cls(bank, fit_trees(groups, bank.config), *editors, margins)
 
     @property
     def config(self) -> RerankConfig:
         """The settings the model was fitted with (saved with it, in its bank)."""
         return self.bank.config
+
+    def margin(self, example: Example) -> float:
+        """The typical program's margin for the example's text (`typical_margins`)."""
+        if not self.typical_margins:
+            return 0.0
+        return self.typical_margins[support_level(example, self.config.support_edges)]
 
     def scores(self, query: Query) -> np.ndarray:
         """(candidates,) the trees' score of each of the query's candidates."""
@@ -120,19 +150,31 @@ class Reranker:
     def ranked(self, example: Example, vectors: tuple[np.ndarray, np.ndarray] | None = None
                ) -> tuple[Query, list[Program]]:
         """The query for an example's title and description and its candidates,
-        best-scoring first (its program is not read); `vectors` as `Query` takes them."""
+        best-scoring first, the typical program first where the text's margin says so
+        (`support.gated`; its program is not read); `vectors` as `Query` takes them."""
         query = Query(self.bank, example, np.ones(len(self.bank.train), bool), vectors)
-        order = np.argsort(-self.scores(query), kind="stable")
-        return query, [query.candidates[int(i)].program for i in order]
+        scores = self.scores(query)
+        first = gated(scores, query.typical, self.margin(example))
+        order = [first, *(int(i) for i in np.argsort(-scores, kind="stable") if i != first)]
+        return query, [query.candidates[i].program for i in order]
 
     def choose(self, example: Example, runs: Callable[[Program], bool],
                vectors: tuple[np.ndarray, np.ndarray] | None = None) -> Program:
         """The best-scoring candidate that `runs` accepts among the first
-        `config.check_executable` (the best one if none is), edited (`edits`) when `runs`
-        accepts the result."""
+        `config.check_executable` (if none is, the steps of the best one that run,
+        `runnable_part`), edited (`edits`) when `runs` accepts the result: what it returns
+        always runs. Where the text says nothing beyond its title (support level 0,
+        `support`) and the typical program comes first and runs, it is written unedited
+        (there is nothing to edit by)."""
         query, programs = self.ranked(example, vectors)
+        bare = support_level(example, self.config.support_edges) == 0
+        if (bare and query.typical >= 0 and programs[0] is query.candidates[query.typical].program
+                and runs(programs[0])):
+            return programs[0]
         first = programs[:self.config.check_executable]
-        chosen = next((p for p in first if runs(p)), programs[0])
+        chosen = next((p for p in first if runs(p)), None)
+        if chosen is None:
+            chosen = runnable_part(programs[0], runs)
         return next((p for p in self.edits(query, chosen)
                      if p.steps != chosen.steps and runs(p)), chosen)
 
@@ -143,6 +185,24 @@ class Reranker:
         if self.deleter is None:
             return [inserted]
         return [self.deleter.delete(query, inserted), inserted]
+
+
+def _scored(queries: list[tuple[int, Query]], groups: list[tuple[np.ndarray, np.ndarray]],
+            scores: list[np.ndarray | None]) -> list[Scored]:
+    """The cross-fitted queries `support.choose_margin` reads (those with scores)."""
+    edges = queries[0][1].bank.config.support_edges if queries else ()
+    return [(lcs, s, q.typical, support_level(q.example, edges))
+            for (_, q), (_, lcs), s in zip(queries, groups, scores, strict=True) if s is not None]
+
+
+def runnable_part(program: Program, runs: Callable[[Program], bool]) -> Program:
+    """The steps of `program` that `runs` accepts, kept in order: each step is kept when
+    the steps kept before it and it run (so the result runs; at worst it is empty)."""
+    kept: tuple = ()
+    for step in program.steps:
+        if runs(Program((*kept, step))):
+            kept = (*kept, step)
+    return Program(kept)
 
 
 def _executable_in(example: Example, program: Program) -> bool:

@@ -44,16 +44,29 @@ def fit_trees(groups: list[tuple[np.ndarray, np.ndarray]], config: RerankConfig,
 
 
 
-def cross_fitted_best(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[int],
-                      config: RerankConfig, random_state: int | None = None) -> np.ndarray:
-    """(groups,) index of each group's best-scoring candidate under trees fitted on the
-    groups of the other folds (-1 where a fold has nothing to learn from)."""
-    best = np.full(len(groups), -1)
+def cross_fitted_scores(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[int],
+                        config: RerankConfig, random_state: int | None = None
+                        ) -> list[np.ndarray | None]:
+    """Each group's candidate scores under trees fitted on the groups of the other folds
+    (None where a fold has nothing to learn from)."""
+    scores: list[np.ndarray | None] = [None] * len(groups)
     for k in range(config.folds):
         held = [i for i, f in enumerate(folds) if f == k]
         rest = [g for g, f in zip(groups, folds, strict=True) if f != k]
         if held and rest:
             trees = fit_trees(rest, config, random_state)
-            best[held] = [int(np.argmax(trees.predict(design(groups[i][0])))) for i in held]
-    return best
+            for i in held:
+                scores[i] = np.asarray(trees.predict(design(groups[i][0])))
+    return scores
 
+
+def cross_fitted_best(groups: list[tuple[np.ndarray, np.ndarray]], folds: list[int],
+                      config: RerankConfig, random_state: int | None = None) -> np.ndarray:
+    """(groups,) index of each group's best-scoring candidate under trees fitted on the
+    groups of the other folds (-1 where a fold has nothing to learn from)."""
+    return best_of(cross_fitted_scores(groups, folds, config, random_state))
+
+
+def best_of(scores: list[np.ndarray | None]) -> np.ndarray:
+    """(groups,) the index of each group's highest score (-1 for None)."""
+    return np.array([-1 if s is None else int(np.argmax(s)) for s in scores], dtype=int)
