@@ -192,6 +192,24 @@ def test_hand_touches_what_it_takes_even_from_a_far_spot(box_home):
     assert np.linalg.norm(walked) > 0.2  # it had to step closer
 
 
+def test_a_spot_far_from_where_the_object_is_now_is_not_used(box_home):
+    """Grounding's spots come from where things stood at the start: a spot 2.3 m from the
+    cup (`SPOT_REACH` 1 m) is left, the agent walks to the cup itself; a near one is
+    kept."""
+    from homesim.render.animate import SPOT_REACH
+
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(PROGRAM), box_home, trace=True,
+                             reference=True)
+    cup = to_mujoco(box_home.node(21))
+    for spot, kept in (((-1.5, 0.0), False), ((0.2, -1.0), True)):
+        tl = Animator(scene, box_home, AGENTS["male1"], fps=10,
+                      standing={0: spot, 1: spot}).run(result)
+        end = tl.qpos[tl.step_frames[0][1]][:2]
+        assert (np.linalg.norm(end - np.array(spot)) < 0.06) == kept, (spot, end)
+        assert np.linalg.norm(end - cup.center[:2]) < SPOT_REACH + 0.4
+
+
 def test_drink_brings_the_cup_to_the_mouth(box_home):
     scene = build_scene(box_home, AGENTS["female1"], max_size=(64, 48))
     result = homesim.execute(homesim.parse_program(

@@ -49,3 +49,27 @@ def test_real_apartments_have_walls_doors_and_no_corner_cubes(shared_data):
         walls = [b for p in layout.parts if p.class_name == "wall" for b in p.boxes]
         assert walls and all(min(b.half[0], b.half[1]) <= 0.06 for b in walls)
         assert sum(p.class_name == "door" and p.hinge is not None for p in layout.parts) >= 1
+
+
+def test_a_desk_is_cut_around_the_computer_under_it(shared_data):
+    """Scene 3's computer tower stands where the desk's drawer block is drawn: the desk
+    below its top gives way (the tower is drawn and reachable), the top stays."""
+    from homesim.render.layout import DESK_TOP
+    from homesim.world.homes import load_home
+
+    g = load_home("scene3")
+    layout = build_layout(g)
+    tower = to_mujoco(g.node(379))
+    desk = layout.part(375)
+    assert g.node(379).class_name == "computer" and desk.class_name == "desk"
+
+    def overlap(s):
+        size = np.minimum(s.center + s.half, tower.hi) - np.maximum(s.center - s.half, tower.lo)
+        return float(np.prod(np.maximum(size, 0.0)))
+
+    assert max(overlap(s) for s in desk.shapes) < 1e-9
+    top = max(s.center[2] + s.half[2] for s in desk.shapes)
+    x, y = tower.center[:2]
+    assert any(s.center[2] - s.half[2] >= top - DESK_TOP - 1e-6
+               and abs(x - s.center[0]) <= s.half[0] and abs(y - s.center[1]) <= s.half[1]
+               for s in desk.shapes)  # the top board above the tower is still there

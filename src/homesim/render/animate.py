@@ -26,6 +26,7 @@ from homesim.render.clearance import Clearance
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK, Grasp
 from homesim.render.interact import (
+    CLEAR,
     COMFORT_LEAN,
     TOUCH,
     GraspOf,
@@ -61,6 +62,9 @@ STRIDE = 1.3  # metres per gait cycle (two steps)
 TURN_SPEED = 3.0  # rad/s
 AT_SPOT = 0.05
 """An agent this close (m) to its step's standing spot does not walk to it."""
+SPOT_REACH = 1.0
+"""Metres: a standing spot farther than this from what its step acts on (where that is
+now) is not used (`Animator._spot_for`)."""
 HEAD_RADIUS = 0.065
 """The head's radius as a share of the agent's height (as `agent.agent_mjcf` draws it)."""
 GRAVITY = 9.81
@@ -337,21 +341,17 @@ class Animator:
         `grasp_of`: take hold with the palm as it says (`palm_grasp`), the wrist turning.
         `acts_on`: objects the hand may enter besides `nodes` (a door's handle)."""
         self._plan_around(side, nodes + acts_on)
-        if self.posture == "stand" and step:
+        reached = None
+        if self.posture != "stand" or not step:
+            if self.posture == "stand":
+                self.turn_to(point)
+            reached = self._reach_in_place(side, point, grip, seed, grasp_of, step)
+            if reached is None:  # seated, out of reach or through something: get up
+                self.stand_up()
+        if reached is None:
             plan = self.planner.plan(self.pose.xy, side, point, grip, grasp_of)
             self.step_to(plan.pose.xy, point)
             reached = plan.pose
-        else:
-            if self.posture == "stand":
-                self.turn_to(point)
-            seeded = self.pose.with_joints(**(seed or {}))
-            if grasp_of is not None:
-                tries = [self.ik.grasp(seeded, side, g, lean=step)
-                         for g in grasp_of(self.pose.xy)]
-                reached = next((p for p, gap in tries if gap <= TOUCH),
-                               min(tries, key=lambda t: t[1])[0])
-            else:
-                reached, _ = self.ik.reach(seeded, side, point, grip, lean=step)
         rest = self.pose
         self.pose = self._carried(rest, side)  # the arm starts where it was drawn
         self.reaching = frozenset({side})
@@ -368,6 +368,26 @@ class Animator:
         if nodes:
             self.note_interaction(nodes, side, start, peak)
         return Reached(reached, rest, start, peak)
+
+    def _reach_in_place(self, side: str, point: np.ndarray, grip: np.ndarray | None,
+                        seed: Mapping[str, float] | None, grasp_of: GraspOf | None,
+                        step: bool) -> Pose | None:
+        """The arm's reach of `point` without moving the feet (seated, or `step=False`);
+        None when seated and the hand does not touch, or the body passes deeper into
+        something than it sits (`ReachPlanner.inside`): the agent then stands up and
+        steps."""
+        seeded = self.pose.with_joints(**(seed or {}))
+        if grasp_of is not None:
+            tries = [self.ik.grasp(seeded, side, g, lean=step) for g in grasp_of(self.pose.xy)]
+            reached, gap = next(((p, gap) for p, gap in tries if gap <= TOUCH),
+                                min(tries, key=lambda t: t[1]))
+        else:
+            reached, _ = self.ik.reach(seeded, side, point, grip, lean=step)
+            gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
+        if self.posture == "stand" or not step:
+            return reached
+        seated = max(CLEAR, self.planner.inside(self.pose) + 1e-3)  # as it sits already
+        return reached if gap <= TOUCH and self.planner.inside(reached) <= seated else None
 
     def _plan_around(self, side: str, nodes: tuple[int, ...]) -> None:
         """Tell the reach planner where things are now and what the `side` hand may be
@@ -597,6 +617,25 @@ class Animator:
                                                         math.sin(self.pose.yaw)]), 0.0]
 
     # -- the program ----------------------------------------------------------------
+    def _spot_for(self, spot: tuple[float, float] | None, rec: StepRecord) -> np.ndarray | None:
+        """A step's standing spot, unless what it acts on now lies more than `SPOT_REACH`
+        from it: grounding chose its spots where things stood at the start (a keyboard
+        since put into a drawer), or beside what holds the object (one end of a long
+        counter); render then walks to the object itself."""
+        if spot is None:
+            return None
+        xy = np.array(spot, float)
+        node = rec.nodes[-1] if rec.nodes else None
+        if (node is None or self.props.is_body_part(node) or node in self.props.held.values()
+                or node in self.scene.layout.room_floors):
+            return xy
+        try:
+            box = self.props.box_of(node)
+        except ExecutionError:
+            return xy
+        gap = np.maximum(np.abs(xy - box.center[:2]) - box.half[:2], 0.0)
+        return xy if float(np.hypot(*gap)) <= SPOT_REACH else None
+
     def run(self, result: ExecutionResult) -> Timeline:
         """Animate every step of an executed program (it must be executable)."""
         if not result.executable:
@@ -609,7 +648,7 @@ class Animator:
             first = len(self.timeline)
             spot = self.standing.get(i)
             self.step_index = i
-            self.spot = None if spot is None else np.array(spot, float)
+            self.spot = self._spot_for(spot, rec)
             self._rest_from = None
             animation_for(rec.step.action.key)(self, rec)
             self.timeline.step_frames.append((first, len(self.timeline) - 1))

@@ -32,6 +32,8 @@ LEAF_THICKNESS = 0.025
 SKIP_CATEGORIES = frozenset({"Rooms", "Characters"})
 SEAT_HEIGHT = 0.45
 """Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
+DESK_TOP = 0.05
+"""Metres: a desk's top board; what stands under it is cut out of the desk below that."""
 TABLES = ("desk", "kitchentable", "table", "coffeetable", "diningtable", "kitchencounter")
 AT_TABLE = 0.5
 """Metres: a seat this near a table, desk or counter faces it."""
@@ -664,26 +666,43 @@ def _counter(part: Part, node: Node, box: Box, home: _Home) -> bool:
 
 def _carve_counters(parts: list[Part], graph: EnvironmentGraph) -> None:
     """Cut each counter's shapes around the furniture and appliances standing in its box
-    (a dishwasher under it, scene 5's table in the corner of its U)."""
+    (a dishwasher under it, scene 5's table in the corner of its U), and each desk's
+    below its top around what stands under it (a computer tower where the drawer block
+    would be), so what stands there is drawn and can be reached."""
     boxes = {n.id: b for n in graph if (b := to_mujoco(n)) is not None}
     for part in parts:
-        if part.class_name not in COUNTERS or part.node_id not in boxes:
+        row = class_row(part.class_name)
+        desk = row is not None and row.model == "desk"
+        if (part.class_name not in COUNTERS and not desk) or part.node_id not in boxes:
             continue
-        cb = boxes[part.node_id]
-        room = graph.room_of(part.node_id)
-        holes = []
-        for other in parts:
-            b = boxes.get(other.node_id)
-            if (b is None or other is part or other.class_name in ("floor", "ceiling", "wall")
-                    or other.movable is not None or graph.room_of(other.node_id) != room):
-                continue
-            inside = np.prod(np.maximum(np.minimum(b.hi, cb.hi) - np.maximum(b.lo, cb.lo), 0))
-            if inside >= 0.5 * np.prod(2 * b.half) and np.prod(2 * b.half) > 1e-3:
-                holes.append((b.lo - 0.01, b.hi + 0.01))
+        holes = _holes(part, parts, graph, boxes, desk)
         if holes:
             part.shapes = carve(part.shapes, holes)
             part.boxes = [Box((a + c) / 2, (c - a) / 2) for bx in part.boxes
                           for a, c in _box_pieces(bx, holes)]
+
+
+def _holes(part: Part, parts: list[Part], graph: EnvironmentGraph, boxes: dict[int, Box],
+           desk: bool) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(lo, hi) of what a counter (a desk: below its top, seats left out) is cut
+    around: the furniture of its room standing at least half inside its box."""
+    cb = boxes[part.node_id]
+    room = graph.room_of(part.node_id)
+    holes = []
+    for other in parts:
+        b = boxes.get(other.node_id)
+        if (b is None or other is part or other.class_name in ("floor", "ceiling", "wall")
+                or other.movable is not None or graph.room_of(other.node_id) != room):
+            continue
+        inside = np.prod(np.maximum(np.minimum(b.hi, cb.hi) - np.maximum(b.lo, cb.lo), 0))
+        if not (inside >= 0.5 * np.prod(2 * b.half) and np.prod(2 * b.half) > 1e-3):
+            continue
+        if not desk:
+            holes.append((b.lo - 0.01, b.hi + 0.01))
+        elif (b.hi[2] < cb.hi[2] - DESK_TOP
+              and SITTABLE not in graph.node(other.node_id).properties):
+            holes.append((b.lo - 0.01, np.r_[b.hi[:2] + 0.01, cb.hi[2] - DESK_TOP]))
+    return holes
 
 
 def _box_pieces(box: Box, holes: list[tuple[np.ndarray, np.ndarray]]
