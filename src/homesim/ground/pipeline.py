@@ -49,10 +49,9 @@ from __future__ import annotations
 from dataclasses import replace
 
 from homesim.ground.repair import repair_steps
-from homesim.ground.strict import Insertion, Run, insert_steps, run_strict, runs
+from homesim.ground.strict import Insertion, Run, as_inputs, insert_steps, run_strict, runs
 from homesim.knowledge.kbtypes import ObjectKnowledge, default_kb
 from homesim.program.model import Program
-from homesim.program.parse import parse_program
 from homesim.world.graph import EnvironmentGraph
 
 __all__ = ["Insertion", "Run", "run_program", "runs"]
@@ -82,12 +81,7 @@ def run_program(program: Program | str, home: EnvironmentGraph | str, *,
     Returns:
         A `Run`; see the module docstring for what fails how.
     """
-    if isinstance(program, str):
-        program = parse_program(program)
-    if isinstance(home, str):
-        from homesim.world.homes import load_home
-
-        home = load_home(home)
+    program, home = as_inputs(program, home)
     strict = run_strict(program, home, prepare=prepare, seed=seed, trace=trace, kb=kb,
                         reference=reference)
     if strict.executable or not repair or reference or not program.steps:

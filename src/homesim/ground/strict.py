@@ -178,6 +178,18 @@ def _with_inserted(lines: Sequence[int | None], insertions: Sequence[Insertion]
     return out
 
 
+def as_inputs(program: Program | str, home: EnvironmentGraph | str
+              ) -> tuple[Program, EnvironmentGraph]:
+    """A program given as text parsed, and a home given by name loaded."""
+    if isinstance(program, str):
+        program = parse_program(program)
+    if isinstance(home, str):
+        from homesim.world.homes import load_home
+
+        home = load_home(home)
+    return program, home
+
+
 def run_strict(program: Program | str, home: EnvironmentGraph | str, *,
                prepare: bool = True, seed: int = 0, trace: bool = False,
                kb: ObjectKnowledge | None = None, reference: bool = False) -> Run:
@@ -198,12 +210,7 @@ def run_strict(program: Program | str, home: EnvironmentGraph | str, *,
     Returns:
         A `Run`; see the module docstring for what fails how.
     """
-    if isinstance(program, str):
-        program = parse_program(program)
-    if isinstance(home, str):
-        from homesim.world.homes import load_home
-
-        home = load_home(home)
+    program, home = as_inputs(program, home)
     if reference:
         result = execute(program, home, trace=trace, reference=True)
         return _finished(program, result, None, None, home)
