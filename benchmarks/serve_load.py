@@ -249,7 +249,12 @@ def main() -> None:
     parser.add_argument("--requests", type=int, default=50,
                         help=f"small requests timed per connection ({CONCURRENCY} at once)")
     parser.add_argument("--warmup", type=float, default=3.0, help="seconds of load first")
+    parser.add_argument("--only", default="", help="comma-separated scenario names to run "
+                        "(e.g. 'alone,40 writes'; default: all)")
     args = parser.parse_args()
+    chosen = [s for s in SCENARIOS if not args.only or s[0] in args.only.split(",")]
+    if not chosen or chosen[0][0] != "alone":
+        chosen = [SCENARIOS[0], *chosen]  # ratios are to "alone"
     load_before = os.getloadavg()[0]
     port = free_port()
     server = start_server(port)
@@ -260,7 +265,7 @@ def main() -> None:
         time.sleep(2 * args.warmup)
         time_small(port, 10)
         rows = []
-        for name, kind, clients in SCENARIOS:
+        for name, kind, clients in chosen:
             times, counts = scenario(url, kind, clients, args.requests, args.warmup)
             rows.append((name, percentile(times, 50), percentile(times, 99), max(times),
                          counts))

@@ -12,6 +12,7 @@ import time
 import httpx
 import pytest
 
+from homesim.serve import pool as pool_module
 from homesim.serve.errors import ApiError
 from homesim.serve.pool import PoolLimits, WorkerPool, answer_or_gone
 
@@ -181,3 +182,60 @@ def test_small_requests_do_not_wait_behind_writes_or_generated_homes(monkeypatch
     assert max(times) < 2.0, times  # a write takes 3 s
     assert codes.count(200) >= 1 and codes.count(503) >= 30  # the queue is bounded
     assert set(objects) <= {200, 503} and 200 in objects
+
+
+def test_a_large_job_is_written_to_its_worker_without_holding_up_the_event_loop():
+    """A 1 MiB job does not fit the pipe: written from the event loop, the loop would wait
+    for the worker (niced) to read it; a timer due meanwhile must still fire on time."""
+    import threading
+
+    ours, theirs = multiprocessing.Pipe(duplex=True)
+    got: list[bytes] = []
+    reader = threading.Timer(0.5, lambda: got.append(theirs.recv()))  # a slow worker
+    reader.start()
+
+    async def main() -> float:
+        loop = asyncio.get_running_loop()
+        sending = asyncio.ensure_future(pool_module._send(ours, b"x" * 2**20))
+        t0 = loop.time()
+        await asyncio.sleep(0.05)
+        late = loop.time() - t0
+        await sending
+        return late
+
+    late = _run(main())
+    reader.join()
+    assert len(got[0]) == 2**20
+    assert late < 0.3, f"the event loop was held {late:.2f} s by a job's write"
+
+
+def test_small_requests_run_one_at_a_time_in_arrival_order():
+    """Small requests never share the interpreter lock with each other (run_small)."""
+    running, order = [], []
+
+    def handler(i: int) -> dict:
+        running.append(i)
+        assert len(running) == 1, f"two small requests at once: {running}"
+        time.sleep(0.01)
+        order.append(i)
+        running.remove(i)
+        return {"i": i}
+
+    async def main() -> list[dict]:
+        jobs = [pool_module.run_small(handler, i) for i in range(8)]
+        return await asyncio.gather(*jobs)
+
+    assert [a["i"] for a in _run(main())] == list(range(8))
+    assert order == list(range(8))
+
+
+def test_settling_memory_exempts_what_is_alive_from_later_collections():
+    import gc
+
+    keep = [[object()] for _ in range(1000)]
+    before = gc.get_freeze_count()
+    try:
+        pool_module.settle_memory()
+        assert gc.get_freeze_count() >= before + len(keep)
+    finally:
+        gc.unfreeze()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import sys
 import threading
 from collections.abc import AsyncIterator, Iterable
 from contextlib import asynccontextmanager
@@ -15,9 +16,14 @@ from homesim.serve import homes, programs, renders, writer
 from homesim.serve.errors import ApiError, CatchBugs, SafeJSONResponse, install_error_handlers
 from homesim.serve.hosts import LOOPBACK_HOSTS, HostCheck
 from homesim.serve.limits import MAX_BODY_BYTES, BodySizeLimit, LargeBodyGate
-from homesim.serve.pool import ProgramPool, WriterPool
+from homesim.serve.pool import ProgramPool, WriterPool, settle_memory
 from homesim.serve.static import default_static_dir, mount_editor
 from homesim.serve.workers import worker_context
+
+SWITCH_INTERVAL_S = 0.0005
+"""How long a thread of the server holds the interpreter lock while another waits for it
+(Python's default: 5 ms). Small requests run in their own thread (`run_small`) beside
+the event loop: each hand-over would cost them up to the whole interval."""
 
 
 def warm_up() -> None:
@@ -30,10 +36,12 @@ def warm_up() -> None:
         from multiprocessing import forkserver
 
         forkserver.ensure_running()
+    settle_memory()
 
 
 @asynccontextmanager
 async def _lifespan(app: FastAPI) -> AsyncIterator[None]:
+    sys.setswitchinterval(SWITCH_INTERVAL_S)
     threading.Thread(target=warm_up, name="homesim-warm-up", daemon=True).start()
     yield
     app.state.renders.close()

@@ -13,7 +13,7 @@ from homesim.errors import GraphError
 from homesim.examples import DEMO_HOME
 from homesim.program import ACTIONS, Category, actions_in
 from homesim.serve.errors import ApiError, SafeJSONResponse
-from homesim.serve.pool import answer_or_gone
+from homesim.serve.pool import answer_or_gone, settle_memory
 from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import home_names, is_generated, load_home
 
@@ -36,11 +36,17 @@ CATEGORY_LABELS: dict[Category, str] = {
 
 
 def get_home(name: str) -> EnvironmentGraph:
-    """A built-in home, or a 404 naming the homes there are."""
+    """A built-in home, or a 404 naming the homes there are. A built-in home loaded for
+    the first time is set aside from the garbage collector's scans (`settle_memory`; not a
+    generated one: any seed loads, and the cache lets old ones go)."""
+    loaded = load_home.cache_info().misses
     try:
-        return load_home(name)
+        home = load_home(name)
     except GraphError as e:
         raise ApiError(404, "home", str(e)) from None
+    if load_home.cache_info().misses != loaded and not is_generated(name):
+        settle_memory()
+    return home
 
 
 @router.get("/homes")

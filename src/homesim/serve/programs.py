@@ -1,9 +1,10 @@
 """Routes that check and run programs: ``/api/validate``, ``/api/execute``; and the steps
 of ``/api/render`` (its jobs are in `homesim.serve.renders`).
 
-Handlers are plain functions of a request model. `answer` runs them in a thread for
-normal programs and in a worker process (`homesim.serve.workers.ProgramPool`) for
-programs over `INLINE_PROGRAM_CHARS`, so a large program never slows other requests.
+Handlers are plain functions of a request model. `answer` runs them one at a time in the
+small-request lane (`run_small`) for normal programs and in a worker process
+(`homesim.serve.workers.ProgramPool`) for programs over `INLINE_PROGRAM_CHARS`, so a
+large program never slows other requests.
 """
 
 from __future__ import annotations
@@ -13,7 +14,6 @@ from typing import Any
 
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
-from starlette.concurrency import run_in_threadpool
 
 from homesim.ground.pipeline import Run, run_program
 from homesim.ground.search import unground
@@ -26,7 +26,7 @@ from homesim.program.model import Program
 from homesim.program.parse import parse_program
 from homesim.serve.errors import ApiError, SafeJSONResponse
 from homesim.serve.homes import get_home
-from homesim.serve.pool import answer_or_gone
+from homesim.serve.pool import answer_or_gone, run_small
 from homesim.serve.results import program_json, step_lines
 from homesim.serve.schemas import ExecuteRequest, ProgramRequest, RenderRequest, VideoRequest
 from homesim.sim.execute import binding_problems
@@ -179,7 +179,7 @@ async def answer(http: Request, handler: Callable[[Any], dict[str, Any]], reques
     if is_heavy(request):
         return await answer_or_gone(http.app.state.programs, handler, request,
                                     http.is_disconnected)
-    return SafeJSONResponse(await run_in_threadpool(handler, request))
+    return SafeJSONResponse(await run_small(handler, request))
 
 
 @router.post("/validate", response_class=SafeJSONResponse)
