@@ -153,18 +153,37 @@ def main() -> None:
         _print_renders(base, [r for r in gen if "renders" in r])
 
 
-def _floor_area(graph, room: int) -> float:
-    """A room's floor area: its floor tiles (listed twice: once), m2."""
-    seen, area = set(), 0.0
+def _floor_area(graph, room: int, cell: float = 0.05) -> float:
+    """A room's floor area, m2: the ground its floor tiles cover inside the room's box,
+    each spot once. A generated home's threshold tile reaches through the doorway into
+    the next room and overlaps the tiles on both sides; the built-in homes' tiles lie
+    inside their rooms and do not overlap, so there this is the tiles' sum, as
+    `tools/fit_home_stats.py` measures the built-in range."""
+    import numpy as np
+
+    box = graph.node(room).bounding_box
+    inside = (-1e9, -1e9, 1e9, 1e9)
+    if box is not None:
+        (rx, _, rz), (rsx, _, rsz) = box.center, box.size
+        inside = (rx - rsx / 2, rz - rsz / 2, rx + rsx / 2, rz + rsz / 2)
+    boxes = []
     for nid in graph.sources(room, "INSIDE"):
         n = graph.node(nid)
         if n.class_name == "floor" and n.bounding_box is not None:
             (cx, _, cz), (sx, _, sz) = n.bounding_box.center, n.bounding_box.size
-            key = (round(cx, 2), round(cz, 2), round(sx, 2), round(sz, 2))
-            if key not in seen and sx * sz < 9.0:  # not the doorway strips' neighbours
-                seen.add(key)
-                area += sx * sz
-    return area
+            b = (max(cx - sx / 2, inside[0]), max(cz - sz / 2, inside[1]),
+                 min(cx + sx / 2, inside[2]), min(cz + sz / 2, inside[3]))
+            if b[0] < b[2] and b[1] < b[3]:
+                boxes.append(b)
+    if not boxes:
+        return 0.0
+    x0, z0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
+    x1, z1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
+    covered = np.zeros((round((z1 - z0) / cell) + 1, round((x1 - x0) / cell) + 1), bool)
+    for bx0, bz0, bx1, bz1 in boxes:
+        covered[round((bz0 - z0) / cell):round((bz1 - z0) / cell),
+                round((bx0 - x0) / cell):round((bx1 - x0) / cell)] = True
+    return float(covered.sum()) * cell * cell
 
 
 def _print_rooms(base: list[dict], gen: list[dict]) -> None:

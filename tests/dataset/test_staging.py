@@ -24,15 +24,18 @@ from tests.dataset.conftest import tiny_config, tree_hashes
 ])
 def test_a_mistyped_command_leaves_nothing_and_the_right_one_runs(
         gl, program_file, tmp_path, capsys, monkeypatch, args, words):
-    """D13: the bad command left dataset.json, shards/ and staging/, and the corrected
-    command was then refused for its "other options"."""
+    """D13: the bad command left dataset.json, shards/ and staging/ (and printed an
+    empty "episodes 0/1" bar), and the corrected command was then refused for its "other
+    options"."""
     monkeypatch.chdir(tmp_path)
     out = tmp_path / "D"
     base = ["dataset", "generate", "--out", str(out), "--programs", str(program_file),
             "--n", "1", "--width", "32", "--height", "24", "--fps", "2", "--homes",
             "scene1", "--workers", "0"]
     assert main(base + args) == 2
-    assert words in capsys.readouterr().err
+    refused = capsys.readouterr()
+    assert words in refused.err
+    assert "episodes" not in refused.out  # no empty progress bar before the error
     assert not out.exists()
     assert main(base) == 0
 

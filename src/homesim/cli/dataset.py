@@ -128,10 +128,13 @@ def _generate_one(config, out: Path, workers: int, ray_address: str | None, t0: 
     from homesim.dataset import generate_dataset
 
     with _bar(t0) as bar:
-        task = bar.add_task("episodes", total=config.n, made=0, failed=0)
+        tasks: list[TaskID] = []  # the bar's row appears with the first progress: a run
+        # refused for its options prints no empty bar before the error
 
         def progress(done: int, total: int, outcome) -> None:
-            _advance(bar, task, done, total, outcome)
+            if not tasks:
+                tasks.append(bar.add_task("episodes", total=total, made=0, failed=0))
+            _advance(bar, tasks[0], done, total, outcome)
 
         return generate_dataset(config, out, workers=workers, ray_address=ray_address,
                                 progress=progress, notice=lambda line: bar.console.print(
