@@ -27,8 +27,8 @@ demo: setup
 	rm -rf out/demo
 	$(BIN)/homesim render --home scene1 --out out/demo --width 320 --height 240 --fps 12 --preview
 
-# The writer's model is fitted once here (a minute; nothing to do when it is there), so that
-# no test and no request of the editor's e2e test pays for a fit.
+# The writer's model is fitted once here (90 s on an idle 2-core machine; nothing to do
+# when it is there), so that no test and no request of the editor's e2e test pays for a fit.
 test: lint
 	$(BIN)/homesim data fetch
 	$(BIN)/homesim learn fit-writer

@@ -70,7 +70,7 @@ def test_write_never_fits_the_model_and_names_the_step_that_does(client, monkeyp
     def not_fitted(fit=True):
         assert not fit, "the server asked for a fit"
         raise writer.WriterNotFitted("the program writer's model is not built yet: run "
-                                     f"'{writer.FIT_STEP}' once (about a minute)")
+                                     f"'{writer.FIT_STEP}' once (about 90 s)")
 
     monkeypatch.setattr(writer, "real_writer", not_fitted)
     monkeypatch.setattr(fetch, "is_fetched", lambda root=None: True)

@@ -494,7 +494,7 @@ def rules(
 @app.command("fit-writer")
 def fit_writer() -> None:
     """Fit the program writer's model on the real programs once (needs 'homesim data
-    fetch'; about a minute on an idle machine) and keep it in the data directory, where
+    fetch'; about 90 s on an idle 2-core machine) and keep it in the data directory, where
     'homesim learn write' and the editor's Write button ('POST /api/write', which never
     fits it) read it. Does nothing when it is there already."""
     import time
@@ -531,7 +531,7 @@ def write(
     seed: Annotated[int, typer.Option(help="Seed of preparation and grounding.")] = 0,
 ) -> None:
     """Write a program for a description with the reranker fitted on the real programs
-    (needs 'homesim data fetch'; 'homesim learn fit-writer' fits it once, about a minute on
+    (needs 'homesim data fetch'; 'homesim learn fit-writer' fits it once, about 90 s on
     an idle machine, else the first call does) and run it in the home: prints the program
     (ungrounded, as 'homesim run' reads it)."""
     import json

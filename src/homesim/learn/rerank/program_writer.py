@@ -3,7 +3,7 @@ program, as a tool (``homesim learn write``, ``POST /api/write``, `write_program
 
 The model is `reranker.Reranker` fitted on the 518 real programs (queries hide only their own
 program, as on the stratified split: docs/results.md gives what it scores on unseen
-descriptions). Fitting takes about a minute on an idle machine and is done once, by
+descriptions). Fitting takes about 90 s on an idle 2-core machine and is done once, by
 ``homesim learn fit-writer`` (`FIT_STEP`; ``make test`` runs it after ``homesim data
 fetch``); the fitted model is kept in the data directory (``$HOMESIM_DATA/models``, a
 pickle that only homesim writes), keyed by what it was fitted from, and read back by later
@@ -213,7 +213,7 @@ def load_writer(examples: list[Example] | None = None, root: Path | None = None,
         return stored
     if not fit:
         raise WriterNotFitted(f"the program writer's model is not built yet: run "
-                              f"'{FIT_STEP}' once (about a minute)")
+                              f"'{FIT_STEP}' once (about 90 s)")
     writer = ProgramWriter.fit(examples)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
