@@ -77,8 +77,12 @@ def _until(stop, seconds: float = LOAD_LIMIT_S) -> Callable[[], bool]:
     return lambda: not stop.is_set() and time.monotonic() < end
 
 
+_COUNTING = threading.Lock()
+
+
 def _count(counts: dict, key: object) -> None:
-    counts[key] = counts.get(key, 0) + 1
+    with _COUNTING:
+        counts[key] = counts.get(key, 0) + 1
 
 
 def _large_client(url: str, running: Callable[[], bool], counts: dict, i: int) -> None:
@@ -166,9 +170,11 @@ def run_load(kind: str, url: str, clients: int, stop, ready, report) -> None:
         t.start()
     ready.set()
     stop.wait(LOAD_LIMIT_S)
-    for t in threads:
-        t.join(timeout=10)
-    report.put(counts)
+    deadline = time.monotonic() + 10  # all threads together: the parent waits 30 s, then
+    for t in threads:  # kills this process (whose queue's semaphore would then leak)
+        t.join(timeout=max(0.0, deadline - time.monotonic()))
+    with _COUNTING:  # threads still out may count on
+        report.put(dict(counts))
 
 
 # ------------------------------------------------------------------ timing
