@@ -135,6 +135,30 @@ def test_a_program_is_repaired_by_default_and_inserted_steps_have_no_line(client
     assert data["repair"]["executable_before"] is False
 
 
+def test_repair_runs_in_a_program_worker_and_a_program_that_runs_never_goes_there(
+        client, watch_tv, monkeypatch):
+    """Repair may ground a program dozens of times (over a second): not in the server's
+    small-request lane, where other small requests wait behind it."""
+    from homesim.serve.pool import ProgramPool
+
+    sent = []
+    real = ProgramPool.answer
+
+    async def recording(self, handler, request, gone=None):
+        sent.append(request)
+        return await real(self, handler, request, gone)
+
+    monkeypatch.setattr(ProgramPool, "answer", recording)
+    text = "[Walk] <tv> (1)\n[SwitchOn] <tv> (1)\n\n[SwitchOn] <tv> (1)\n"
+    data = client.post("/api/execute", json={"program": text, "home": "scene1_trimmed"}
+                       ).json()
+    assert data["executable"] is True and data["repair"]["insertions"]
+    assert len(sent) == 1 and sent[0].repair is True
+    ran = client.post("/api/execute", json={"program": watch_tv, "home": "scene1"}).json()
+    assert ran["executable"] is True and ran["repair"] is None
+    assert len(sent) == 1  # a program that runs as written is answered in the server
+
+
 def test_render_without_renderer_is_501(client, watch_tv, monkeypatch):
     def missing():
         raise programs.ApiError(501, "render", "rendering is not available on this server: x")

@@ -190,5 +190,16 @@ async def validate_route(request: ProgramRequest, http: Request) -> Response:
 
 @router.post("/execute", response_class=SafeJSONResponse)
 async def run_route(request: ExecuteRequest, http: Request) -> Response:
-    """Execute a program on a home: every step ✓/✗ with its reason and state changes."""
-    return await answer(http, run, request)
+    """Execute a program on a home: every step ✓/✗ with its reason and state changes.
+
+    A small program is run as written in the small-request lane; only when it fails there
+    and may be repaired does it go to a program worker, where repair runs: repair may
+    ground it dozens of times (over a second for a 1 KiB program), which the lane must
+    not spend while other small requests wait. The answer is the same either way
+    (`run_program` answers a program that runs as written without repairing it)."""
+    if is_heavy(request) or not request.repair or request.ground is False:
+        return await answer(http, run, request)
+    strict = await run_small(run, request.model_copy(update={"repair": False}))
+    if strict["executable"]:
+        return SafeJSONResponse(strict)
+    return await answer_or_gone(http.app.state.programs, run, request, http.is_disconnected)
