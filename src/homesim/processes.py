@@ -8,6 +8,8 @@ when the pipe closes without our saying ``done`` (we died, however), it kills th
 descendants it noted (each checked by its start time, so a reused process id is never
 hit) and removes the paths we gave it. Linux only (it reads ``/proc``); elsewhere it does
 nothing.
+
+`rasterize_in_drawing_thread` is for worker processes that draw with OSMesa.
 """
 
 from __future__ import annotations
@@ -17,6 +19,19 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+
+RASTER_THREADS = "0"
+"""llvmpipe (OSMesa) rasterizer threads besides the drawing one, for a worker process
+(``LP_NUM_THREADS``): a worker has one core, where rasterizer threads would only wait on
+each other over small frames, or take the core of a server beside it. The pixels are the
+same."""
+
+
+def rasterize_in_drawing_thread() -> None:
+    """Set `RASTER_THREADS` for this process unless ``LP_NUM_THREADS`` is set; call it
+    before the first draw."""
+    os.environ.setdefault("LP_NUM_THREADS", RASTER_THREADS)
+
 
 SNAPSHOT_S = 0.25
 """How often the watchdog notes our descendants (a process that lived less is missed)."""

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import io
 import json
-import os
 import random
 import tarfile
 import time
@@ -30,6 +29,7 @@ from homesim.errors import HomesimError
 from homesim.files import atomic_write
 from homesim.ground.pipeline import Run, run_program
 from homesim.knowledge.kbtypes import default_kb
+from homesim.processes import rasterize_in_drawing_thread
 from homesim.program.parse import parse_program
 from homesim.render.video import H264Writer
 from homesim.world.graph import EnvironmentGraph
@@ -128,18 +128,11 @@ def ground_episode(spec: EpisodeSpec, homes: Sequence[str] = ()) -> EpisodeHome:
     raise first
 
 
-RASTER_THREADS = "0"
-"""llvmpipe (OSMesa) threads besides the caller's in a process that makes episodes, set
-before it first draws unless ``LP_NUM_THREADS`` is set (Ray workers get it from
-`runners.task_environment`): a worker has one core, where rasterizer threads would only wait on
-each other over small frames. The pixels are the same."""
-
-
 def write_episode_file(spec: EpisodeSpec, config: DatasetConfig, path: Path) -> Outcome:
     """Make the episode and write it as a tar at `path` (atomically: a failure leaves
     `path` as it was); a failure is an `Outcome` with its reason, never an exception
     (Ctrl-C and kills still stop it)."""
-    os.environ.setdefault("LP_NUM_THREADS", RASTER_THREADS)
+    rasterize_in_drawing_thread()  # Ray workers get it from `runners.task_environment`
     t0 = time.perf_counter()
     try:
         with atomic_write(path, "wb") as f:

@@ -24,7 +24,7 @@ from homesim.dataset.layout import Layout, dumps
 from homesim.dataset.spec import DatasetConfig, EpisodeSpec
 from homesim.errors import HomesimError
 from homesim.files import write_text
-from homesim.processes import Reaper
+from homesim.processes import RASTER_THREADS, Reaper
 
 TASK_MEMORY = 2 * 1024**3
 """Memory (bytes) each episode task declares to Ray: the scheduler runs no more tasks on a
@@ -177,7 +177,8 @@ def task_environment(gpu: bool) -> dict[str, str]:
     """Environment of an episode task: EGL on GPU nodes; on CPU, OSMesa rasterizing in the
     task's own thread (llvmpipe otherwise adds a thread per core), so a task uses the one
     CPU it declares and N workers do N times the work of one."""
-    return {"MUJOCO_GL": "egl"} if gpu else {"MUJOCO_GL": "osmesa", "LP_NUM_THREADS": "0"}
+    return ({"MUJOCO_GL": "egl"} if gpu
+            else {"MUJOCO_GL": "osmesa", "LP_NUM_THREADS": RASTER_THREADS})
 
 
 def submission_stack(specs: Sequence[EpisodeSpec], tail: int) -> list[EpisodeSpec]:

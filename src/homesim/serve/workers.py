@@ -19,6 +19,7 @@ from multiprocessing.process import BaseProcess
 from typing import Any, Protocol
 
 from homesim.limits import WORKER_MEMORY_BYTES
+from homesim.processes import rasterize_in_drawing_thread
 from homesim.serve.errors import ApiError, error_body, error_of, json_bytes
 
 PRELOAD = ["homesim.serve.renders", "homesim.render"]
@@ -52,7 +53,7 @@ gets about 1.5 % of it (nice 10: about 10 %, which showed in small requests' p99
 def lower_priority() -> None:
     """Nice the calling worker process (where allowed), and let OSMesa rasterize in the
     drawing thread rather than in a thread per core beside the server's."""
-    os.environ.setdefault("LP_NUM_THREADS", "0")
+    rasterize_in_drawing_thread()
     with contextlib.suppress(OSError):
         os.nice(WORKER_NICE)
 
