@@ -121,8 +121,9 @@ class Reranker:
         everything = queries + short
         groups = [labelled(q) for _, q in everything]
         scores = cross_fitted_scores(groups, [fold_of[i] for i, _ in everything], bank.config)
-        margins = choose_margins(_scored(everything, groups, scores), bank.config.typical_margins,
-                                 len(bank.config.support_edges) + 1)
+        edges = bank.config.support_edges
+        margins = choose_margins(_scored(everything, groups, scores, edges),
+                                 bank.config.typical_margins, len(edges) + 1)
         full = len(queries)
         editors = (fit_editors(bank, holdout, queries, groups[:full], delete,
                                best_of(scores[:full])) if insert else (None, None))
@@ -188,9 +189,9 @@ class Reranker:
 
 
 def _scored(queries: list[tuple[int, Query]], groups: list[tuple[np.ndarray, np.ndarray]],
-            scores: list[np.ndarray | None]) -> list[Scored]:
-    """The cross-fitted queries `support.choose_margin` reads (those with scores)."""
-    edges = queries[0][1].bank.config.support_edges if queries else ()
+            scores: list[np.ndarray | None], edges: tuple[int, ...]) -> list[Scored]:
+    """The cross-fitted queries `support.choose_margins` reads (those with scores), with
+    their support levels under `edges`."""
     return [(lcs, s, q.typical, support_level(q.example, edges))
             for (_, q), (_, lcs), s in zip(queries, groups, scores, strict=True) if s is not None]
 
