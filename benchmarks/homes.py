@@ -161,20 +161,17 @@ def _floor_area(graph, room: int, cell: float = 0.05) -> float:
     `tools/fit_home_stats.py` measures the built-in range."""
     import numpy as np
 
+    from homesim.world.floor import footprint, room_floor
+
     box = graph.node(room).bounding_box
-    inside = (-1e9, -1e9, 1e9, 1e9)
-    if box is not None:
-        (rx, _, rz), (rsx, _, rsz) = box.center, box.size
-        inside = (rx - rsx / 2, rz - rsz / 2, rx + rsx / 2, rz + rsz / 2)
+    inside = (-1e9, -1e9, 1e9, 1e9) if box is None else footprint(box)
     boxes = []
-    for nid in graph.sources(room, "INSIDE"):
-        n = graph.node(nid)
-        if n.class_name == "floor" and n.bounding_box is not None:
-            (cx, _, cz), (sx, _, sz) = n.bounding_box.center, n.bounding_box.size
-            b = (max(cx - sx / 2, inside[0]), max(cz - sz / 2, inside[1]),
-                 min(cx + sx / 2, inside[2]), min(cz + sz / 2, inside[3]))
-            if b[0] < b[2] and b[1] < b[3]:
-                boxes.append(b)
+    for tile in room_floor(graph, room)[0]:  # (the room's own box when it has no tiles)
+        t = footprint(tile)
+        b = (max(t[0], inside[0]), max(t[1], inside[1]), min(t[2], inside[2]),
+             min(t[3], inside[3]))
+        if b[0] < b[2] and b[1] < b[3]:
+            boxes.append(b)
     if not boxes:
         return 0.0
     x0, z0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
