@@ -239,3 +239,20 @@ def test_settling_memory_exempts_what_is_alive_from_later_collections():
         assert gc.get_freeze_count() >= before + len(keep)
     finally:
         gc.unfreeze()
+
+
+def test_the_server_shortens_the_switch_interval_while_it_runs_and_puts_it_back():
+    import sys
+
+    from fastapi.testclient import TestClient
+
+    from homesim.serve.app import SWITCH_INTERVAL_S, create_app
+
+    before = sys.getswitchinterval()
+    sys.setswitchinterval(0.005)  # Python's default (another app here may have left its own)
+    try:
+        with TestClient(create_app(), base_url="http://127.0.0.1"):
+            assert sys.getswitchinterval() == SWITCH_INTERVAL_S
+        assert sys.getswitchinterval() == 0.005
+    finally:
+        sys.setswitchinterval(before)

@@ -41,9 +41,11 @@ def warm_up() -> None:
 
 @asynccontextmanager
 async def _lifespan(app: FastAPI) -> AsyncIterator[None]:
-    sys.setswitchinterval(SWITCH_INTERVAL_S)
+    before = sys.getswitchinterval()
+    sys.setswitchinterval(SWITCH_INTERVAL_S)  # process-wide: put back when the app stops
     threading.Thread(target=warm_up, name="homesim-warm-up", daemon=True).start()
     yield
+    sys.setswitchinterval(before)
     app.state.renders.close()
     app.state.programs.close()
     app.state.writer.close()
