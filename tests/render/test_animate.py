@@ -321,3 +321,58 @@ def test_a_step_on_a_body_part_brings_the_held_tool_to_the_mouth():
     head = data.site("j:head").xpos
     cup = tl.mocap[it.peak][scene.mocap[21]]
     assert np.linalg.norm(cup - head) < 4 * HEAD_RADIUS * AGENTS["male1"].height
+
+
+def test_water_rides_in_the_hand_and_is_gone_once_poured_into_a_held_cup():
+    """Water is taken though not GRABBABLE (as the simulator lets it): it is drawn as a
+    carried object, goes to the cup with the hand, and once poured is no longer drawn."""
+    from homesim.render.props import POURED_AWAY
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()
+    d["nodes"].append({"id": 900, "class_name": "water", "category": "Props",
+                       "properties": ["DRINKABLE", "POURABLE"],
+                       "bounding_box": {"center": [0.85, 0.92, -0.85], "size": [0.07, 0.24, 0.07]}})
+    d["edges"] += [{"from_id": 900, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 900, "relation_type": "ON", "to_id": 20}]
+    g = EnvironmentGraph.from_dict(d)
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    assert 900 in scene.mocap
+    program = ("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[Grab] <water> (900)\n"
+               "[Pour] <water> (900) <cup> (21)\n")
+    result = homesim.execute(homesim.parse_program(program), g, trace=True, reference=True)
+    assert result.executable
+    tl = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
+    grab, pour = tl.interactions[1], tl.interactions[2]
+    at = [tl.mocap[f][scene.mocap[900]] for f in (0, grab.peak, pour.peak, pour.peak + 1)]
+    cup = tl.mocap[pour.peak][scene.mocap[21]]
+    assert np.linalg.norm(at[2] - at[1]) > 0.05  # carried to the cup
+    assert np.linalg.norm(at[2] - cup) < 0.4
+    assert at[3][2] == POURED_AWAY and tl.mocap[-1][scene.mocap[900]][2] == POURED_AWAY
+
+
+def test_a_grab_is_filmed_in_the_room_where_the_object_lay():
+    """The agent may stand in the next room's floor box when it takes something (a desk
+    against the wall between): the grab happens in the room where the object lay, not
+    the agent's (its close-up came from the wrong room's cameras, or none)."""
+    from homesim.render.layout import Box
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    g = EnvironmentGraph.from_dict(box_home_dict())
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    program = "[Walk] <cup> (21)\n[Grab] <cup> (21)\n"
+    result = homesim.execute(homesim.parse_program(program), g, trace=True, reference=True)
+    anim = Animator(scene, g, AGENTS["male1"], fps=10, seed=0)
+    tl = anim.run(result)
+    (grab,) = tl.interactions
+    assert grab.room == 1
+    # a second room whose floor box holds where the agent stands, not the cup
+    scene.layout.room_floors[99] = Box(np.r_[anim.pose.xy, 0.0], np.array([0.05, 0.05, 0.0]))
+    anim.note_interaction((21,), "r", grab.start, grab.peak)
+    assert tl.interactions[-1].room == 1
+    anim.note_interaction((21,), "r", grab.peak + 1, grab.peak + 1)  # carried: the agent's
+    assert tl.interactions[-1].room == 99

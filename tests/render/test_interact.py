@@ -59,11 +59,30 @@ def test_hand_room_asks_rays_out_of_the_taken_face():
 
 
 def test_a_touch_lays_the_palm_on_the_face_toward_the_agent():
-    switch = Box(np.array([1.0, 0.0, 1.3]), np.array([0.01, 0.05, 0.06]))  # on a wall at x=1
-    face, *_ = touch_grasps(switch, np.array([0.4, 0.0]))
-    np.testing.assert_allclose(face.palm, [1.0, 0.0, 0.0])  # into the switch, fingers up
+    panel = Box(np.array([1.0, 0.0, 1.3]), np.array([0.01, 0.15, 0.2]))  # on a wall at x=1
+    face, *_ = touch_grasps(panel, np.array([0.4, 0.0]))
+    np.testing.assert_allclose(face.palm, [1.0, 0.0, 0.0])  # into the panel, fingers up
     np.testing.assert_allclose(face.fingers, [0.0, 0.0, 1.0])
-    assert face.point[0] < switch.center[0]  # on the near face
+    assert face.point[0] < panel.center[0] and face.flat  # on the near face, the hand flat
     low = Box(np.array([1.0, 0.0, 0.3]), np.array([0.2, 0.2, 0.2]))  # a cat on the floor
     first, *_ = touch_grasps(low, np.array([0.4, 0.0]))
     np.testing.assert_allclose(first.palm, [0.0, 0.0, -1.0])  # the palm on its back
+
+
+@pytest.mark.parametrize(("side", "first"), [("r", 1.0), ("l", -1.0)])
+def test_a_small_switch_is_pressed_by_the_fingertips_beside_the_palm(side, first):
+    """A light switch (12 x 10 cm) is pressed by the fingertips on its near part, the
+    palm flat on the wall beside it and the fingers level toward the body's middle, so
+    the hand does not cover it; fingers up over it is still tried afterwards."""
+    from homesim.render.interact import FINGERTIPS
+
+    switch = Box(np.array([1.0, 0.0, 1.3]), np.array([0.01, 0.05, 0.06]))  # on a wall at x=1
+    grasps = touch_grasps(switch, np.array([0.4, 0.0]), side=side)
+    press = grasps[0]
+    np.testing.assert_allclose(press.palm, [1.0, 0.0, 0.0])
+    np.testing.assert_allclose(press.fingers, [0.0, first, 0.0])  # the agent's left: +y
+    assert press.flat and press.point[0] < switch.center[0]
+    tips = press.point + FINGERTIPS * press.fingers
+    assert abs(press.point[1]) > switch.half[1]  # the palm beside the switch
+    assert abs(tips[1]) < switch.half[1] and abs(tips[2] - switch.center[2]) < 1e-9
+    assert any(np.allclose(g.fingers, [0.0, 0.0, 1.0]) for g in grasps[1:3])

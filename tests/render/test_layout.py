@@ -73,3 +73,22 @@ def test_a_desk_is_cut_around_the_computer_under_it(shared_data):
     assert any(s.center[2] - s.half[2] >= top - DESK_TOP - 1e-6
                and abs(x - s.center[0]) <= s.half[0] and abs(y - s.center[1]) <= s.half[1]
                for s in desk.shapes)  # the top board above the tower is still there
+
+
+def test_a_tower_under_a_desk_is_seen_through_its_front(shared_data):
+    """Scene 5's desk draws its drawer front 2 cm proud of its box, before the computer
+    tower standing where the drawers would be: the cut goes through that face, so a line
+    from in front of the desk to the tower meets no part of the desk."""
+    from homesim.render.navigation import segment_hits
+    from homesim.world.homes import load_home
+
+    g = load_home("scene5")
+    layout = build_layout(g)
+    tower = to_mujoco(g.node(98))
+    desk = layout.part(18)
+    assert g.node(98).class_name == "computer" and desk.class_name == "desk"
+    lo = np.array([s.center - s.half for s in desk.shapes])
+    hi = np.array([s.center + s.half for s in desk.shapes])
+    front = np.r_[to_mujoco(g.node(18)).lo[0] - 0.3, tower.center[1:]]
+    end = np.r_[tower.lo[0] - 0.005, tower.center[1:]]  # just before the tower's face
+    assert not segment_hits(front, end - front, lo, hi)

@@ -3,8 +3,16 @@ import itertools
 import numpy as np
 import pytest
 
-from homesim.render.layout import build_layout, to_mujoco
-from homesim.render.navigation import CELL, build_grid, plan_path
+from homesim.render.layout import Box, build_layout, to_mujoco
+from homesim.render.navigation import (
+    CELL,
+    WALLED_MORE,
+    Grid,
+    build_grid,
+    goal_cells,
+    plan_path,
+    segment_hits,
+)
 
 
 def test_grid_blocks_furniture_and_keeps_floor(box_home):
@@ -106,3 +114,45 @@ def test_a_floor_too_wide_to_grid_is_refused_before_allocation():
     with pytest.raises(LimitError, match="MAX_WALK_CELLS") as err:
         build_grid(layout)
     assert err.value.limit == "MAX_WALK_CELLS"
+
+
+def test_segment_meets_a_box_only_where_it_crosses_it():
+    lo, hi = np.array([[1.0, -1.0, 0.0]]), np.array([[1.1, 1.0, 2.5]])
+    start = np.array([0.0, 0.0, 0.9])
+    assert segment_hits(start, np.array([2.0, 0.0, 0.0]), lo, hi)  # through the wall
+    assert not segment_hits(start, np.array([0.9, 0.0, 0.0]), lo, hi)  # stops short
+    assert not segment_hits(start, np.array([2.0, 0.0, 4.0]), lo, hi)  # over it
+    assert not segment_hits(start, np.array([0.0, 2.0, 0.0]), lo, hi)  # along it
+
+
+def _walled_room(target_x: float) -> tuple[Grid, Box]:
+    """Free floor 0-3 m x 0-2 m with a wall at x 1.5-1.6 (not walkable) and a desk-sized
+    box against its left face, reaching to `target_x`."""
+    free = np.ones((31, 21), bool)
+    free[15:17, :] = False
+    walls = (np.array([[1.5, 0.0, 0.0]]), np.array([[1.6, 2.0, 2.5]]))
+    desk = Box.from_bounds(np.array([target_x, 0.5, 0.0]), np.array([1.5, 1.5, 0.9]))
+    free[int(target_x / CELL):15, 5:16] = False  # the desk stands there
+    return Grid(np.zeros(2), free, walls), desk
+
+
+def test_no_one_walks_to_reach_through_a_wall():
+    grid, desk = _walled_room(1.0)
+    cells = goal_cells(grid, desk, reach=0.7)
+    xs = [grid.point(c)[0] for c in cells]
+    assert cells and max(xs) < 1.5  # the desk's side of the wall only
+    grid.walls = (np.zeros((0, 3)), np.zeros((0, 3)))
+    assert max(grid.point(c)[0] for c in goal_cells(grid, desk, reach=0.7)) > 1.6
+
+
+def test_a_desk_against_the_wall_is_reached_from_farther_on_its_side():
+    """No free cell on the desk's side lies within reach (the desk fills it to 0.2 m of
+    the wall): the walk goes up to `WALLED_MORE` farther on that side, not behind the wall."""
+    grid, desk = _walled_room(0.3)
+    grid.free[:3, :] = False  # nothing free within reach on the desk's side of the wall
+    grid.free[:15, 3:18] = False
+    cells = goal_cells(grid, desk, reach=0.2)
+    assert cells and all(grid.point(c)[0] < 1.5 for c in cells)
+    d = [np.hypot(*np.maximum(np.abs(grid.point(c) - desk.center[:2]) - desk.half[:2], 0))
+         for c in cells]
+    assert max(d) <= 0.2 + max(WALLED_MORE) + 1e-6 and min(d) > 0.2

@@ -66,6 +66,19 @@ def test_grip_is_per_hand_blends_and_drives_the_fingers():
         assert q[f"r_{finger}"] == closed and q[f"l_{finger}"] == open_ < closed
 
 
+def test_a_flat_hand_has_straight_fingers():
+    """A hand pressed flat on a face (grip `FLAT`) has its fingers straight, not the open
+    hand's bend that put the fingertips 3 cm into a wall behind a switch."""
+    from homesim.render.agent import FINGER_CLOSED
+    from homesim.render.poses import FLAT
+
+    flat = standing(AGENTS["male2"], (0, 0), 0.0).with_grip("l", FLAT)
+    assert flat.grip("l") == FLAT and flat.with_grip("l", -5.0).grip("l") == FLAT
+    q = _qpos_of(flat)
+    for finger, (open_, _) in FINGER_CLOSED.items():
+        assert q[f"l_{finger}"] == 0.0 and q[f"r_{finger}"] == open_ > 0.0
+
+
 def test_skirt_follows_the_thighs_when_sitting_not_when_walking():
     shape = AGENTS["female1"]
     seat = sitting(shape, (0, 0), 0.0, 0.45)

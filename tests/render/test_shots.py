@@ -99,5 +99,26 @@ def test_a_view_the_body_fills_is_widened():
 
     tight = CameraSpec("shot0", 1, np.zeros(3), np.array([1.0, 0, 0]), np.array([0, 0, -1.0]),
                        20.0, 0, 1)
-    best = shots._best_view(Spare(), None, None, None, frozenset(), None, [tight])
+    best = shots._best_view(Spare(), None, None, None, frozenset(), None, [(tight, tight)])
     assert best is not None and best.fovy == pytest.approx(20.0 * shots.WIDER[0])
+
+
+@pytest.mark.parametrize(("far_share", "chosen"), [(0.004, 8.0), (0.03, 30.0)])
+def test_a_small_object_is_framed_at_the_effect_only(far_share, chosen):
+    """Where no view framing the whole reach shows the object well (a cellphone put back:
+    0.4 % of the view), the view framing only the hand and the object at the effect is
+    drawn and kept; where the object shows well, it is not needed."""
+    from homesim.render import shots
+    from homesim.render.cameras import CameraSpec
+
+    class Spare:
+        def view(self, renderer, data, spec, it, arm, seen):
+            return (far_share if spec.fovy > 10 else 0.04), True, 0.1
+
+    def spec(fovy):
+        return CameraSpec("shot0", 1, np.zeros(3), np.array([1.0, 0, 0]),
+                          np.array([0, 0, -1.0]), fovy, 0, 1)
+
+    best = shots._best_view(Spare(), None, None, None, frozenset(), None,
+                            [(spec(30.0), spec(8.0))])
+    assert best is not None and best.fovy == pytest.approx(chosen)

@@ -123,3 +123,11 @@ def test_carried_object_comes_along(tiny_home):
     r = run(tiny_home, "[Walk] <table> (13)\n[Grab] <plate> (16)\n[Walk] <tv> (14)")
     g = r.final_graph
     assert g.has_edge(10, "CLOSE", 16) and g.has_edge(10, "HOLDS_RH", 16)
+
+
+def test_water_and_children_are_taken_though_not_grabbable():
+    from homesim.sim.effects import can_grab
+
+    assert can_grab(frozenset(), "water") and can_grab(frozenset(), "child")
+    assert can_grab(frozenset({"GRABBABLE"}), "cup")
+    assert not can_grab(frozenset({"POURABLE"}), "milk_jug")

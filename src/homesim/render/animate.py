@@ -403,11 +403,21 @@ class Animator:
 
     def note_interaction(self, nodes: tuple[int, ...], side: str, start: int,
                          peak: int) -> None:
-        """Record the frames of a hands-on action of the current step."""
+        """Record the frames of a hands-on action of the current step, in the room of
+        its object (where an object taken in it lay; a carried one's is the agent's)."""
         props = self.props
         first = nodes[0]
-        room = None if first in props.held.values() and len(nodes) == 1 else \
-            self.graph.room_of(nodes[-1] if len(nodes) > 1 else first)
+        taken = [a for a in self.timeline.attaches if a.node == first and start <= a.frame]
+        if taken and first in self.scene.mocap:  # taken here: where it lay
+            at = self.timeline.mocap[taken[0].frame][self.scene.mocap[first]][:2]
+            room = self.graph.room_of(first)
+            floor = self.scene.layout.room_floors.get(room) if room is not None else None
+            if floor is None or np.any(np.abs(at - floor.center[:2]) > floor.half[:2]):
+                room = room_of_point(self.scene.layout, at)
+        elif first in props.held.values() and len(nodes) == 1:  # carried: the agent's
+            room = None
+        else:
+            room = self.graph.room_of(nodes[-1] if len(nodes) > 1 else first)
         if room is None or room not in self.scene.layout.room_floors:
             room = room_of_point(self.scene.layout, self.pose.xy)
         self.timeline.interactions.append(Interaction(
@@ -893,7 +903,7 @@ def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> No
     box = props.box_of(node)
 
     def grasp_of(xy: np.ndarray) -> list[Grasp]:
-        return touch_grasps(box, xy)
+        return touch_grasps(box, xy, side=side)
     anim.reach(side, grasp_of(anim.pose.xy)[0].point, 0.6,
                at_peak=lambda: props.apply_states(states), nodes=nodes or (node,),
                grasp_of=grasp_of)

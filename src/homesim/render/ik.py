@@ -19,7 +19,7 @@ import numpy as np
 
 from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
-from homesim.render.poses import Pose, write_qpos
+from homesim.render.poses import FLAT, Pose, write_qpos
 from homesim.render.scene import SceneModel
 
 DAMPING = 0.05
@@ -46,6 +46,7 @@ class Grasp:
     palm: np.ndarray
     fingers: np.ndarray
     box: tuple[np.ndarray, np.ndarray] | None = None
+    flat: bool = False  # the hand laid flat (`poses.FLAT`): pressing, not taking
 
 
 def wrist_joints(side: str) -> tuple[str, ...]:
@@ -125,7 +126,10 @@ class ArmIK:
     def grasp(self, pose: Pose, side: str, grasp: Grasp,
               lean: bool = True) -> tuple[Pose, float]:
         """The pose with the `side` hand taking hold as `grasp` says (the wrist turns the
-        palm); and the distance left between the palm's contact site and its point."""
+        palm; a `flat` grasp lays the fingers straight); and the distance left between the
+        palm's contact site and its point."""
+        if grasp.flat:
+            pose = pose.with_grip(side, FLAT)
         return self._solve(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
 
     def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,

@@ -21,6 +21,7 @@ from homesim.render.clearance import Clearance
 from homesim.render.gl import mujoco
 from homesim.render.ik import ArmIK, Grasp, crouched
 from homesim.render.layout import Box, Layout
+from homesim.render.navigation import segment_hits, wall_boxes
 from homesim.render.poses import Pose, standing, write_qpos
 
 TOUCH = 0.01
@@ -52,9 +53,16 @@ KNEE = 0.45
 """Metres: objects whose top is lower than this (on the floor) are also taken from above
 first."""
 TOUCH_TOP = 1.1
+SMALL_FACE = 0.15
+"""Metres: a face touched no wider or taller than this is pressed by the fingertips."""
+FINGERTIPS = 0.125
+"""Metres from the palm's contact point to the middle of the fingertips (hand open)."""
 """Metres: objects whose top is lower than this are touched on the top first."""
 HAND_ROOM = 0.05
 """Metres the palm and the closing fingers need out of the face they take."""
+WALL_SLACK = 0.05
+"""Metres: the end of the line to a reached point not checked for walls (what hangs on a
+wall is reached from its room)."""
 CLEAR = 0.02
 """Metres: a reach pose whose body passes deeper than this into anything but what the
 hand takes (or holds) is tried after those that do not."""
@@ -109,25 +117,45 @@ def _toward(box: Box, from_xy: np.ndarray) -> np.ndarray:
     return u / n if n > 1e-9 else np.array([1.0, 0.0])
 
 
-def touch_grasps(box: Box, from_xy: np.ndarray, inset: float = 0.004) -> list[Grasp]:
+def touch_grasps(box: Box, from_xy: np.ndarray, inset: float = 0.004,
+                 side: str | None = None) -> list[Grasp]:
     """Ways a hand lays its palm on an object to touch, press or switch it, best first:
-    on the side face toward the agent (the fingers up, flat against it: a light switch on
-    its wall) and on the top (the fingers pointing on, away from the agent); the top
-    first for objects lower than `TOUCH_TOP`. Contact points are `inset` inside the face,
-    at its middle."""
+    on the side face toward the agent (the fingers up, flat against it; a face at most
+    `SMALL_FACE` across, a light switch on its wall, is first pressed by the fingertips
+    of the `side` hand, the palm beside it, so the hand does not hide it) and on the top
+    (the fingers pointing on, away from the agent); the top first for objects lower than
+    `TOUCH_TOP`. Contact points are `inset` inside the face, at its middle."""
     u = _toward(box, from_xy)
     axis = 0 if abs(u[0]) * box.half[1] >= abs(u[1]) * box.half[0] else 1
     point = box.center.copy()
     point[axis] -= np.sign(u[axis] or 1.0) * (box.half[axis] - min(inset, box.half[axis]))
     palm = np.zeros(3)
     palm[axis] = np.sign(u[axis] or 1.0)
-    face = Grasp(point, palm, np.array([0.0, 0.0, 1.0]))
+    face = [Grasp(point, palm, np.array([0.0, 0.0, 1.0]), flat=True)]
+    if 2 * max(box.half[2], box.half[1 - axis]) <= SMALL_FACE:
+        face = _fingertip_presses(box, point, palm, axis, side) + face
     at = np.r_[box.center[:2], box.hi[2] - min(inset, box.half[2])]
     down = np.array([0.0, 0.0, -1.0])
-    top = Grasp(at, down, np.r_[u, 0.0])
-    across = [Grasp(at, down, np.array([-u[1] * s, u[0] * s, 0.0])) for s in (1.0, -1.0)]
-    first = [top, face] if box.hi[2] < TOUCH_TOP else [face, top]
+    top = Grasp(at, down, np.r_[u, 0.0], flat=True)
+    across = [Grasp(at, down, np.array([-u[1] * s, u[0] * s, 0.0]), flat=True)
+              for s in (1.0, -1.0)]
+    first = [top, *face] if box.hi[2] < TOUCH_TOP else [*face, top]
     return first + across  # the fingers along a wall behind it
+
+
+def _fingertip_presses(box: Box, point: np.ndarray, palm: np.ndarray, axis: int,
+                       side: str | None) -> list[Grasp]:
+    """The palm flat beside a small face, the fingers level along it and their tips on
+    its near part (`FINGERTIPS`): a light switch pressed, and still seen. Fingers toward
+    the body's middle first (to the left for the right hand)."""
+    left = np.zeros(3)
+    left[1 - axis] = palm[axis] * (1.0 if axis == 0 else -1.0)  # the agent's left
+    width = float(box.half[1 - axis])
+    out = []
+    for fingers in ((left, -left) if side != "l" else (-left, left)):
+        out.append(Grasp(point - (FINGERTIPS + 0.4 * width) * fingers, palm, fingers,
+                         flat=True))
+    return out
 
 
 def _side_grasp(box: Box, side: str, u: np.ndarray, inset: float) -> Grasp:
@@ -197,6 +225,7 @@ class ReachPlanner:
         self.ik, self.shape = ik, shape
         self.walk = layout.walk
         self.clearance = clearance
+        self.walls = wall_boxes(layout)
         self.hands_in: dict[str, set[int]] = {}
         """Per hand, the nodes it may be inside during the reach being planned (what it
         takes or holds); set by the caller before `plan`."""
@@ -275,7 +304,8 @@ class ReachPlanner:
         dist = float(np.hypot(*d))
         tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]
         best = self.reach_from(start_xy, side, point, grip, grasp_of)
-        touching = best if best.touches and best.clear else None
+        touching = best if (best.touches and best.clear
+                            and not self.walled(start_xy, point)) else None
         for xy in tries:
             if touching is not None and _lean(touching) <= COMFORT_LEAN:
                 return touching
@@ -298,12 +328,23 @@ class ReachPlanner:
         return best
 
     def around(self, start_xy: np.ndarray, point: np.ndarray) -> list[np.ndarray]:
-        """Points where the body fits around `point` (`AROUND` distances, 16 directions),
-        nearest to `start_xy` first."""
+        """Points where the body fits around `point` (`AROUND` distances, 16 directions)
+        without a wall between them and it, nearest to `start_xy` first."""
         spots = [point[:2] + r * np.array([math.cos(a), math.sin(a)])
                  for r in AROUND for a in np.linspace(0.0, 2 * math.pi, 16, endpoint=False)]
-        spots = [xy for xy in spots if self.fits(xy)]
+        spots = [xy for xy in spots if self.fits(xy) and not self.walled(xy, point)]
         return sorted(spots, key=lambda xy: float(np.hypot(*(xy - start_xy))))
+
+    def walled(self, xy: np.ndarray, point: np.ndarray) -> bool:
+        """Whether a wall stands between the floor point `xy` and `point` (the level line
+        from above `xy` to it, less its last `WALL_SLACK`: a switch on a wall is reached)."""
+        lo, hi = self.walls
+        start = np.r_[xy[:2], point[2]]
+        vec = np.asarray(point, float) - start
+        length = float(np.linalg.norm(vec))
+        if length <= WALL_SLACK or not len(lo):
+            return False
+        return segment_hits(start, vec * (1.0 - WALL_SLACK / length), lo, hi)
 
     def clear_line(self, a: np.ndarray, b: np.ndarray) -> bool:
         """Whether the body fits all along the segment a-b (checked every 5 cm)."""
@@ -324,3 +365,4 @@ def _better(a: ReachPlan, b: ReachPlan) -> bool:
 
 def _lean(plan: ReachPlan) -> float:
     return plan.pose.joints.get("spine_pitch", 0.0)
+

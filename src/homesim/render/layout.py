@@ -19,10 +19,11 @@ import numpy as np
 from homesim.render.counters import COUNTERS, carve, strips
 from homesim.render.models import Shape, fit_model, local_model, variant_of
 from homesim.render.palette import RGBA, class_color
+from homesim.sim.effects import can_grab
 from homesim.world.class_table import class_row
 from homesim.world.floor import FloorModel
 from homesim.world.graph import EnvironmentGraph, Node
-from homesim.world.vocab import CAN_OPEN, GRABBABLE, S_ON, S_OPEN, SITTABLE
+from homesim.world.vocab import CAN_OPEN, S_ON, S_OPEN, SITTABLE
 
 WALL_THICKNESS = 0.1
 """Metres; corner walls (2.5 m cubes) become slabs this thick on the room's edge."""
@@ -34,6 +35,9 @@ SEAT_HEIGHT = 0.45
 """Metres: sittable boxes taller than 0.7 m become a seat this high and a backrest."""
 DESK_TOP = 0.05
 """Metres: a desk's top board; what stands under it is cut out of the desk below that."""
+DESK_FACE = 0.05
+"""Metres: what stands under a desk this near a side face of its box is cut out through
+that face."""
 TABLES = ("desk", "kitchentable", "table", "coffeetable", "diningtable", "kitchencounter")
 AT_TABLE = 0.5
 """Metres: a seat this near a table, desk or counter faces it."""
@@ -475,7 +479,7 @@ def _kind(node: Node, box: Box) -> str:
         return "enclosure"
     if SITTABLE in node.properties and box.hi[2] > 0.7 and cls != "bed":
         return "seat"
-    if GRABBABLE in node.properties:
+    if can_grab(node.properties, cls):  # what a hand may take rides in it
         return "movable"
     if cls in COUNTERS:
         return "counter"
@@ -701,8 +705,21 @@ def _holes(part: Part, parts: list[Part], graph: EnvironmentGraph, boxes: dict[i
             holes.append((b.lo - 0.01, b.hi + 0.01))
         elif (b.hi[2] < cb.hi[2] - DESK_TOP
               and SITTABLE not in graph.node(other.node_id).properties):
-            holes.append((b.lo - 0.01, np.r_[b.hi[:2] + 0.01, cb.hi[2] - DESK_TOP]))
+            holes.append(_through(cb, b.lo - 0.01, np.r_[b.hi[:2] + 0.01, cb.hi[2] - DESK_TOP]))
     return holes
+
+
+def _through(outer: Box, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A desk's hole (lo, hi) opened right through each side face of `outer` it comes
+    within `DESK_FACE` of: a drawer front drawn a little proud of the box would close it
+    (scene 5's computer tower stood hidden behind one)."""
+    lo, hi = lo.copy(), hi.copy()
+    for axis in (0, 1):
+        if lo[axis] - outer.lo[axis] < DESK_FACE:
+            lo[axis] = outer.lo[axis] - 1.0
+        if outer.hi[axis] - hi[axis] < DESK_FACE:
+            hi[axis] = outer.hi[axis] + 1.0
+    return lo, hi
 
 
 def _box_pieces(box: Box, holes: list[tuple[np.ndarray, np.ndarray]]

@@ -21,11 +21,17 @@ from homesim.render.layout import Box, Layout
 from homesim.world.floor import CELL
 
 __all__ = ["CELL", "LEG_LEVEL", "PASSABLE", "Grid", "astar", "build_grid", "goal_cells",
-           "plan_path", "smooth"]
+           "plan_path", "segment_hits", "smooth", "wall_boxes"]
 
 PASSABLE = frozenset({"floor", "ceiling", "door", "doorjamb", "rug", "character"})
 """Parts the body passes through (`homesim.render.interact` steps up to furniture among
 the others; walking uses the floor model, not parts)."""
+REACH_LEVEL = 0.9
+"""Metres: the height of the line from a standing cell to what it reaches that must not
+cross a wall (below door lintels)."""
+WALLED_MORE = (0.0, 0.3, 0.6)
+"""Metres beyond the reach asked for that a walk may stop at to stand on the object's
+side of the walls (a desk facing a wall 20 cm away is reached from its end)."""
 LEG_LEVEL = (0.08, 1.2)
 """Parts between these heights (metres) are in the body's way when it steps up to
 furniture (`homesim.render.interact`)."""
@@ -37,6 +43,8 @@ class Grid:
 
     origin: np.ndarray  # world (x, y) of cell (0, 0)'s centre
     free: np.ndarray  # (nx, ny) bool
+    walls: tuple[np.ndarray, np.ndarray] = (np.zeros((0, 3)), np.zeros((0, 3)))
+    """(lo, hi) of the walls' boxes: no one reaches through them (`goal_cells`)."""
 
     def cell(self, xy) -> tuple[int, int]:
         ij = np.round((np.asarray(xy, float) - self.origin) / CELL).astype(int)
@@ -73,7 +81,24 @@ def build_grid(layout: Layout) -> Grid:
     free = np.zeros(walk.shape, bool)
     for j, a, b, _ in walk.main_runs():
         free[a:b + 1, j] = True
-    return Grid(np.array(walk.origin, float), free)
+    return Grid(np.array(walk.origin, float), free, wall_boxes(layout))
+
+
+def wall_boxes(layout: Layout) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi), (n, 3) each: the boxes of a layout's walls."""
+    walls = [b for p in layout.parts if p.class_name == "wall" for b in p.boxes]
+    return (np.array([b.lo for b in walls]).reshape(-1, 3),
+            np.array([b.hi for b in walls]).reshape(-1, 3))
+
+
+def segment_hits(start: np.ndarray, vec: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> bool:
+    """Whether the segment from `start` along `vec` meets any of the boxes (lo, hi)
+    ((n, 3) arrays; the slab test)."""
+    step = np.where(np.abs(vec) < 1e-12, 1e-12, vec)
+    t1, t2 = (lo - start) / step, (hi - start) / step
+    enter = np.minimum(t1, t2).max(axis=1)
+    leave = np.maximum(t1, t2).min(axis=1)
+    return bool(np.any((enter <= leave) & (leave >= 0.0) & (enter <= 1.0)))
 
 
 def check_walk_cells(shape: tuple[int, int], cell: float) -> None:
@@ -127,15 +152,31 @@ def astar(grid: Grid, start: tuple[int, int], goals: set[tuple[int, int]],
 
 
 def goal_cells(grid: Grid, target: Box, reach: float = 0.75) -> set[tuple[int, int]]:
-    """Free cells within `reach` metres of a box's footprint (where the agent may stand)."""
+    """Free cells within `reach` metres of a box's footprint (where the agent may stand)
+    without a wall between them and it; where there are none, such cells up to
+    `WALLED_MORE` farther, else the cells within `reach` (or the nearest) anyway."""
     idx = np.argwhere(grid.free)
     pts = grid.origin + idx * CELL
     d = np.maximum(np.abs(pts - target.center[:2]) - target.half[:2], 0.0)
     dist = np.hypot(d[:, 0], d[:, 1])
+    for more in WALLED_MORE:
+        open_ = [c for c in idx[dist <= reach + more]
+                 if not _walled(grid, grid.point(c), target)]
+        if open_:
+            return {(int(i), int(j)) for i, j in open_}
     near = idx[dist <= reach]
     if len(near) == 0:  # nothing close enough: the nearest free cells
         near = idx[dist <= dist.min() + CELL]
     return {(int(i), int(j)) for i, j in near}
+
+
+def _walled(grid: Grid, xy: np.ndarray, target: Box) -> bool:
+    """Whether a wall stands between floor point `xy` and the nearest point of a box's
+    footprint (the level line at `REACH_LEVEL`)."""
+    lo, hi = grid.walls
+    nearest = np.clip(xy, target.center[:2] - target.half[:2], target.center[:2] + target.half[:2])
+    start = np.r_[xy, REACH_LEVEL]
+    return bool(len(lo)) and segment_hits(start, np.r_[nearest - xy, 0.0], lo, hi)
 
 
 def smooth(grid: Grid, cells: list[tuple[int, int]]) -> list[np.ndarray]:

@@ -27,7 +27,7 @@ class Pose:
     yaw: float  # heading: 0 faces +x
     tilt: float = 0.0  # whole-body pitch: -pi/2 lies on the back
     joints: dict[str, float] = field(default_factory=dict)
-    l_grip: float = 0.0  # left hand: 0 open, 1 closed
+    l_grip: float = 0.0  # left hand: 0 open, 1 closed, -1 flat (`FLAT`)
     r_grip: float = 0.0  # right hand
 
     @property
@@ -42,7 +42,7 @@ class Pose:
         return self.l_grip if side == "l" else self.r_grip
 
     def with_grip(self, side: str, value: float) -> Pose:
-        value = min(max(float(value), 0.0), 1.0)
+        value = min(max(float(value), FLAT), 1.0)
         return replace(self, l_grip=value) if side == "l" else replace(self, r_grip=value)
 
 
@@ -82,6 +82,9 @@ def lying(shape: AgentShape, xy, yaw: float, bed_top: float) -> Pose:
         "neck_pitch": 0.3})
 
 
+FLAT = -1.0
+"""The grip of a hand laid flat, its fingers straight (a palm pressed on a face); grips
+between 0 and -1 straighten an open hand's bend."""
 CARRY = {"sh_pitch": -0.25, "sh_roll": 0.15, "elbow": -1.35, "sh_yaw": 0.2}
 """Arm angles (per side, roll mirrored) while holding an object in front of the body."""
 
@@ -158,6 +161,6 @@ def write_qpos(qpos: np.ndarray, pose: Pose, joint_qpos: dict[str, int]) -> None
     for side in ("l", "r"):
         g = pose.grip(side)
         for finger, (open_, closed) in FINGER_CLOSED.items():
-            qpos[joint_qpos[f"{side}_{finger}"]] = open_ + g * (closed - open_)
+            qpos[joint_qpos[f"{side}_{finger}"]] = open_ + g * (closed - open_ if g > 0 else open_)
     hips = 0.5 * (joints.get("l_hip_pitch", 0.0) + joints.get("r_hip_pitch", 0.0))
     qpos[joint_qpos["skirt"]] = min(max(hips, SKIRT_RANGE[0]), SKIRT_RANGE[1])

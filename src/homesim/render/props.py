@@ -17,13 +17,15 @@ from homesim.render.layout import Box, Part, lights_on_by_switch, render_kind, t
 from homesim.render.navigation import Grid
 from homesim.render.scene import SceneModel
 from homesim.world.graph import EnvironmentGraph
-from homesim.world.vocab import BODY_PART, ON, S_OFF, S_ON
+from homesim.world.vocab import BODY_PART, GRABBABLE, ON, S_OFF, S_ON
 
 HANDLE_HEIGHT = 1.0
 """Metres: where a hand takes a door or a tall appliance's front (lower fronts: their top)."""
 HANDLE_OUT = 0.02
 """Metres: a handle stands this far out of its panel."""
 REACH_HEIGHT = 1.1
+POURED_AWAY = -50.0
+"""Metres: the height a liquid poured into a held recipient goes to (out of every view)."""
 """Metres: things put inside a fridge or cabinet go on the shelf nearest this height."""
 
 
@@ -173,9 +175,13 @@ class Props:
         """Where a put object comes to rest when let go at `carried`: at the height of
         `final` (on the destination's top or its floor inside), across the destination
         where it was carried (kept within the destination's footprint). Put on or in
-        something held, it stays where it was let go."""
+        something held, it stays where it was let go; poured into it (a liquid: taken
+        though not GRABBABLE), it is gone into it and no longer drawn (`POURED_AWAY`)."""
         if dest in self.held.values():
-            return np.asarray(carried, float).copy()
+            at = np.asarray(carried, float).copy()
+            if GRABBABLE not in self.graph.node(obj).properties:
+                at[2] = POURED_AWAY
+            return at
         box = self.box_of(dest)
         half = self.half_of(obj)
         lo = box.lo[:2] + np.minimum(half[:2], box.half[:2])

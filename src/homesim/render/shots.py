@@ -37,6 +37,8 @@ MAX_FOVY = 80.0
 FRAMED = 5
 """Hand positions sampled along the last quarter of the reach (to the effect) that the
 shot must contain (the whole second half made small objects, a faucet, too small)."""
+TIGHT_MARGIN = 2.0
+"""Those tight views span this many times the extent of the hand and the object."""
 DOLLY = (0.0, 0.3, 0.55)
 """Each room camera is also tried moved this share of the way toward the action (at its
 height, inside the room, out of furniture)..."""
@@ -69,6 +71,11 @@ BODY_MAX = 0.35
 agent's back, fill a close-up."""
 WIDER = (1.5, 2.2)
 """Factors a close-up's field of view is widened by when the body fills it."""
+TIGHT = 6
+"""Where no drawn view shows the object well (`GOOD_SHARE`), this many of the best that
+show it or the hand are also drawn framing only the hand and the object at the effect
+(a cellphone put back, a light switch: the reach's way and the destination made them
+small)."""
 
 
 def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
@@ -94,8 +101,10 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
         targets = _targets(scene, it, data, seen)
         scored = sorted(((_score(scene, data, c, it, targets, seen), i)
                          for i, c in enumerate(cams)), reverse=True)[:DRAWN]
-        plans.append((it, seen, [(_aim(cams[i], framed, aspect, k, it.step), hand)
-                                 for (_, hand), i in scored]))
+        tight = _effect_points(scene, timeline, it, data)
+        plans.append((it, seen, [(_aim(cams[i], framed, aspect, k, it.step),
+                                  _aim(cams[i], tight, aspect, k, it.step, TIGHT_MARGIN))
+                                 for _, i in scored]))
     if not plans:
         return []
     probe = (max(2, min(size[0], round(PROBE_HEIGHT * aspect))), min(size[1], PROBE_HEIGHT))
@@ -104,8 +113,7 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
         for it, seen, aimed in plans:
             _pose(scene, timeline, it.peak, data)
             arm = _arm_bodies(scene, it.side)
-            best = _best_view(spare, renderer, data, it, arm, seen,
-                              [spec for spec, _ in aimed])
+            best = _best_view(spare, renderer, data, it, arm, seen, aimed)
             if best is not None:
                 shots.append(best)
     return shots
@@ -113,12 +121,14 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
 
 def _best_view(spare: _SpareCamera, renderer: Renderer, data: mujoco.MjData,
                it: Interaction, arm: frozenset[int], seen: int | None,
-               specs: list[CameraSpec]) -> CameraSpec | None:
-    """Of candidate views (drawn small), the one that shows the object and the hand with
-    the body covering at most `BODY_MAX` (a view the body fills is widened first); None
-    when none shows the object (`SEEN_SHARE`) or the hand."""
+               specs: list[tuple[CameraSpec, CameraSpec]]) -> CameraSpec | None:
+    """Of candidate views (drawn small; each framing the reach, and framing only the
+    object and the hand at the effect), the one that shows the object and the hand with
+    the body covering at most `BODY_MAX` (a view the body fills is widened first; where
+    none shows the object well, `GOOD_SHARE`, the best `TIGHT` are tried framed at the
+    effect only); None when none shows the object (`SEEN_SHARE`) or the hand."""
     drawn = []
-    for n, spec in enumerate(specs):
+    for n, (spec, _) in enumerate(specs):
         for factor in (1.0, *WIDER):
             if factor > 1.0:
                 if spec.fovy >= MAX_FOVY - 1e-6:
@@ -128,6 +138,13 @@ def _best_view(spare: _SpareCamera, renderer: Renderer, data: mujoco.MjData,
             drawn.append((_view_score(share, hand, body, spec), -n, share, hand, spec))
             if body <= BODY_MAX:
                 break
+    if max(d[2] for d in drawn) < GOOD_SHARE:  # small in every view: frame it tighter
+        ranked = [-d[1] for d in sorted(drawn, key=lambda d: d[:2], reverse=True)
+                  if d[3] or d[2] > 0.0]
+        for n in list(dict.fromkeys(ranked))[:TIGHT]:
+            spec = specs[n][1]
+            share, hand, body = spare.view(renderer, data, spec, it, arm, seen)
+            drawn.append((_view_score(share, hand, body, spec), -n, share, hand, spec))
     _, _, share, hand, spec = max(drawn, key=lambda d: d[:2])
     return spec if share >= SEEN_SHARE or hand else None
 
@@ -300,6 +317,14 @@ def _framed_points(scene: SceneModel, timeline: Timeline, it: Interaction,
     return np.concatenate([p.reshape(-1, 3) for p in pts])
 
 
+def _effect_points(scene: SceneModel, timeline: Timeline, it: Interaction,
+                   data: mujoco.MjData) -> np.ndarray:
+    """The hand and the acted-on object at the effect: what a tight close-up frames."""
+    _pose(scene, timeline, it.peak, data)
+    hand = data.site_xpos[scene.hand_sites[it.side]].copy()[None]
+    return np.concatenate([hand, node_corners(scene, data, it.nodes[0])])
+
+
 def _targets(scene: SceneModel, it: Interaction, data: mujoco.MjData,
              seen: int | None = None) -> list[np.ndarray]:
     """Points to see at the effect: the centre of the acted-on object (of its geom `seen`,
@@ -361,9 +386,9 @@ def _score(scene: SceneModel, data: mujoco.MjData, cam: CameraSpec, it: Interact
 
 
 def _aim(cam: CameraSpec, points: np.ndarray, aspect: float, shot: int,
-         step: int) -> CameraSpec:
+         step: int, margin: float = MARGIN) -> CameraSpec:
     """`cam` turned to the middle of `points` with the narrowest field of view that
-    holds them all (times `MARGIN`)."""
+    holds them all (times `margin`)."""
     center = 0.5 * (points.min(axis=0) + points.max(axis=0))
     xa, ya = look_at(cam.pos, center)
     fwd = np.cross(ya, xa)
@@ -371,7 +396,7 @@ def _aim(cam: CameraSpec, points: np.ndarray, aspect: float, shot: int,
     z = np.maximum(rel @ fwd, 0.05)
     tan_y = float(np.max(np.abs(rel @ ya) / z))
     tan_x = float(np.max(np.abs(rel @ xa) / z)) / aspect
-    fovy = math.degrees(2 * math.atan(MARGIN * max(tan_x, tan_y)))
+    fovy = math.degrees(2 * math.atan(margin * max(tan_x, tan_y)))
     fovy = float(np.clip(fovy, MIN_FOVY, MAX_FOVY))
     return CameraSpec(f"shot{shot}", cam.room_id, cam.pos.copy(), xa, ya, fovy, shot, step)
 

@@ -82,6 +82,8 @@ _SQUEEZABLE = frozenset({"cleaning_solution", "tooth_paste", "shampoo", "food_pe
                          "dish_soap", "soap", "towel", "rag", "paper", "sponge", "food_lemon",
                          "check"})
 _POUR_INTO = frozenset({"hands_both", "sponge", "face"})
+GRABBED_ANYWAY = frozenset({"water", "child"})
+"""Classes a hand takes though not GRABBABLE (as the reference simulator lets it)."""
 _WALK_CLEARS = (INSIDE, CLOSE, FACING)
 NOWHERE: tuple[int, str] = (-1, "")
 """The remembered origin of an object grabbed while resting on nothing."""
@@ -276,10 +278,15 @@ def _origin(st: SimState, n: int) -> tuple[int, str]:
     return NOWHERE
 
 
+def can_grab(properties: frozenset[str], class_name: str) -> bool:
+    """Whether a hand may take an object: GRABBABLE, or of a class in `GRABBED_ANYWAY`."""
+    return GRABBABLE in properties or class_name in GRABBED_ANYWAY
+
+
 @effect("GRAB")
 def grab(st: SimState, n: int) -> Failure | None:
     c = st.char
-    if GRABBABLE not in st.properties(n) and st.class_name(n) not in ("water", "child"):
+    if not can_grab(st.properties(n), st.class_name(n)):
         return Failure(AFFORDANCE, f"{st.label(n)} cannot be grabbed (not GRABBABLE)")
     if not is_close(st, n):
         return _inside_closed(st, n) or _not_close(st, n)
