@@ -224,7 +224,7 @@ def main() -> int:
                 continue
             h_ran += 1
             h_pen += [(k, *p) for p in m["pen"]]
-            h_close += m["close"]
+            h_close += [dict(c, program=k) for c in m["close"]]
             h_wrist += [w for w, _ in m["wrist"]]
             h_far += [f"#{k} {what}: {w * 100:.1f} cm" for w, what in m["wrist"] if w > WRIST]
         good = sum(_good(c) for c in h_close)
@@ -239,7 +239,7 @@ def main() -> int:
         for c in h_close:
             if not _good(c):
                 share = "-" if c["share"] is None else f"{c['share'] * 100:.2f} %"
-                print(f"    {c['step']} {c['object']}: object {share}, body "
+                print(f"    #{c['program']} {c['step']} {c['object']}: object {share}, body "
                       f"{c['body'] * 100:.0f} %, hand {'seen' if c['hand'] else 'hidden'}"
                       f"{'' if c['shot'] else ', no close-up'}")
         pen += h_pen

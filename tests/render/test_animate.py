@@ -376,3 +376,13 @@ def test_a_grab_is_filmed_in_the_room_where_the_object_lay():
     assert tl.interactions[-1].room == 1
     anim.note_interaction((21,), "r", grab.peak + 1, grab.peak + 1)  # carried: the agent's
     assert tl.interactions[-1].room == 99
+
+
+def test_put_back_goes_where_it_was_taken_from():
+    """PutObjBack (or a put on what it was taken from) sets the object down where it lay,
+    not somewhere across the table (inside a bookshelf, somewhere the body had to enter)."""
+    scene, tl = _run("[Walk] <cup> (21)\n[Grab] <cup> (21)\n[PutObjBack] <cup> (21)\n")
+    start, end = (tl.mocap[f][scene.mocap[21]] for f in (0, -1))
+    assert tl.releases and np.allclose(start, end)
+    moved = max(np.linalg.norm(m[scene.mocap[21]] - start) for m in tl.mocap)
+    assert moved > 0.05  # it was carried meanwhile

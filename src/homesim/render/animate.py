@@ -919,6 +919,8 @@ def _grab(anim: Animator, ch: Changes) -> bool:
     side = "r" if rel == HOLDS_RH else "l"
     props = anim.props
     box = props.box_of(obj)
+    props.taken_from[obj] = (box.center.copy(), frozenset(
+        (r, b) for a, r, b in ch.removed if a == obj and r in (ON, INSIDE)))
 
     def attach() -> None:
         hand, rot = anim.ik.hand_frame(anim.pose, side)
@@ -944,7 +946,8 @@ def _grab(anim: Animator, ch: Changes) -> bool:
 
 def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
     """Put down what the step took out of a hand, if anything; True if it did. The hand
-    brings the object onto the destination's top (or inside it) and lets go there."""
+    brings the object onto the destination's top (or inside it) and lets go there; put
+    back on or in what it was taken from, it goes back where it lay."""
     released = {b for a, rel, b in ch.removed if rel in (HOLDS_RH, HOLDS_LH)}
     if not released:
         return False
@@ -953,14 +956,22 @@ def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
     side = props.side_holding(obj) or props.free_side()
     dest = [(rel, b) for a, rel, b in ch.added if a == obj and rel in (ON, INSIDE)]
     rel, where = dest[0] if dest else (ON, nodes[-1])
-    final = props.placement(obj, rel, where, anim.pose.xy)
+    lay, was = props.taken_from.get(obj, (None, frozenset()))
+    back = next(((r, b) for r, b in dest if (r, b) in was
+                 and b not in anim.scene.layout.room_floors), None)
+    if back is not None and lay is not None:  # put back where it was taken from
+        rel, where = back
+        final = lay
+    else:
+        final = props.placement(obj, rel, where, anim.pose.xy)
 
     def put() -> None:
         carried = props.mocap[anim.scene.mocap[obj]].copy() if obj in anim.scene.mocap \
             else final
         props.held.pop(side, None)
         props.grip.pop(side, None)
-        landed = props.landing(obj, where, final, carried)
+        landed = final.copy() if back is not None and lay is not None else \
+            props.landing(obj, where, final, carried)
         props.move(obj, landed)
         anim.timeline.releases.append(Attach(len(anim.timeline) - 1, obj, side,
                                              float(np.linalg.norm(landed - carried))))

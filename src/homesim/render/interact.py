@@ -55,8 +55,8 @@ first."""
 TOUCH_TOP = 1.1
 SMALL_FACE = 0.15
 """Metres: a face touched no wider or taller than this is pressed by the fingertips."""
-FINGERTIPS = 0.125
-"""Metres from the palm's contact point to the middle of the fingertips (hand open)."""
+FINGERTIPS = 0.145
+"""Metres from the palm's contact point to the fingertips' end (hand flat)."""
 """Metres: objects whose top is lower than this are touched on the top first."""
 HAND_ROOM = 0.05
 """Metres the palm and the closing fingers need out of the face they take."""
@@ -145,9 +145,9 @@ def touch_grasps(box: Box, from_xy: np.ndarray, inset: float = 0.004,
 
 def _fingertip_presses(box: Box, point: np.ndarray, palm: np.ndarray, axis: int,
                        side: str | None) -> list[Grasp]:
-    """The palm flat beside a small face, the fingers level along it and their tips on
-    its near part (`FINGERTIPS`): a light switch pressed, and still seen. Fingers toward
-    the body's middle first (to the left for the right hand)."""
+    """The palm flat beside a small face, the fingers level along it and their tips
+    (`FINGERTIPS`) on its near 30 %: a light switch pressed, and still seen. Fingers
+    toward the body's middle first (to the left for the right hand)."""
     left = np.zeros(3)
     left[1 - axis] = palm[axis] * (1.0 if axis == 0 else -1.0)  # the agent's left
     width = float(box.half[1 - axis])

@@ -46,6 +46,8 @@ class Props:
         # side -> the held object's centre in the frame of the hand's body (set when it is
         # taken, so it rides where the hand touched it: no jump into the palm)
         self.grip: dict[str, np.ndarray] = {}
+        # node id -> where it lay when last taken, and the (relation, node) it was on or in
+        self.taken_from: dict[int, tuple[np.ndarray, frozenset[tuple[str, int]]]] = {}
         self.lit = {n for n, p in self.parts() if p.lamp and p.is_on}
         self.screens = {n for n, p in self.parts() if p.screen is not None and p.is_on}
         # Room id -> lit; None stands for "outside every room" (a switch there may be used).

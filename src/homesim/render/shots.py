@@ -375,12 +375,14 @@ def _score(scene: SceneModel, data: mujoco.MjData, cam: CameraSpec, it: Interact
            targets: list[np.ndarray], part: int | None = None) -> tuple[float, bool]:
     """How well a camera position sees the object (2 per share of points seen; of its
     geom `part` only, when given) and the hand (1 when seen) at the effect, nearer cameras
-    winning ties; and whether it sees the hand."""
-    owners, geoms = (it.nodes, frozenset()) if part is None else ((), frozenset({part}))
+    winning ties; and whether it sees the hand. A ray stopped by where the object goes (a
+    bookshelf's side) does not see it."""
+    first = it.nodes[:1]  # what it puts on or in hides it, as anything else would
+    owners, geoms = (first, frozenset()) if part is None else ((), frozenset({part}))
     seen = sum(visible(scene, data, cam.pos, p, owners, geoms=geoms) for p in targets)
     obj = seen / len(targets) if targets else 0.0
     hand = data.site_xpos[scene.hand_sites[it.side]]
-    hand_seen = visible(scene, data, cam.pos, hand, it.nodes, _arm_bodies(scene, it.side))
+    hand_seen = visible(scene, data, cam.pos, hand, first, _arm_bodies(scene, it.side))
     dist = float(np.linalg.norm(hand - cam.pos))
     return 2.0 * obj + float(hand_seen) - 0.05 * dist, hand_seen
 
