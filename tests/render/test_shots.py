@@ -127,6 +127,8 @@ def test_a_small_object_is_framed_at_the_effect_only(far_share, chosen):
 def test_a_ray_stopped_by_where_the_object_goes_does_not_see_it(monkeypatch):
     """Ranking close-up positions for a put, a ray that meets the bookshelf the phone goes
     into before the phone does not see the phone (side views of the shelf ranked first)."""
+    import types
+
     from homesim.render import shots
     from homesim.render.animate import Interaction
     from homesim.render.cameras import CameraSpec
@@ -136,13 +138,10 @@ def test_a_ray_stopped_by_where_the_object_goes_does_not_see_it(monkeypatch):
                         asked.append(nodes) or True)
     monkeypatch.setattr(shots, "_arm_bodies", lambda scene, side: frozenset())
 
-    class Scene:
-        hand_sites = {"r": 0}
-
-    class Data:
-        site_xpos = np.zeros((1, 3))
+    scene = types.SimpleNamespace(hand_sites={"r": 0})
+    data = types.SimpleNamespace(site_xpos=np.zeros((1, 3)))
 
     it = Interaction(2, (254, 260), "r", 0, 5, 9, 1)  # the phone, then the bookshelf
     cam = CameraSpec("c", 1, np.ones(3), np.array([1.0, 0, 0]), np.array([0, 0, -1.0]), 40.0)
-    shots._score(Scene(), Data(), cam, it, [np.zeros(3)])
+    shots._score(scene, data, cam, it, [np.zeros(3)])
     assert asked and all(nodes == (254,) for nodes in asked)
