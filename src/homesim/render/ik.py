@@ -86,6 +86,9 @@ class ArmIK:
         self._solver = _agent_only(scene) or m
         self._solver_data = mujoco.MjData(self._solver)
         self._jacp = np.zeros((3, self._solver.nv))
+        self._solved: dict[tuple, tuple[Pose, float]] = {}
+        """Solves by their inputs: a reach planner tries the same reach again (a grasp
+        from each standing point it weighs; a third of an episode's solves repeat)."""
 
     def hand(self, pose: Pose, side: str) -> np.ndarray:
         """World position of a hand for a pose."""
@@ -120,13 +123,25 @@ class ArmIK:
 
         `grip`: reach with the point held at this offset in the hand's body frame (a held
         object's centre) instead of the hand itself. `lean`: the spine may bend too."""
-        return self._solve(pose, side, np.asarray(target, float), grip, lean, None)
+        return self._cached(pose, side, np.asarray(target, float), grip, lean, None)
 
     def grasp(self, pose: Pose, side: str, grasp: Grasp,
               lean: bool = True) -> tuple[Pose, float]:
         """The pose with the `side` hand taking hold as `grasp` says (the wrist turns the
         palm); and the distance left between the palm's contact site and its point."""
-        return self._solve(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
+        return self._cached(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
+
+    def _cached(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
+                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
+        """`_solve`, or its answer for the same inputs given before (the same bytes)."""
+        key = (_pose_key(pose), side, target.tobytes(), _array_key(grip), lean,
+               None if grasp is None else tuple(_array_key(np.asarray(v, float)) for v in (
+                   grasp.point, grasp.palm, grasp.fingers)))
+        hit = self._solved.get(key)
+        if hit is None:
+            hit = self._solved[key] = self._solve(pose, side, target, grip, lean, grasp)
+        solved, err = hit
+        return replace(solved, joints=dict(solved.joints)), err
 
     def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
@@ -176,6 +191,16 @@ class ArmIK:
         itself without one)."""
         hand, rot = self.hand_frame(pose, side)
         return hand if grip is None else hand + rot @ grip
+
+
+def _pose_key(pose: Pose) -> tuple:
+    """Everything of a pose that `write_qpos` writes, as a key."""
+    return (pose.x, pose.y, pose.z, pose.yaw, pose.tilt, pose.l_grip, pose.r_grip,
+            tuple(sorted(pose.joints.items())))
+
+
+def _array_key(a: np.ndarray | None) -> bytes | None:
+    return None if a is None else np.asarray(a, float).tobytes()
 
 
 def _agent_only(scene: SceneModel) -> mujoco.MjModel | None:
