@@ -102,7 +102,9 @@ def test_an_object_moved_into_the_view_is_drawn(box_home, gl, monkeypatch):
     with Renderer(scene, 64, 48) as full:
         rgb, ids, depth = frames[1]
         np.testing.assert_array_equal(full.rgb(data, 0), rgb)
-        np.testing.assert_array_equal(full.ids_depth(data, 0)[0], ids)
+        ids_full, depth_full = full.ids_depth(data, 0)
+        np.testing.assert_array_equal(ids_full, ids)
+        np.testing.assert_array_equal(depth_full, depth)
 
 
 def test_probes_and_weighed_views_see_what_every_geom_shows(walk, monkeypatch):
