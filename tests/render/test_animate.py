@@ -321,3 +321,24 @@ def test_a_step_on_a_body_part_brings_the_held_tool_to_the_mouth():
     head = data.site("j:head").xpos
     cup = tl.mocap[it.peak][scene.mocap[21]]
     assert np.linalg.norm(cup - head) < 4 * HEAD_RADIUS * AGENTS["male1"].height
+
+
+def test_room_lamps_follow_their_rooms_light_switch(gl):
+    """Switching a room's light off puts out its ceiling and wall lamps, frame by frame,
+    and only those (scene1's bathroom switch)."""
+    import homesim
+    from homesim.render import animate
+    from homesim.render.layout import render_kind
+
+    run = homesim.run_program("[Walk] <lightswitch> (1)\n[SwitchOff] <lightswitch> (1)",
+                              "scene1", trace=True)
+    a = animate(run, width=32, height=24, fps=2, seed=0)
+    graph, switch = run.graph, a.program.steps[1].args[0].node_id
+    room = graph.room_of(switch)
+    lamps = {p.node_id: graph.room_of(p.node_id) for p in a.scene.layout.parts
+             if p.lamp and render_kind(p.class_name) == "room_lamp"}
+    here = {n for n, r in lamps.items() if r == room}
+    assert here and set(lamps) - here
+    start, _ = a.timeline.step_frames[1]
+    assert set(lamps) <= a.timeline.lamps[start]
+    assert not here & a.timeline.lamps[-1] and set(lamps) - here <= a.timeline.lamps[-1]

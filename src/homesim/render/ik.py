@@ -146,23 +146,22 @@ class ArmIK:
     def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
         names = arm_joints(side, lean) + (wrist_joints(side) if grasp else ())
-        values = [float(pose.joints.get(n, 0.0)) for n in names]
+        values = np.array([float(pose.joints.get(n, 0.0)) for n in names])
         site = (self.scene.palm_sites if grasp else self.scene.hand_sites)[side]
         body = int(self.model.site_bodyid[site])
         offset = np.zeros(3) if grip is None else np.asarray(grip, float)
         model, data = self._solver, self._solver_data
         jacr = np.zeros((3, model.nv))
         cols = [self._dof[n] for n in names]
-        addrs = [self.scene.joint_qpos[n] for n in names]
-        ranges = [self._range[n] for n in names]
+        addrs = np.array([self.scene.joint_qpos[n] for n in names])
+        lo, hi = np.array([self._range[n] for n in names]).T
         eye = DAMPING**2 * np.eye(9 if grasp is not None else 3)
         # Only the solved joints change: the rest of the pose is written once.
         write_qpos(data.qpos, pose, self.scene.joint_qpos)
         qpos = data.qpos
         err = np.inf
         for _ in range(ITERATIONS * (2 if grasp else 1)):
-            for addr, value in zip(addrs, values, strict=True):
-                qpos[addr] = value
+            qpos[addrs] = values
             mujoco.mj_kinematics(model, data)
             mujoco.mj_comPos(model, data)
             rot = data.xmat[body].reshape(3, 3)
@@ -182,9 +181,10 @@ class ArmIK:
                 break
             # dq = J^T (J J^T + damping^2 I)^-1 e
             dq = jac.T @ np.linalg.solve(jac @ jac.T + eye, e)
-            values = [float(min(max(v + min(max(d, -0.3), 0.3), lo), hi))
-                      for v, d, (lo, hi) in zip(values, dq, ranges, strict=True)]
-        return pose.with_joints(**dict(zip(names, values, strict=True))), err
+            # Steps of at most 0.3 rad, within the joints' ranges (one array operation).
+            values = np.minimum(np.maximum(values + np.minimum(np.maximum(dq, -0.3), 0.3), lo),
+                                hi)
+        return pose.with_joints(**dict(zip(names, values.tolist(), strict=True))), err
 
     def held_point(self, pose: Pose, side: str, grip: np.ndarray | None) -> np.ndarray:
         """World position of the point at `grip` in the hand's body frame (the hand site
