@@ -108,7 +108,7 @@ def test_a_bare_title_gets_the_typical_program_whatever_the_trees_score(tiny_spl
         assert model.choose(bare, lambda p: True).steps == typical.steps
         mended = Program((*typical.steps, *Program.parse(TV).steps[:1]))
         chosen = model.choose(bare, lambda p, t=typical: p.steps != t.steps,
-                              repair=lambda p: mended)
+                              repair=lambda p, m=mended: m)
         assert chosen is mended  # where it does not run: repaired, still unedited
     unseen = title_only(_example("Zorble the quux", "", TV))  # an activity not in training
     query, ranked = model.ranked(unseen)

@@ -27,11 +27,12 @@ For a description x (the settings named here are fields of `config.RerankConfig`
 4. **Choice.** For a bare title of an activity in training, the typical program
    (repaired where it does not run in the example's home, `execution.repaired`): a title
    names no object and no step to choose by. (For an activity not in training the typical
-   program is a guess from the nearest title, and the trees choose better.) Otherwise the best-scoring candidate, or the typical program when its score is
-   within the margin of the text's support level (`support`: a few words, more), that
-   executes in the example's home (`execution.executable`, checked best-first among
-   `check_executable`; if none does, the best one repaired, or else the steps of it that
-   run there, `runnable_part`), so the answer always executes.
+   program is a guess from the nearest title, and the trees choose better.) Otherwise the
+   best-scoring candidate, or the typical program when its score is within the margin of
+   the text's support level (`support`: a few words, more), that executes in the home
+   (`execution.executable`, checked best-first among `check_executable`; if none does, the
+   best one repaired, or else the steps of it that run there, `runnable_part`), so the
+   answer always executes.
 5. **Insertion.** The steps the text says that the choice lacks and that a classifier
    finds likely, inserted where the neighbours have them (`insertion`), when the result
    still executes there.
@@ -79,8 +80,8 @@ from homesim.program.model import Program
 
 CHOICE = 2
 """Bumped when `Reranker.choose` writes otherwise from the same fitted model (2: a bare
-title of an activity in training always gets the typical program, and a candidate that does not run is repaired
-before it is cut to the steps that run)."""
+title of an activity in training always gets the typical program, and a candidate that
+does not run is repaired before it is cut to the steps that run)."""
 Repair = Callable[[Program], "Program | None"]
 """A program mended to run (repair's inserted steps) in the home at hand, or None."""
 
