@@ -386,3 +386,24 @@ def test_put_back_goes_where_it_was_taken_from():
     assert tl.releases and np.allclose(start, end)
     moved = max(np.linalg.norm(m[scene.mocap[21]] - start) for m in tl.mocap)
     assert moved > 0.05  # it was carried meanwhile
+
+
+def test_room_lamps_follow_their_rooms_light_switch(gl):
+    """Switching a room's light off puts out its ceiling and wall lamps, frame by frame,
+    and only those (scene1's bathroom switch)."""
+    import homesim
+    from homesim.render import animate
+    from homesim.render.layout import render_kind
+
+    run = homesim.run_program("[Walk] <lightswitch> (1)\n[SwitchOff] <lightswitch> (1)",
+                              "scene1", trace=True)
+    a = animate(run, width=32, height=24, fps=2, seed=0)
+    graph, switch = run.graph, a.program.steps[1].args[0].node_id
+    room = graph.room_of(switch)
+    lamps = {p.node_id: graph.room_of(p.node_id) for p in a.scene.layout.parts
+             if p.lamp and render_kind(p.class_name) == "room_lamp"}
+    here = {n for n, r in lamps.items() if r == room}
+    assert here and set(lamps) - here
+    start, _ = a.timeline.step_frames[1]
+    assert set(lamps) <= a.timeline.lamps[start]
+    assert not here & a.timeline.lamps[-1] and set(lamps) - here <= a.timeline.lamps[-1]

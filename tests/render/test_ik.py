@@ -40,3 +40,30 @@ def test_grasp_puts_the_palm_on_the_point_facing_the_object(box_home):
     assert abs(wrist[1] - grasp.point[1]) < 0.025  # the wrist lies by the face, not behind
     assert any(abs(reached.joints.get(f"r_wrist_{j}", 0.0)) > 0.05
                for j in ("twist", "flex", "dev"))
+
+
+def test_a_solve_asked_again_is_answered_from_memory_with_the_same_values(box_home,
+                                                                          monkeypatch):
+    """The reach planner asks the same solves again (a grasp from each point it weighs):
+    the second answer is the first's values, solved once; other inputs solve anew, and
+    changing an answer's joints does not change what is remembered."""
+    from homesim.render.ik import Grasp
+
+    shape = AGENTS["male1"]
+    ik = ArmIK(build_scene(box_home, shape, max_size=(32, 24)))
+    solves = []
+    solve = ArmIK._solve
+    monkeypatch.setattr(ArmIK, "_solve", lambda self, *a: solves.append(a) or solve(self, *a))
+    pose = standing(shape, (0.0, 0.0), 0.0)
+    grasp = Grasp(np.array([0.42, -0.25, 0.95]), np.array([0.0, 1.0, 0.0]),
+                  np.array([1.0, 0.0, 0.0]))
+    first, err = ik.grasp(pose, "r", grasp)
+    first.joints["r_elbow"] = 9.0  # a caller's change stays its own
+    again, err2 = ik.grasp(pose, "r", grasp)
+    assert len(solves) == 1 and err2 == err and again.joints["r_elbow"] != 9.0
+    assert again == ik._solve(pose, "r", grasp.point, None, True, grasp)[0]
+    ik.grasp(pose, "l", grasp)  # the other hand
+    ik.grasp(standing(shape, (0.0, 0.01), 0.0), "r", grasp)  # from elsewhere
+    ik.reach(pose, "r", grasp.point)  # a reach, not a grasp
+    ik.reach(pose, "r", grasp.point, lean=False)
+    assert len(solves) == 6

@@ -156,3 +156,40 @@ def test_a_desk_against_the_wall_is_reached_from_farther_on_its_side():
     d = [np.hypot(*np.maximum(np.abs(grid.point(c) - desk.center[:2]) - desk.half[:2], 0))
          for c in cells]
     assert max(d) <= 0.2 + max(WALLED_MORE) + 1e-6 and min(d) > 0.2
+
+
+def _shortest(free: np.ndarray, start: tuple[int, int], goals: set) -> float:
+    """The cost of the shortest 8-connected path (no cut corners) by Dijkstra (scipy)."""
+    from scipy.sparse import lil_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    nx, ny = free.shape
+    graph = lil_matrix((nx * ny, nx * ny))
+    for i, j in np.argwhere(free):
+        for di, dj in itertools.product((-1, 0, 1), repeat=2):
+            a, b = i + di, j + dj
+            if (di or dj) and 0 <= a < nx and 0 <= b < ny and free[a, b] and (
+                    not (di and dj) or (free[a, j] and free[i, b])):
+                graph[i * ny + j, a * ny + b] = 1.4142 if di and dj else 1.0
+    dist = dijkstra(graph.tocsr(), indices=start[0] * ny + start[1])
+    return float(min(dist[i * ny + j] for i, j in goals))
+
+
+def test_astar_finds_a_shortest_path_on_the_free_cells(box_home):
+    """Paths around the table to cells across the room cost what Dijkstra's do, step
+    from cell to free cell and start and end where asked."""
+    from homesim.render.navigation import astar
+
+    grid = build_grid(build_layout(box_home))
+    free = np.argwhere(grid.free)
+    rng = np.random.default_rng(0)
+    for _ in range(6):
+        start = tuple(int(v) for v in free[rng.integers(len(free))])
+        goal = tuple(int(v) for v in free[rng.integers(len(free))])
+        path = astar(grid, start, {goal}, grid.origin + np.array(goal) * CELL)
+        assert path[0] == start and path[-1] == goal
+        steps = [(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(path)]
+        assert all(max(abs(di), abs(dj)) == 1 for di, dj in steps)
+        assert all(grid.free[c] for c in path[1:])
+        cost = sum(1.4142 if di and dj else 1.0 for di, dj in steps)
+        assert abs(cost - _shortest(grid.free, start, {goal})) < 1e-9

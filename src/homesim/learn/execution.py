@@ -13,12 +13,14 @@ from __future__ import annotations
 from functools import lru_cache
 
 from homesim.ground.pipeline import run_program, runs
+from homesim.ground.strict import insert_steps
 from homesim.learn.data import Example
 from homesim.learn.vocabularies import StepKey, key_step
 from homesim.program.actions import ACTIONS
 from homesim.program.bindings import Bindings
 from homesim.program.model import ObjectRef, Program, Step
 from homesim.program.parse import parse_program
+from homesim.world.graph import EnvironmentGraph
 from homesim.world.homes import load_home
 
 SEED = 0
@@ -75,6 +77,22 @@ class StepRunner:
 def executable(program: Program, example: Example) -> bool:
     """Whether `run_program` runs `program` in the example's home."""
     return run_program(program, example.graph(), seed=SEED, repair=False).executable
+
+
+def repaired(program: Program, example: Example) -> Program | None:
+    """`program` with the steps repair inserts so that it runs in the example's home
+    (`homesim.ground.repair`), or None when repair finds no fix."""
+    return repaired_in(program, example.graph())
+
+
+def repaired_in(program: Program, graph: EnvironmentGraph, seed: int = SEED
+                ) -> Program | None:
+    """`program` mended by repair to run in `graph`; itself when it runs as written; None
+    when repair finds no fix."""
+    run = run_program(program, graph, seed=seed, repair=True)
+    if not run.executable:
+        return None
+    return program if not run.insertions else insert_steps(program, run.insertions)
 
 
 BUILTIN_HOMES = tuple(f"scene{i}_trimmed" for i in range(1, 6))

@@ -87,6 +87,9 @@ class ArmIK:
         self._solver = _agent_only(scene) or m
         self._solver_data = mujoco.MjData(self._solver)
         self._jacp = np.zeros((3, self._solver.nv))
+        self._solved: dict[tuple, tuple[Pose, float]] = {}
+        """Solves by their inputs: a reach planner tries the same reach again (a grasp
+        from each standing point it weighs; a third of an episode's solves repeat)."""
 
     def hand(self, pose: Pose, side: str) -> np.ndarray:
         """World position of a hand for a pose."""
@@ -121,7 +124,7 @@ class ArmIK:
 
         `grip`: reach with the point held at this offset in the hand's body frame (a held
         object's centre) instead of the hand itself. `lean`: the spine may bend too."""
-        return self._solve(pose, side, np.asarray(target, float), grip, lean, None)
+        return self._cached(pose, side, np.asarray(target, float), grip, lean, None)
 
     def grasp(self, pose: Pose, side: str, grasp: Grasp,
               lean: bool = True) -> tuple[Pose, float]:
@@ -130,28 +133,39 @@ class ArmIK:
         palm's contact site and its point."""
         if grasp.flat:
             pose = pose.with_grip(side, FLAT)
-        return self._solve(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
+        return self._cached(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
+
+    def _cached(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
+                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
+        """`_solve`, or its answer for the same inputs given before (the same bytes)."""
+        key = (_pose_key(pose), side, target.tobytes(), _array_key(grip), lean,
+               None if grasp is None else tuple(_array_key(np.asarray(v, float)) for v in (
+                   grasp.point, grasp.palm, grasp.fingers)))
+        hit = self._solved.get(key)
+        if hit is None:
+            hit = self._solved[key] = self._solve(pose, side, target, grip, lean, grasp)
+        solved, err = hit
+        return replace(solved, joints=dict(solved.joints)), err
 
     def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
         names = arm_joints(side, lean) + (wrist_joints(side) if grasp else ())
-        values = [float(pose.joints.get(n, 0.0)) for n in names]
+        values = np.array([float(pose.joints.get(n, 0.0)) for n in names])
         site = (self.scene.palm_sites if grasp else self.scene.hand_sites)[side]
         body = int(self.model.site_bodyid[site])
         offset = np.zeros(3) if grip is None else np.asarray(grip, float)
         model, data = self._solver, self._solver_data
         jacr = np.zeros((3, model.nv))
         cols = [self._dof[n] for n in names]
-        addrs = [self.scene.joint_qpos[n] for n in names]
-        ranges = [self._range[n] for n in names]
+        addrs = np.array([self.scene.joint_qpos[n] for n in names])
+        lo, hi = np.array([self._range[n] for n in names]).T
         eye = DAMPING**2 * np.eye(9 if grasp is not None else 3)
         # Only the solved joints change: the rest of the pose is written once.
         write_qpos(data.qpos, pose, self.scene.joint_qpos)
         qpos = data.qpos
         err = np.inf
         for _ in range(ITERATIONS * (2 if grasp else 1)):
-            for addr, value in zip(addrs, values, strict=True):
-                qpos[addr] = value
+            qpos[addrs] = values
             mujoco.mj_kinematics(model, data)
             mujoco.mj_comPos(model, data)
             rot = data.xmat[body].reshape(3, 3)
@@ -171,15 +185,26 @@ class ArmIK:
                 break
             # dq = J^T (J J^T + damping^2 I)^-1 e
             dq = jac.T @ np.linalg.solve(jac @ jac.T + eye, e)
-            values = [float(min(max(v + min(max(d, -0.3), 0.3), lo), hi))
-                      for v, d, (lo, hi) in zip(values, dq, ranges, strict=True)]
-        return pose.with_joints(**dict(zip(names, values, strict=True))), err
+            # Steps of at most 0.3 rad, within the joints' ranges (one array operation).
+            values = np.minimum(np.maximum(values + np.minimum(np.maximum(dq, -0.3), 0.3), lo),
+                                hi)
+        return pose.with_joints(**dict(zip(names, values.tolist(), strict=True))), err
 
     def held_point(self, pose: Pose, side: str, grip: np.ndarray | None) -> np.ndarray:
         """World position of the point at `grip` in the hand's body frame (the hand site
         itself without one)."""
         hand, rot = self.hand_frame(pose, side)
         return hand if grip is None else hand + rot @ grip
+
+
+def _pose_key(pose: Pose) -> tuple:
+    """Everything of a pose that `write_qpos` writes, as a key."""
+    return (pose.x, pose.y, pose.z, pose.yaw, pose.tilt, pose.l_grip, pose.r_grip,
+            tuple(sorted(pose.joints.items())))
+
+
+def _array_key(a: np.ndarray | None) -> bytes | None:
+    return None if a is None else np.asarray(a, float).tobytes()
 
 
 def _agent_only(scene: SceneModel) -> mujoco.MjModel | None:

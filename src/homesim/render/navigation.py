@@ -11,6 +11,7 @@ straight segments around furniture and through doorways.
 from __future__ import annotations
 
 import heapq
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -119,35 +120,44 @@ def astar(grid: Grid, start: tuple[int, int], goals: set[tuple[int, int]],
     if start in goals:
         return [start]
     aim_ij = (aim - grid.origin) / CELL
-
-    def h(c):
-        return max(0.0, float(np.hypot(c[0] - aim_ij[0], c[1] - aim_ij[1])) - 12.0)
-
-    came: dict[tuple[int, int], tuple[int, int]] = {}
-    cost = {start: 0.0}
-    heap = [(h(start), start)]
-    free = grid.free
-    nx, ny = free.shape
+    nx, ny = grid.free.shape
+    # Cells as flat indices into the grid padded with a blocked rim (no bounds checks);
+    # the index orders cells as (i, j) does, so ties in the heap break the same way. The
+    # heuristic of every cell is computed at once (the same values as cell by cell).
+    width = ny + 2
+    free = np.pad(grid.free, 1).ravel().tolist()
+    ii, jj = np.meshgrid(np.arange(-1, nx + 1), np.arange(-1, ny + 1), indexing="ij")
+    h = np.maximum(np.hypot(ii - aim_ij[0], jj - aim_ij[1]) - 12.0, 0.0).ravel().tolist()
+    steps = [(di * width + dj, di * width, dj, w) for di, dj, w in _STEPS]
+    goal = [False] * len(free)
+    for i, j in goals:
+        if 0 <= i < nx and 0 <= j < ny:
+            goal[(i + 1) * width + j + 1] = True
+    came = [-1] * len(free)
+    cost = [math.inf] * len(free)
+    first = (start[0] + 1) * width + start[1] + 1
+    cost[first] = 0.0
+    heap = [(h[first], first)]
     while heap:
         _, cur = heapq.heappop(heap)
-        if cur in goals:
+        if goal[cur]:
             path = [cur]
-            while cur in came:
+            while came[cur] >= 0:
                 cur = came[cur]
                 path.append(cur)
-            return path[::-1]
+            return [(k // width - 1, k % width - 1) for k in reversed(path)]
         base = cost[cur]
-        for di, dj, w in _STEPS:
-            nb = (cur[0] + di, cur[1] + dj)
-            if not (0 <= nb[0] < nx and 0 <= nb[1] < ny) or not free[nb]:
+        for step, di, dj, w in steps:
+            nb = cur + step
+            if not free[nb]:
                 continue
-            if di and dj and not (free[cur[0] + di, cur[1]] and free[cur[0], cur[1] + dj]):
+            if di and dj and not (free[cur + di] and free[cur + dj]):
                 continue  # no cutting corners
             c = base + w
-            if c < cost.get(nb, np.inf):
+            if c < cost[nb]:
                 cost[nb] = c
                 came[nb] = cur
-                heapq.heappush(heap, (c + h(nb), nb))
+                heapq.heappush(heap, (c + h[nb], nb))
     raise ExecutionError("no walkable path to the target")
 
 

@@ -54,6 +54,9 @@ class Props:
         self.switch_rooms: dict[int | None, bool] = dict(lights_on_by_switch(graph).items())
         self.hinge_angle = {n: (scene.hinge_open[n] if p.hinge.is_open else 0.0)
                             for n, p in self.parts() if p.hinge is not None}
+        # Ceiling and wall lamps with their rooms (asked for every frame: found once).
+        self.room_lamps = [(n, graph.room_of(n)) for n, p in self.parts()
+                           if p.lamp and render_kind(p.class_name) == "room_lamp"]
 
     def parts(self) -> Iterator[tuple[int, Part]]:
         return ((p.node_id, p) for p in self.scene.layout.parts)
@@ -62,11 +65,7 @@ class Props:
         """Lamps lit now: those switched on, and ceiling and wall lamps of rooms whose
         light switch is on."""
         on = set(self.lit)
-        for n, p in self.parts():
-            if p.lamp and render_kind(p.class_name) == "room_lamp":
-                room = self.graph.room_of(n)
-                if self.switch_rooms.get(room, True):
-                    on.add(n)
+        on.update(n for n, room in self.room_lamps if self.switch_rooms.get(room, True))
         return frozenset(on)
 
     def box_of(self, node_id: int) -> Box:

@@ -14,7 +14,6 @@ import numpy as np
 
 from homesim.errors import HomesimError
 from homesim.render.gl import BACKEND, mujoco, thread_context
-from homesim.render.occlusion import corners, occluder_geoms, shadowed, target_geoms
 from homesim.render.scene import SceneModel
 
 HIDDEN_GROUP = 5
@@ -22,7 +21,6 @@ HIDDEN_GROUP = 5
 MAX_LIGHTS = 7
 """Lights a draw uses besides the headlight: MuJoCo's OpenGL renderer lights with at most
 eight. Each camera keeps those of its own room first, then the nearest."""
-_NONE = np.zeros(0, np.int64)
 
 
 @dataclass(frozen=True)
@@ -68,11 +66,11 @@ class Renderer:
         self._culled_for: dict[int, bytes] = {}  # camera -> the pose it was culled for
         self._moving = np.flatnonzero(model.geom_bodyid != 0)  # agent, doors, held objects
         self._groups = self._cull_groups()
-        self._walls = occluder_geoms(model, scene.geom_class, scene.classes)
-        self._static = target_geoms(model, self._walls)
-        self._boxes: np.ndarray | None = None  # corners of the static geoms' boxes
         self._placed: set[bytes] = set()  # camera positions given by `camera_moved`
-        self._shadowed: dict[bytes, np.ndarray] = {}  # camera position -> geoms behind walls
+        self._seen: dict[bytes, np.ndarray] = {}  # camera pose, bodies moved -> still geoms
+        self._opaque = _opaque(model)  # may hide what is behind
+        self._agent = model.body_rootid == model.body("agent").id  # bodies that always move
+        self._node_geoms: dict[int, np.ndarray] = {}  # node id -> its geoms
         self._opt.geomgroup[HIDDEN_GROUP] = 0
         # The light of the room a camera is in casts shadows in its colour draws.
         self._shadow_light = {c: scene.room_light.get(spec.room_id, -1)
@@ -114,10 +112,11 @@ class Renderer:
                    size: tuple[int, int] = (80, 60), near: float = 0.0) -> Probe:
         """A small (w, h) view: the share each of some graph nodes covers, and the share
         nearer than `near` metres that none of them covers (what stands in front of the
-        camera)."""
+        camera). Only what may show in those pixels is drawn (`_probe_groups`)."""
         w, h = min(size[0], self.width), min(size[1], self.height)  # inside the buffer
         rect = mujoco.MjrRect(0, 0, w, h)
-        self._draw(data, camera_id, segment=True, rect=rect)
+        self._draw(data, camera_id, segment=True, rect=rect,
+                   groups=self._probe_groups(data, camera_id, node_ids, near))
         buf = np.empty((h, w, 3), np.uint8)
         raw = np.empty((h, w), np.float32)
         mujoco.mjr_readPixels(buf, raw, rect, self._con)
@@ -148,7 +147,7 @@ class Renderer:
         data = mujoco.MjData(m)
         mujoco.mj_kinematics(m, data)
         mujoco.mj_camlight(m, data)  # camera poses
-        self._rest = data  # where the static geoms always are
+        self._rest = data.xpos.copy(), data.xmat.copy()  # where every body starts
         groups = {-1: m.geom_group.copy()}
         for cam in range(m.ncam):
             groups[cam] = self._cull(data, cam, groups[-1])
@@ -182,39 +181,95 @@ class Renderer:
         out_y = (np.abs(rel[:, 1]) - ty * depth) / np.sqrt(1 + ty * ty)
         return (out_x > radii) | (out_y > radii) | (depth < -radii)
 
-    def _view_groups(self, data: mujoco.MjData, cam: int) -> np.ndarray:
-        """The geom groups of a draw from camera `cam` as posed now: static geoms outside
-        its view hidden (`camera_moved`) and, without shadows, also the static geoms that
-        walls hide from where it stands (`homesim.render.occlusion`) and the moving ones
-        (the agent, doors, objects carried) outside its view. Hidden geoms cannot show:
-        the image is the same, the draw cheaper (MuJoCo draws every geom it is given).
-        With shadows they could cast one into the view, so they stay."""
-        groups = self._groups.get(cam, self._groups[-1])
+    def _culled(self, data: mujoco.MjData, cam: int) -> np.ndarray:
+        """Camera `cam`'s geom groups with the static geoms outside its view, as posed now,
+        hidden (culled again when a room camera was aimed anew)."""
+        if self._culled_for.get(cam) != self._pose(data, cam):
+            self._recull(data, cam)
+        return self._groups.get(cam, self._groups[-1])
+
+    def _frame_groups(self, data: mujoco.MjData, cam: int) -> np.ndarray:
+        """The geom groups of a full-size draw from camera `cam` as posed now: static geoms
+        outside its view hidden and, without shadows, also the moving ones (the agent,
+        doors, objects carried) outside its view and the static geoms that do not show
+        from this pose (`_seen_still`; not for a position the caller moved a camera to,
+        `camera_moved`: drawn from once, the search would not repay itself). Hidden geoms
+        cannot show: the image is the same, the draw cheaper (MuJoCo draws every geom it
+        is given). With shadows they could cast one into the view, so they stay."""
+        groups = self._culled(data, cam)
         if self.shadows:
             return groups
         groups = groups.copy()
-        groups[self._behind_walls(data, cam)] = HIDDEN_GROUP
         moving = self._moving
         groups[moving[self._outside(data, cam, moving)]] = HIDDEN_GROUP
+        if data.cam_xpos[cam].tobytes() in self._placed:
+            return groups
+        moved = self._moved(data)
+        still = self._opaque & ~moved[self.scene.model.geom_bodyid]
+        unseen = still & (groups != HIDDEN_GROUP)
+        unseen[self._seen_still(data, cam, groups, still, moved)] = False
+        groups[unseen] = HIDDEN_GROUP
         return groups
 
-    def _behind_walls(self, data: mujoco.MjData, cam: int) -> np.ndarray:
-        """The static geoms walls hide from camera `cam`'s position, found on the first
-        draw from there (~5 ms; a room camera is drawn from hundreds of times), except
-        from a position the caller moved a camera to (`camera_moved`: a close-up
-        candidate, drawn from once), where the search would not repay itself."""
-        key = data.cam_xpos[cam].tobytes()
-        hidden = self._shadowed.get(key)
-        if hidden is None:
-            if key in self._placed:
-                return _NONE
-            model, rest = self.scene.model, self._rest
-            if self._boxes is None:  # static geoms do not move: their boxes once
-                self._boxes = corners(model, rest, self._static)
-            hidden = shadowed(model, rest, data.cam_xpos[cam].copy(), self._walls,
-                              self._static, self._boxes)
-            self._shadowed[key] = hidden
-        return hidden
+    def _moved(self, data: mujoco.MjData) -> np.ndarray:
+        """(nbody,) which bodies are not where the model puts them (the agent always):
+        an object carried or put elsewhere, a door opened."""
+        xpos, xmat = self._rest
+        moved = np.any(data.xpos != xpos, axis=1) | np.any(data.xmat != xmat, axis=1)
+        return moved | self._agent
+
+    def _seen_still(self, data: mujoco.MjData, cam: int, groups: np.ndarray,
+                    still: np.ndarray, moved: np.ndarray) -> np.ndarray:
+        """The `still` geoms (opaque, of bodies that are where the model puts them) that
+        show from camera `cam`'s pose at full size (ids), found by one segmentation draw
+        of those alone the first time the pose is drawn from with the same bodies moved
+        (a room camera holds its view for a shot). Exact: a still geom that shows in no
+        pixel of that draw is behind other still geoms in every pixel, and what moves can
+        only cover more; transparent geoms and those of moved bodies are always drawn, so
+        what stands behind glass or where a carried object was still shows."""
+        key = self._pose(data, cam) + np.packbits(moved).tobytes()
+        seen = self._seen.get(key)
+        if seen is None:
+            self._render(data, cam, True, self._rect,
+                         np.where(still, groups, HIDDEN_GROUP).astype(np.int32))
+            mujoco.mjr_readPixels(self._rgb, None, self._rect, self._con)
+            ids = self._decode(self._rgb)
+            seen = np.unique(ids[ids >= 0])
+            self._seen[key] = seen
+        return seen
+
+    def _probe_groups(self, data: mujoco.MjData, cam: int, node_ids: tuple[int, ...],
+                      near: float) -> np.ndarray:
+        """The geom groups of a probe (`probe_view`): of the geoms in the view, only the
+        nodes' asked about, those that could stand in front of them (their bounding
+        spheres meet the cone from the camera to a node's bounding sphere, nearer than its
+        far side) and those that may come nearer than `near` along the view axis. Exact
+        for what a probe counts: a pixel of a node asked about, or nearer than `near`,
+        shows the same geom as with every geom drawn."""
+        groups = self._culled(data, cam).copy()
+        moving = self._moving
+        groups[moving[self._outside(data, cam, moving)]] = HIDDEN_GROUP
+        eye = data.cam_xpos[cam]
+        rel = data.geom_xpos - eye
+        dist = np.linalg.norm(rel, axis=1)
+        radii = self.scene.model.geom_rbound
+        ahead = -(rel @ data.cam_xmat[cam].reshape(3, 3)[:, 2])  # depth along the view
+        keep = ahead - radii < near
+        for node in node_ids:
+            geoms = self._geoms_of(node)
+            if not len(geoms):
+                continue
+            keep[geoms] = True
+            keep |= _in_cone(rel, dist, radii, *_sphere(data.geom_xpos[geoms] - eye,
+                                                        radii[geoms]))
+        groups[~keep] = HIDDEN_GROUP
+        return groups
+
+    def _geoms_of(self, node: int) -> np.ndarray:
+        geoms = self._node_geoms.get(node)
+        if geoms is None:
+            geoms = self._node_geoms[node] = np.flatnonzero(self.scene.geom_node == node)
+        return geoms
 
     def camera_moved(self, data: mujoco.MjData, camera_id: int) -> None:
         """The caller moved a camera (`data` posed with `mj_camlight` after): cull for
@@ -229,13 +284,17 @@ class Renderer:
         self._culled_for[camera_id] = self._pose(data, camera_id)
 
     def _draw(self, data: mujoco.MjData, camera_id: int, segment: bool,
-              rect: mujoco.MjrRect | None = None) -> None:
+              rect: mujoco.MjrRect | None = None, groups: np.ndarray | None = None) -> None:
+        """Draw from a camera with the geoms of `groups` (default: `_frame_groups`)."""
         self._gl.make_current()
         # Renderers share the thread's GL context: draw into this one's framebuffer.
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self._con)
-        if self._culled_for.get(camera_id) != self._pose(data, camera_id):
-            self._recull(data, camera_id)  # a room camera aimed at the agent anew
-        groups = self._view_groups(data, camera_id)
+        if groups is None:
+            groups = self._frame_groups(data, camera_id)
+        self._render(data, camera_id, segment, rect or self._rect, groups)
+
+    def _render(self, data: mujoco.MjData, camera_id: int, segment: bool,
+                rect: mujoco.MjrRect, groups: np.ndarray) -> None:
         # Set on every draw (a small copy): another renderer of the same model may have
         # changed the groups since.
         self.scene.model.geom_group[:] = groups
@@ -252,7 +311,7 @@ class Renderer:
             m.light_active[:] = saved
         self._scn.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = segment
         self._scn.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = segment
-        mujoco.mjr_render(rect or self._rect, self._scn, self._con)
+        mujoco.mjr_render(rect, self._scn, self._con)
 
     def _cast_shadows(self, camera_id: int) -> None:
         """Only the light of the camera's room casts shadows (one shadow pass a frame)."""
@@ -272,10 +331,14 @@ class Renderer:
         mujoco.mjr_readPixels(self._rgb, None, self._rect, self._con)
         return self._rgb[::-1].copy()  # GL rows start at the bottom
 
-    def ids_depth(self, data: mujoco.MjData, camera_id: int) -> tuple[np.ndarray, np.ndarray]:
+    def ids_depth(self, data: mujoco.MjData, camera_id: int,
+                  nodes: tuple[int, ...] | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(H, W) int32 geom id per pixel (-1: none) and (H, W) float32 depth in metres
-        along the camera's view axis."""
-        self._draw(data, camera_id, segment=True)
+        along the camera's view axis. `nodes`: only the pixels that show these graph nodes
+        matter (a view weighed by what it shows of them): only what could stand in front
+        of them is drawn (`_probe_groups`), so other pixels may show nothing."""
+        groups = None if nodes is None else self._probe_groups(data, camera_id, nodes, 0.0)
+        self._draw(data, camera_id, segment=True, groups=groups)
         mujoco.mjr_readPixels(self._rgb, self._depth, self._rect, self._con)
         depth = self._metric_depth(self._depth[::-1])
         return self._decode(self._rgb), depth
@@ -316,3 +379,33 @@ class Renderer:
         c = 0.5 * (f + n) / (f - n) - 0.5
         d = f * n / (f - n)
         return (np.float32(d) / (raw + np.float32(c))).astype(np.float32, copy=False)
+
+
+def _opaque(model: mujoco.MjModel) -> np.ndarray:
+    """(ngeom,) whether each geom is opaque (its colour's and its material's alpha 1)."""
+    alpha = model.geom_rgba[:, 3].copy()
+    has = model.geom_matid >= 0
+    alpha[has] = np.minimum(alpha[has], model.mat_rgba[model.geom_matid[has], 3])
+    return alpha >= 1.0
+
+
+def _sphere(rel: np.ndarray, radii: np.ndarray) -> tuple[np.ndarray, float]:
+    """A sphere around spheres (centres `rel`, `radii`): its centre and radius."""
+    center = 0.5 * (rel.min(axis=0) + rel.max(axis=0))
+    return center, float(np.max(np.linalg.norm(rel - center, axis=1) + radii))
+
+
+def _in_cone(rel: np.ndarray, dist: np.ndarray, radii: np.ndarray, center: np.ndarray,
+             radius: float) -> np.ndarray:
+    """Which spheres (centres `rel` from the eye, `dist` their norms, `radii`) may stand
+    between the eye and a point of the sphere (`center` from the eye, `radius`): they meet
+    the cone of lines from the eye through it, nearer than its far side."""
+    reach = float(np.linalg.norm(center))
+    if reach <= radius:  # the eye is inside: every direction
+        return dist - radii < reach + radius
+    half = np.arcsin(radius / reach)
+    inside = dist <= radii
+    spread = np.arcsin(np.clip(radii / np.maximum(dist, 1e-12), 0.0, 1.0))
+    cos = (rel @ center) / np.maximum(dist * reach, 1e-12)
+    angle = np.arccos(np.clip(cos, -1.0, 1.0))
+    return (inside | (angle <= half + spread)) & (dist - radii < reach + radius)

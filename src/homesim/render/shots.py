@@ -193,7 +193,8 @@ class _SpareCamera:
         m.cam_pos[0], m.cam_quat[0], m.cam_fovy[0] = spec.pos, quat, spec.fovy
         mujoco.mj_camlight(m, data)
         renderer.camera_moved(data, 0)  # cull for the candidate, not for camera 0
-        ids, _ = renderer.ids_depth(data, 0)
+        # Only the object's and the agent's pixels count: only what may cover them is drawn.
+        ids, _ = renderer.ids_depth(data, 0, nodes=(it.nodes[0], self.scene.character_id))
         nodes = np.where(ids >= 0, self.scene.geom_node[np.maximum(ids, 0)], 0)
         body = float(np.count_nonzero(nodes == self.scene.character_id)) / ids.size
         if seen is None:

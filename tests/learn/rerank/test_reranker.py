@@ -9,7 +9,7 @@ import pytest
 from homesim.knowledge.datasets import ActivityProgram
 from homesim.learn.rerank.base import Bank, Query, feature_names
 from homesim.learn.rerank.config import RerankConfig
-from homesim.learn.rerank.reranker import Reranker
+from homesim.learn.rerank.reranker import Reranker, runnable_part
 from homesim.program.model import Program
 
 
@@ -56,8 +56,6 @@ def test_settings_that_cannot_work_are_refused():
 
 
 def test_when_no_candidate_runs_the_steps_of_the_best_that_run_are_written(tiny_splits):
-    from homesim.learn.rerank.reranker import runnable_part
-
     def runs(p: Program) -> bool:  # a home where nothing can be switched on
         return not any(s.action.key == "SWITCHON" for s in p.steps)
 
@@ -88,3 +86,51 @@ def test_a_bare_title_gets_the_typical_program_unedited(tiny_splits):
         assert model.choose(bare, lambda p: True).steps == typical.steps  # unedited
         elsewhere = model.choose(bare, lambda p, t=typical: p.steps != t.steps)
         assert elsewhere.steps != typical.steps  # where it does not run: as for any text
+
+
+def test_a_bare_title_gets_the_typical_program_whatever_the_trees_score(tiny_splits):
+    from homesim.learn.eval.titles import title_only
+
+    train, test = tiny_splits.train, tiny_splits.test
+    model = Reranker.fit(train, "program", config=RerankConfig(typical_margins=(0.0,)))
+
+    def typical_last(query: Query) -> np.ndarray:
+        scores = np.ones(len(query.candidates))
+        scores[query.typical] = -1.0
+        return scores
+
+    model.scores = typical_last  # type: ignore[method-assign]
+    for example in test[:3]:
+        bare = title_only(example)
+        query, ranked = model.ranked(bare)
+        typical = query.candidates[query.typical].program
+        assert ranked[0] is not typical  # the trees would write another
+        assert model.choose(bare, lambda p: True).steps == typical.steps
+        mended = Program((*typical.steps, *Program.parse(TV).steps[:1]))
+        chosen = model.choose(bare, lambda p, t=typical: p.steps != t.steps,
+                              repair=lambda p, m=mended: m)
+        assert chosen is mended  # where it does not run: repaired, still unedited
+    unseen = title_only(_example("Zorble the quux", "", TV))  # an activity not in training
+    query, ranked = model.ranked(unseen)
+    assert query.typical >= 0 and not len(query.activity_programs())
+    guess = query.candidates[query.typical].program  # the nearest title's activity's
+    assert model.choose(unseen, lambda p: True).steps != guess.steps  # the trees decide
+
+
+def test_when_no_candidate_runs_the_best_one_repaired_is_written(tiny_splits):
+    def runs(p: Program) -> bool:  # a home where nothing can be switched on
+        return not any(s.action.key == "SWITCHON" for s in p.steps)
+
+    def repair(p: Program) -> Program:  # a stand-in for repair's inserted steps
+        return Program(tuple(s for s in p.steps if s.action.key != "SWITCHON")[:1])
+
+    train, test = tiny_splits.train, tiny_splits.test
+    model = Reranker.fit(train, "program", insert=False,
+                         config=RerankConfig(check_executable=1, typical_margins=(0.0,)))
+    failing = [e for e in test if not runs(model.ranked(e)[1][0])][:3]
+    assert failing  # the best candidate of some texts switches something on
+    for example in failing:
+        _, ranked = model.ranked(example)
+        assert model.choose(example, runs, repair=repair).steps == repair(ranked[0]).steps
+        assert model.choose(example, runs, repair=lambda p: None).steps == runnable_part(
+            ranked[0], runs).steps

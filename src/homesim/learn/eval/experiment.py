@@ -25,7 +25,7 @@ from homesim.learn.eval.summary import gaps, summarize_rows
 from homesim.learn.eval.titles import title_only
 from homesim.learn.execution import cross_home_rate, executable
 from homesim.learn.rerank.program_writer import FORMAT
-from homesim.learn.rerank.reranker import Reranker
+from homesim.learn.rerank.reranker import CHOICE, Reranker
 from homesim.learn.rerank.retrieve import RetrieveEdit
 from homesim.learn.text.consensus import Consensus
 from homesim.learn.text.text2prog import Text2Prog
@@ -184,9 +184,11 @@ TITLE_ROW = "Reranker, title only"
 """The reranker given each test program's title as its only text (`titles.title_only`)."""
 TITLE_ONLY_ROWS = ("Title-medoid", "Title-median", "NN (title)", TITLE_ROW)
 """The rows that read only the title (the three baselines always do)."""
-ROW_VERSIONS = {RERANK_ROW: FORMAT, TITLE_ROW: FORMAT}
+ROW_VERSIONS: dict[str, int | str] = {RERANK_ROW: f"{FORMAT}.{CHOICE}",
+                                     TITLE_ROW: f"{FORMAT}.{CHOICE}"}
 """Row -> the version of its model; a cached row of another version is scored again (the
-reranker's is the writer's model `FORMAT`; a row not named here is version 1)."""
+reranker's is the writer's model `FORMAT` and its choice's version, `reranker.CHOICE`; a
+row not named here is version 1)."""
 
 
 def rerank_jobs(splits: Splits, split_name: str) -> list[Job]:

@@ -32,6 +32,7 @@ from homesim.knowledge.datasets import ActivityProgram
 from homesim.knowledge.fetch import data_root
 from homesim.learn.data import Example, real_examples
 from homesim.learn.embeddings import lone_sentence_vectors, preload_sentence_vectors
+from homesim.learn.execution import repaired_in
 from homesim.learn.rerank.reranker import Reranker
 from homesim.limits import MAX_DESCRIPTION_CHARS
 from homesim.program.model import Program
@@ -113,7 +114,8 @@ class ProgramWriter:
             return run_program(p, graph, seed=seed, repair=False).executable
 
         vectors = (desc_vector, self.title_vector(title))
-        chosen = self.reranker.choose(query, runs, vectors)
+        chosen = self.reranker.choose(query, runs, vectors,
+                                      repair=lambda p: repaired_in(p, graph, seed))
         program = Program(chosen.steps, title=title, description=description)
         return Written(program, given, run_program(program, graph, seed=seed, trace=True,
                                                    repair=False))

@@ -24,11 +24,15 @@ For a description x (the settings named here are fields of `config.RerankConfig`
    order agrees, its length against the neighbours' and the text's, its source's
    similarity, whether it was edited, whether it is the typical program, how many words the
    description says beyond the title.
-4. **Choice.** The best-scoring candidate, or the typical program when its score is within
-   the margin of the text's support level (`support`: the title alone, a few words, more),
-   that executes in the example's home
+4. **Choice.** For a bare title of an activity in training, the typical program
+   (repaired where it does not run in the example's home, `execution.repaired`): a title
+   names no object and no step to choose by. (For an activity not in training the typical
+   program is a guess from the nearest title, and the trees choose better.) Otherwise the
+   best-scoring candidate, or the typical program when its score is within the margin of
+   the text's support level (`support`: a few words, more), that executes in the home
    (`execution.executable`, checked best-first among `check_executable`; if none does, the
-   steps of the best one that run there, `runnable_part`), so the answer always executes.
+   best one repaired, or else the steps of it that run there, `runnable_part`), so the
+   answer always executes.
 5. **Insertion.** The steps the text says that the choice lacks and that a classifier
    finds likely, inserted where the neighbours have them (`insertion`), when the result
    still executes there.
@@ -63,7 +67,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from homesim.learn.data import Example
-from homesim.learn.execution import executable
+from homesim.learn.execution import executable, repaired
 from homesim.learn.rerank.base import Bank, Query, labelled
 from homesim.learn.rerank.config import RerankConfig
 from homesim.learn.rerank.deletion import Deleter
@@ -73,6 +77,13 @@ from homesim.learn.rerank.insertion import Inserter
 from homesim.learn.rerank.support import Scored, choose_margins, gated, reduced, support_level
 from homesim.learn.rerank.trees import best_of, cross_fitted_scores, design, fit_trees
 from homesim.program.model import Program
+
+CHOICE = 2
+"""Bumped when `Reranker.choose` writes otherwise from the same fitted model (2: a bare
+title of an activity in training always gets the typical program, and a candidate that
+does not run is repaired before it is cut to the steps that run)."""
+Repair = Callable[[Program], "Program | None"]
+"""A program mended to run (repair's inserted steps) in the home at hand, or None."""
 
 if TYPE_CHECKING:
     from sklearn.ensemble import HistGradientBoostingRegressor
@@ -146,7 +157,8 @@ class Reranker:
 
     def predict(self, examples: list[Example]) -> list[Program]:
         """One program per example: the best-scoring candidate that executes in its home."""
-        return [self.choose(e, partial(_executable_in, e)) for e in examples]
+        return [self.choose(e, partial(_executable_in, e), repair=partial(_repaired_in, e))
+                for e in examples]
 
     def ranked(self, example: Example, vectors: tuple[np.ndarray, np.ndarray] | None = None
                ) -> tuple[Query, list[Program]]:
@@ -160,22 +172,27 @@ class Reranker:
         return query, [query.candidates[i].program for i in order]
 
     def choose(self, example: Example, runs: Callable[[Program], bool],
-               vectors: tuple[np.ndarray, np.ndarray] | None = None) -> Program:
+               vectors: tuple[np.ndarray, np.ndarray] | None = None,
+               repair: Repair | None = None) -> Program:
         """The best-scoring candidate that `runs` accepts among the first
-        `config.check_executable` (if none is, the steps of the best one that run,
-        `runnable_part`), edited (`edits`) when `runs` accepts the result: what it returns
-        always runs. Where the text says nothing beyond its title (support level 0,
-        `support`) and the typical program comes first and runs, it is written unedited
-        (there is nothing to edit by)."""
+        `config.check_executable`, edited (`edits`) when `runs` accepts the result. If
+        none runs, the best one as `repair` mends it, or else the steps of it that run
+        (`runnable_part`): what it returns always runs. Where the text says nothing beyond
+        its title (support level 0, `support`) and its activity is in training, the
+        activity's typical program is written unedited whatever the trees score (there is
+        nothing to edit or choose by), mended by `repair` where it does not run."""
         query, programs = self.ranked(example, vectors)
         bare = support_level(example, self.config.support_edges) == 0
-        if (bare and query.typical >= 0 and programs[0] is query.candidates[query.typical].program
-                and runs(programs[0])):
-            return programs[0]
+        if bare and query.typical >= 0 and len(query.activity_programs()):
+            typical = query.candidates[query.typical].program
+            mended = typical if runs(typical) else (repair(typical) if repair else None)
+            if mended is not None:
+                return mended
         first = programs[:self.config.check_executable]
         chosen = next((p for p in first if runs(p)), None)
         if chosen is None:
-            chosen = runnable_part(programs[0], runs)
+            chosen = (repair(programs[0]) if repair else None) or runnable_part(programs[0],
+                                                                              runs)
         return next((p for p in self.edits(query, chosen)
                      if p.steps != chosen.steps and runs(p)), chosen)
 
@@ -208,3 +225,7 @@ def runnable_part(program: Program, runs: Callable[[Program], bool]) -> Program:
 
 def _executable_in(example: Example, program: Program) -> bool:
     return executable(program, example)
+
+
+def _repaired_in(example: Example, program: Program) -> Program | None:
+    return repaired(program, example)
