@@ -13,7 +13,6 @@ from __future__ import annotations
 from functools import lru_cache
 
 from homesim.ground.pipeline import run_program, runs
-from homesim.ground.strict import insert_steps
 from homesim.learn.data import Example
 from homesim.learn.vocabularies import StepKey, key_step
 from homesim.program.actions import ACTIONS
@@ -90,9 +89,7 @@ def repaired_in(program: Program, graph: EnvironmentGraph, seed: int = SEED
     """`program` mended by repair to run in `graph`; itself when it runs as written; None
     when repair finds no fix."""
     run = run_program(program, graph, seed=seed, repair=True)
-    if not run.executable:
-        return None
-    return program if not run.insertions else insert_steps(program, run.insertions)
+    return (run.repaired or program) if run.executable else None
 
 
 BUILTIN_HOMES = tuple(f"scene{i}_trimmed" for i in range(1, 6))
