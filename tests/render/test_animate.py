@@ -407,3 +407,78 @@ def test_room_lamps_follow_their_rooms_light_switch(gl):
     start, _ = a.timeline.step_frames[1]
     assert set(lamps) <= a.timeline.lamps[start]
     assert not here & a.timeline.lamps[-1] and set(lamps) - here <= a.timeline.lamps[-1]
+
+
+def test_a_spot_behind_a_wall_from_its_object_is_not_used(box_home):
+    """Grounding's floor model has no walls: a spot 0.4 m from the TV but behind the wall
+    it stands at (gen-2: the keyboard of a desk against the next room's wall, reached with
+    the head in the wall) is left; the agent walks to the TV on this side."""
+    scene = build_scene(box_home, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program("[Walk] <tv> (22)\n[SwitchOn] <tv> (22)\n"),
+                             box_home, trace=True, reference=True)
+    for spot, kept in (((2.2, 1.0), False), ((1.2, 1.0), True)):
+        tl = Animator(scene, box_home, AGENTS["male1"], fps=10,
+                      standing={0: spot, 1: spot}).run(result)
+        end = tl.qpos[tl.step_frames[0][1]][:2]
+        assert (np.linalg.norm(end - np.array(spot)) < 0.06) == kept, (spot, end)
+        assert end[0] < 1.95  # the room's side of the wall (inner face x = 1.95)
+
+
+def test_sitting_moves_along_the_sofa_away_from_a_pillow():
+    """A pillow lies on the sofa where the agent comes to it: it sits beside the pillow,
+    along the seat (`SIT_ALONG`), not in it (the thighs 4-7 cm in pillows in gen-0, -3, -4
+    and scene 1), on the way down and once seated."""
+    from homesim.render.clearance import Clearance
+    from homesim.render.recorder import SceneState
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()
+    d["nodes"] += [
+        {"id": 40, "class_name": "sofa", "category": "Furniture",
+         "properties": ["SITTABLE", "SURFACES"],
+         "bounding_box": {"center": [-1.5, 0.4, 0.2], "size": [0.85, 0.8, 2.0]}},
+        {"id": 41, "class_name": "pillow", "category": "Props", "properties": ["GRABBABLE"],
+         "bounding_box": {"center": [-1.4, 0.55, -0.3], "size": [0.45, 0.2, 0.45]}}]
+    d["edges"] += [{"from_id": 40, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 41, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 41, "relation_type": "ON", "to_id": 40}]
+    g = EnvironmentGraph.from_dict(d)
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program("[Walk] <sofa> (40)\n[Sit] <sofa> (40)\n"),
+                             g, trace=True, reference=True)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
+    state, clear = SceneState(scene, tl, aim_cameras=False), Clearance(scene)
+    (rest,) = tl.rests
+    assert not any(clear.penetrations(state.apply(f), {}, 0.03) for f in range(rest[0], rest[1] + 1))
+    assert tl.qpos[-1][2] < 0.7  # on the seat, not on the pillow
+
+
+def test_put_back_on_a_high_shelf_is_done_the_way_it_was_taken():
+    """A phone taken from a 1.6 m shelf is put back with the palm as it took it (the
+    arm's reach with the phone in the hand fell 28 cm short, the body leaning into the
+    wall behind: gen-1), so it is let go where it lay."""
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()
+    d["nodes"] += [
+        {"id": 43, "class_name": "cellphone", "category": "Electronics",
+         "properties": ["GRABBABLE"],
+         "bounding_box": {"center": [1.0, 1.6, 1.85], "size": [0.13, 0.01, 0.07]}},
+        {"id": 44, "class_name": "bookshelf", "category": "Furniture",
+         "properties": ["SURFACES"],
+         "bounding_box": {"center": [1.0, 0.7975, 1.8], "size": [1.0, 1.595, 0.3]}}]
+    d["edges"] += [{"from_id": 43, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 44, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 43, "relation_type": "ON", "to_id": 44}]
+    g = EnvironmentGraph.from_dict(d)
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program(
+        "[Walk] <cellphone> (43)\n[Grab] <cellphone> (43)\n[PutObjBack] <cellphone> (43)\n"),
+        g, trace=True, reference=True)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
+    (took,), (put,) = tl.attaches, tl.releases
+    assert took.gap <= 0.01 and put.gap <= 0.01  # let go where the hand brought it

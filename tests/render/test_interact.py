@@ -1,15 +1,23 @@
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
+from homesim.render.ik import MAX_LEAN
 from homesim.render.interact import (
     FLAT,
     HAND_ROOM,
+    LEAN_BACK,
+    TOUCH,
+    ReachPlan,
+    ReachPlanner,
     box_gap,
     hand_room_clear,
     palm_grasps,
     touch_grasps,
 )
 from homesim.render.layout import Box
+from homesim.render.poses import Pose
 
 pytestmark = pytest.mark.render
 
@@ -87,3 +95,53 @@ def test_a_small_switch_is_pressed_by_the_fingertips_beside_the_palm(side, first
     covered = (tips[1] * first + switch.half[1]) / (2 * switch.half[1])
     assert 0.2 < covered < 0.4 and abs(tips[2] - switch.center[2]) < 1e-9
     assert any(np.allclose(g.fingers, [0.0, 0.0, 1.0]) for g in grasps[1:3])
+
+
+def test_a_faucet_reaching_into_the_wall_is_touched_on_what_stands_out():
+    """A faucet's box 3 cm into the wall behind it (scene 3): the part outside the wall is
+    what the hand touches; a box clear of walls, or one wholly in the wall, is kept."""
+    from homesim.render.interact import out_of_walls
+
+    walls = (np.array([[4.93, -4.0, 0.0]]), np.array([[5.03, 0.0, 2.5]]))
+    faucet = Box.from_bounds(np.array([4.862, -3.26, 0.96]), np.array([4.962, -3.16, 1.06]))
+    out = out_of_walls(faucet, walls)
+    np.testing.assert_allclose(out.hi, [4.93, -3.16, 1.06])
+    np.testing.assert_allclose(out.lo, faucet.lo)
+    assert all(g.point[0] < 4.93 for g in touch_grasps(out, np.array([4.3, -3.2])))
+    clear = Box.from_bounds(np.array([4.0, -3.26, 0.96]), np.array([4.1, -3.16, 1.06]))
+    assert out_of_walls(clear, walls) is clear
+    buried = Box.from_bounds(np.array([4.94, -3.26, 0.96]), np.array([5.0, -3.16, 1.06]))
+    assert out_of_walls(buried, walls) is buried
+
+
+class _LeaningPlanner(ReachPlanner):
+    """A planner whose body enters something (a wall before the head) when the spine
+    bends more than 0.5 rad, and whose reaches bend as far as they may and fall short."""
+
+    def __init__(self, touches_upright: bool):
+        self.max_lean, self.touches_upright, self.tried = MAX_LEAN, touches_upright, []
+
+    def inside(self, pose: Pose) -> float:
+        return 0.05 if pose.joints["spine_pitch"] > 0.5 else 0.0
+
+    def reach_from(self, xy, side, point, grip=None, grasp_of=None) -> ReachPlan:
+        self.tried.append(self.max_lean)
+        pose = Pose(0.0, 0.0, 0.96, 0.0, joints={"spine_pitch": self.max_lean})
+        gap = 0.0 if self.touches_upright else 0.3
+        return ReachPlan(pose, gap, self.inside(pose) if gap <= TOUCH else 0.0)
+
+
+@pytest.mark.parametrize("touches", [False, True])
+def test_a_reach_whose_body_enters_something_bows_less(touches):
+    """A reach bowing 1.1 rad for a thing out of reach put the head 5 cm into the wall
+    behind a desk (gen-2): it is tried again bent `LEAN_BACK` less at a time until the
+    body is clear; one that touches only gives way to one that still touches."""
+    planner = _LeaningPlanner(touches)
+    deep = Pose(0.0, 0.0, 0.96, 0.0, joints={"spine_pitch": MAX_LEAN})
+    start = ReachPlan(deep, 0.0 if touches else 0.3, 0.05 if touches else 0.0)
+    plan = planner.upright(start, "r", np.array([1.0, 0.0, 1.0]))
+    assert plan.pose.joints["spine_pitch"] <= 0.5 and plan.inside == 0.0
+    assert planner.tried[0] == pytest.approx(MAX_LEAN - LEAN_BACK)
+    assert plan.touches == touches
+    clear = ReachPlan(replace(deep, joints={"spine_pitch": 0.3}), 0.3)
+    assert planner.upright(clear, "r", np.array([1.0, 0.0, 1.0])) is clear

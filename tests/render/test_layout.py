@@ -92,3 +92,40 @@ def test_a_tower_under_a_desk_is_seen_through_its_front(shared_data):
     front = np.r_[to_mujoco(g.node(18)).lo[0] - 0.3, tower.center[1:]]
     end = np.r_[tower.lo[0] - 0.005, tower.center[1:]]  # just before the tower's face
     assert not segment_hits(front, end - front, lo, hi)
+
+
+def test_rows_of_books_leave_room_for_what_stands_on_the_shelf():
+    """A radio on a bookshelf's shelf stood inside the drawn row of books (gen-1: the
+    hand 11 cm in it to switch it on): the books are cut around it, the shelf kept."""
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()
+    d["nodes"] += [
+        {"id": 30, "class_name": "bookshelf", "category": "Furniture",
+         "properties": ["SURFACES", "CONTAINERS"],
+         "bounding_box": {"center": [-1.0, 1.1, 1.7], "size": [1.2, 2.2, 0.35]}},
+        {"id": 31, "class_name": "radio", "category": "Electronics",
+         "properties": ["HAS_SWITCH"], "states": ["OFF"],
+         "bounding_box": {"center": [-1.0, 2.3, 1.72], "size": [0.3, 0.2, 0.2]}}]
+    d["edges"] += [{"from_id": 30, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 31, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 31, "relation_type": "INSIDE", "to_id": 30}]
+    shelf = next(p for p in build_layout(EnvironmentGraph.from_dict(d)).parts
+                 if p.node_id == 30)
+    books = [s for s in shelf.shapes if s.role == "books"]
+    assert books and any(s.role == "wood" for s in shelf.shapes)
+    cut = 0
+    for z in (0.2, 0.5, 0.8, 1.1, 1.4, 1.7):  # the radio at each shelf's height in turn
+        d["nodes"][-1]["bounding_box"]["center"][1] = float(z)
+        radio = to_mujoco(EnvironmentGraph.from_dict(d).node(31))
+        shelf = next(p for p in build_layout(EnvironmentGraph.from_dict(d)).parts
+                     if p.node_id == 30)
+        for s in shelf.shapes:
+            if s.role == "books":
+                inner = np.minimum(s.center + s.half, radio.hi) - np.maximum(
+                    s.center - s.half, radio.lo)
+                assert np.any(inner <= 1e-6), (z, s)
+        cut += len([s for s in shelf.shapes if s.role == "books"]) > len(books)
+    assert cut  # some row was cut (the test can fail)

@@ -193,3 +193,15 @@ def test_astar_finds_a_shortest_path_on_the_free_cells(box_home):
         assert all(grid.free[c] for c in path[1:])
         cost = sum(1.4142 if di and dj else 1.0 for di, dj in steps)
         assert abs(cost - _shortest(grid.free, start, {goal})) < 1e-9
+
+
+def test_standing_up_stays_on_this_side_of_the_wall():
+    """The nearest free cell to a point past a wall is behind it; seen from where the
+    agent sits, the nearest on its own side is taken (gen-2: up from the desk's chair
+    into the next room)."""
+    grid, _ = _walled_room(1.0)
+    grid.free[5:15, :] = False  # nothing free just before the wall on this side
+    behind = grid.point(grid.nearest_free(np.array([1.45, 1.0])))
+    assert behind[0] > 1.6  # the test can fail
+    here = grid.point(grid.nearest_free(np.array([1.45, 1.0]), seen_from=np.array([0.2, 1.0])))
+    assert here[0] < 1.5

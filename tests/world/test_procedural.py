@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 
 from homesim import run_program
@@ -95,14 +97,15 @@ def test_cli_generate_and_show(tmp_path):
 
 def test_edges_and_support_are_checked(home):
     d = home.to_dict()
-    by_class = {}
-    for n in d["nodes"]:
-        by_class.setdefault(n["class_name"], n["id"])
-    d["edges"].append({"from_id": by_class["toilet"], "relation_type": "CLOSE",
-                       "to_id": by_class["fridge"]})
-    plate = by_class["plate"]
+    toilet = home.nodes_of_class("toilet")[0]
+    far = max(home.nodes_of_class("fridge") + home.nodes_of_class("stove"),
+              key=lambda n: abs(n.bounding_box.center[0] - toilet.bounding_box.center[0])
+              + abs(n.bounding_box.center[2] - toilet.bounding_box.center[2]))
+    d["edges"].append({"from_id": toilet.id, "relation_type": "CLOSE", "to_id": far.id})
+    plate = next(a for a, _, b in home.edges("ON") if home.node(a).class_name == "plate")
     d["edges"] = [e for e in d["edges"] if not (e["from_id"] == plate
-                                                and e["relation_type"] == "ON")]
+                                                and e["relation_type"] in ("ON", "INSIDE")
+                                                and e["to_id"] not in home.room_ids)]
     problems = check_home(EnvironmentGraph.from_dict(d))
     assert any("CLOSE" in p and "disagrees" in p for p in problems)
     assert f"plate {plate} is not ON or INSIDE anything" in problems
@@ -158,3 +161,27 @@ def test_a_sofa_faces_the_tv():
     sofa = g.nodes_of_class("sofa")[0]
     tv = g.nodes_of_class("tv")[0]
     assert tv.id in g.targets(sofa.id, "FACING")
+
+
+def test_items_stand_within_hand_and_apart(home):
+    """What a generated home puts on or in furniture stands no higher than `HAND_HIGH`
+    (gen-2 had a mouse pad on top of a 2.2 m bookshelf) and not inside another thing on
+    the same piece (a mouse, a pad, two lamps and a pillow in one nightstand's top)."""
+    from homesim.world.procedural.items import HAND_HIGH
+
+    rooms = {r.id for r in home.rooms()}
+    on: dict[int, list] = {}
+    for a, relation, b in home.edges():
+        if (relation in ("ON", "INSIDE") and b not in rooms
+                and home.node(b).class_name not in ("floor", "wall", "ceiling")):
+            box = home.node(a).bounding_box
+            if box is None or home.node(a).category == "Characters":
+                continue
+            assert box.center[1] - box.size[1] / 2 <= HAND_HIGH + 1e-6, home.node(a)
+            on.setdefault(b, []).append(box)
+    assert sum(len(v) > 1 for v in on.values()) >= 3  # pieces holding several things
+    for boxes in on.values():
+        for a, b in itertools.combinations(boxes, 2):
+            assert not all(min(a.center[i] + a.size[i] / 2, b.center[i] + b.size[i] / 2)
+                           - max(a.center[i] - a.size[i] / 2, b.center[i] - b.size[i] / 2)
+                           > 1e-3 for i in range(3)), (a, b)

@@ -1,5 +1,6 @@
 import json
 import math
+import random
 
 import pytest
 
@@ -82,3 +83,25 @@ def test_square_distance_is_inf_instead_of_overflow():
 
     assert square_distance((1.0, 5.0, 2.0), (4.0, 0.0, 6.0)) == 25.0
     assert square_distance((1e308, 0.0, 0.0), (-1e308, 0.0, 0.0)) == float("inf")
+
+
+def test_what_preparation_puts_on_the_floor_keeps_clear_of_doorways():
+    """Added things stand `_DOOR_CLEAR` from every door (a television prepared before a
+    door cut a generated room's floor in two): near a door, the nearest spot is farther."""
+    from homesim.world.graph import BoundingBox
+    from homesim.world.standing import _DOOR_CLEAR
+
+    home = load_home("scene1")
+    plan = FloorPlan(home)
+    door = next(n for n in home.nodes_of_class("door") if n.bounding_box is not None)
+    room = next(r for r in home.room_ids if door.id in home.sources(r, "INSIDE")
+                or r in home.targets(door.id, "BETWEEN"))
+    probe = BoundingBox(door.bounding_box.center, (0.1, 0.1, 0.1))
+    spot = plan.free_floor_near(room, probe, 0.4, 0.4)
+    assert spot is not None
+    for d in plan._door_boxes:
+        gap = max(abs(spot[0] - d.center[0]) - (0.4 + d.size[0]) / 2,
+                  abs(spot[1] - d.center[2]) - (0.4 + d.size[2]) / 2)
+        assert gap >= _DOOR_CLEAR - 1e-9
+    spots = [plan.free_floor(room, 0.4, 0.4, random.Random(s)) for s in range(20)]
+    assert all(not plan._by_door(*xy, 0.4, 0.4) for xy in spots if xy is not None)

@@ -33,11 +33,12 @@ from homesim.render.interact import (
     ReachPlanner,
     box_gap,
     hand_room_clear,
+    out_of_walls,
     palm_grasps,
     touch_grasps,
 )
 from homesim.render.layout import SEAT_HEIGHT, Box, room_of_point
-from homesim.render.navigation import build_grid, plan_path
+from homesim.render.navigation import build_grid, plan_path, walled
 from homesim.render.poses import (
     Pose,
     blend,
@@ -90,6 +91,17 @@ SIT_TURNS = (0.0, 0.3, -0.3, 0.6, -0.6)
 """... radians it is turned when the legs would enter what stands in front..."""
 SIT_KNEES = (1.22, 1.6)
 """... and knee angles tried (the second draws the feet back under the seat)."""
+HOVER = 0.009
+"""Metres: a touch whose fingers would enter the wall behind what they press (a light
+switch, a faucet) is tried again this far off its face, then twice as far."""
+SIT_ALONG = tuple(x for k in range(1, 7) for x in (0.2 * k, -0.2 * k))
+"""Metres along a seat (sideways) tried when sitting at the spot would put the body into
+something lying there."""
+SIT_APPROACH = (0.35, 0.5, 0.65)
+"""Metres from the seated pelvis of the floor points tried to sit down from, when the one
+before the seat's front is taken."""
+SIT_WAY = (0.15, 0.3, 0.45, 0.6, 0.75, 0.9)
+"""... and the points of the way from there, bending over the seat, that must be clear."""
 SIT_INSET = 0.35
 """Metres from a seat's front edge to where the pelvis sits (less on a shallow seat)."""
 SIT_FRONT = 0.3
@@ -277,7 +289,7 @@ class Animator:
         if self.posture == "stand":
             return
         spot = self.grid.point(self.grid.nearest_free(self.pose.xy + 0.5 * np.array(
-            [math.cos(self.pose.yaw), math.sin(self.pose.yaw)])))
+            [math.cos(self.pose.yaw), math.sin(self.pose.yaw)]), seen_from=self.pose.xy))
         self.move_to(standing(self.shape, spot, self.pose.yaw), 1.0)
         self.posture = "stand"
 
@@ -456,19 +468,18 @@ class Animator:
         seat = self.props.box_of(node)
         self.walk(seat, reach=0.5)
         spot, yaw = self._seat_spot(node, seat)
+        spot, seated = self._seated_along(node, seat, spot, yaw)
         ahead = np.array([math.cos(yaw), math.sin(yaw)])
         edge = float(abs(ahead @ seat.half[:2]))  # from the spot's axis to the front edge
         front = spot + ahead * (max(edge - float(abs(ahead @ (spot - seat.center[:2]))), 0.0)
                                 + SIT_FRONT)
-        if self.planner.fits(front):
-            self.step_to(front, front + ahead)
+        approach = front if self.planner.fits(front) else self._sit_approach(seated)
+        if approach is not None:
+            self.step_to(approach, approach + ahead)
         else:
             self.turn_to(self.pose.xy + ahead)
-        seated = self._seated(node, spot, yaw)
         self._rest_from = len(self.timeline)
-        over = replace(seated, z=seated.z + SIT_ABOVE,
-                       joints={**seated.joints, "spine_pitch": 0.35})
-        self.move_to(over, 0.6)  # bending over the seat's front edge...
+        self.move_to(_over_seat(seated), 0.6)  # bending over the seat's front edge...
         self.move_to(seated, 0.5)  # ... then down onto it
         self.posture = "sit"
 
@@ -562,6 +573,51 @@ class Animator:
         assert best is not None
         return best[1]
 
+    def _seated_along(self, node: int, seat: Box, spot: np.ndarray, yaw: float
+                      ) -> tuple[np.ndarray, Pose]:
+        """Where on a seat to sit and how (`_seated`): at `spot`, else, where the body
+        there passes into something (a pillow on the sofa), moved along the seat by
+        `SIT_ALONG` until it does not (the least deep otherwise)."""
+        pose = self._seated(node, spot, yaw)
+        best = (self._sit_clash(pose), spot, pose)
+        along = np.array([-math.sin(yaw), math.cos(yaw)])
+        room = float(abs(along @ seat.half[:2])) - SIT_INSET / 2
+        for offset in SIT_ALONG:
+            if best[0] <= REST_CLEAR:
+                break
+            xy = spot + offset * along
+            if abs(float(along @ (xy - seat.center[:2]))) > room:
+                continue
+            pose = self._seated(node, xy, yaw)
+            depth = self._sit_clash(pose)
+            if depth < best[0] - 1e-3:
+                best = (depth, xy, pose)
+        return best[1], best[2]
+
+    def _sit_approach(self, seated: Pose) -> np.ndarray | None:
+        """Where to stand before sitting down when the floor before the seat's front is
+        taken (a chair pushed under its desk): the floor point near the seat, nearest to
+        the agent (on the floor model first), from which the body clears everything on its
+        way to the seat (gen-4: the legs through the desk, sliding in from its end); None
+        if there is none."""
+        over = _over_seat(seated)
+        spots = [seated.xy + r * np.array([math.cos(a), math.sin(a)]) for r in SIT_APPROACH
+                 for a in np.linspace(0.0, 2 * math.pi, 16, endpoint=False)]
+        # on the floor model first; else where the standing body fits between things
+        spots.sort(key=lambda xy: (not self.planner.fits(xy),
+                                   float(np.linalg.norm(xy - self.pose.xy))))
+        for xy in spots:
+            start = standing(self.shape, xy, seated.yaw)
+            if all(self._clash(blend(start, over, t)) <= REST_CLEAR for t in (0.0, *SIT_WAY)):
+                return xy
+        return None
+
+    def _sit_clash(self, seated: Pose) -> float:
+        """How deep the body passes into things sitting down: seated, bent over the
+        seat's front on the way (`_over_seat`) and half way down from there."""
+        over = _over_seat(seated)
+        return max(self._clash(p) for p in (seated, over, blend(over, seated, 0.5)))
+
     def _lying_on(self, node: int, bed: Box, axis: int, sign: float, yaw: float) -> Pose:
         """Lying on the back along the bed, the head `PILLOW_IN` from its head end, the
         back on the mattress, the neck bent until the head rests above the pillow."""
@@ -631,7 +687,9 @@ class Animator:
         """A step's standing spot, unless what it acts on now lies more than `SPOT_REACH`
         from it: grounding chose its spots where things stood at the start (a keyboard
         since put into a drawer), or beside what holds the object (one end of a long
-        counter); render then walks to the object itself."""
+        counter); nor one with a wall between it and the object (grounding's floor model
+        has no walls: a desk against the wall of the next room); render then walks to the
+        object itself."""
         if spot is None:
             return None
         xy = np.array(spot, float)
@@ -644,7 +702,8 @@ class Animator:
         except ExecutionError:
             return xy
         gap = np.maximum(np.abs(xy - box.center[:2]) - box.half[:2], 0.0)
-        return xy if float(np.hypot(*gap)) <= SPOT_REACH else None
+        return xy if float(np.hypot(*gap)) <= SPOT_REACH and not walled(self.grid, xy, box) \
+            else None
 
     def run(self, result: ExecutionResult) -> Timeline:
         """Animate every step of an executed program (it must be executable)."""
@@ -671,6 +730,11 @@ class Animator:
         if self.timeline.step_frames:
             self.timeline.step_frames[-1] = (last[0], len(self.timeline) - 1)
         return self.timeline
+
+
+def _over_seat(seated: Pose) -> Pose:
+    """On the way to a seated pose: bent over the seat's front edge, `SIT_ABOVE` higher."""
+    return replace(seated, z=seated.z + SIT_ABOVE, joints={**seated.joints, "spine_pitch": 0.35})
 
 
 def standing_pose(shape: AgentShape, xy: np.ndarray) -> Pose:
@@ -900,10 +964,12 @@ def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> No
     step's state changes (switching on...) happen when it arrives."""
     props = anim.props
     side = props.free_side()
-    box = props.box_of(node)
+    box = out_of_walls(props.box_of(node), anim.planner.walls)
 
-    def grasp_of(xy: np.ndarray) -> list[Grasp]:
-        return touch_grasps(box, xy, side=side)
+    def grasp_of(xy: np.ndarray) -> list[Grasp]:  # then a hair off the face (`HOVER`)
+        grasps = touch_grasps(box, xy, side=side)
+        return grasps + [replace(g, point=g.point - k * HOVER * g.palm)
+                         for k in (1, 2) for g in grasps]
     anim.reach(side, grasp_of(anim.pose.xy)[0].point, 0.6,
                at_peak=lambda: props.apply_states(states), nodes=nodes or (node,),
                grasp_of=grasp_of)
@@ -932,6 +998,8 @@ def _grab(anim: Animator, ch: Changes) -> bool:
             props.move(obj, center)
         props.held[side] = obj
         props.grip[side] = rot.T @ (center - hand)
+        props.taken_with[obj] = Grasp(palm + box.center - center,
+                                      rot[:, 1] * (-1.0 if side == "l" else 1.0), -rot[:, 2])
         anim.timeline.attaches.append(Attach(len(anim.timeline) - 1, obj, side, gap))
 
     clear = anim.ray_test(skip=(obj,))
@@ -975,7 +1043,13 @@ def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
         props.move(obj, landed)
         anim.timeline.releases.append(Attach(len(anim.timeline) - 1, obj, side,
                                              float(np.linalg.norm(landed - carried))))
-    anim.reach(side, final, 0.6, at_peak=put, nodes=(obj, where), grip=props.grip.get(side))
+    took = props.taken_with.get(obj) if back is not None and lay is not None else None
+    if took is not None:  # the hand as it took it: where it took it from (a high shelf)
+        anim.reach(side, took.point, 0.6, at_peak=put, nodes=(obj, where),
+                   grasp_of=lambda xy: [took])
+    else:
+        anim.reach(side, final, 0.6, at_peak=put, nodes=(obj, where),
+                   grip=props.grip.get(side))
     return True
 
 

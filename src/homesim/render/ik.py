@@ -119,36 +119,42 @@ class ArmIK:
         return self.data.site(name).xpos.copy()
 
     def reach(self, pose: Pose, side: str, target: np.ndarray,
-              grip: np.ndarray | None = None, lean: bool = True) -> tuple[Pose, float]:
+              grip: np.ndarray | None = None, lean: bool = True,
+              max_lean: float = MAX_LEAN) -> tuple[Pose, float]:
         """The pose with the `side` arm reaching `target`; and the distance left (metres).
 
         `grip`: reach with the point held at this offset in the hand's body frame (a held
-        object's centre) instead of the hand itself. `lean`: the spine may bend too."""
-        return self._cached(pose, side, np.asarray(target, float), grip, lean, None)
+        object's centre) instead of the hand itself. `lean`: the spine may bend too, at
+        most `max_lean` radians forward."""
+        return self._cached(pose, side, np.asarray(target, float), grip, lean, None, max_lean)
 
-    def grasp(self, pose: Pose, side: str, grasp: Grasp,
-              lean: bool = True) -> tuple[Pose, float]:
+    def grasp(self, pose: Pose, side: str, grasp: Grasp, lean: bool = True,
+              max_lean: float = MAX_LEAN) -> tuple[Pose, float]:
         """The pose with the `side` hand taking hold as `grasp` says (the wrist turns the
         palm; a `flat` grasp lays the fingers straight); and the distance left between the
         palm's contact site and its point."""
         if grasp.flat:
             pose = pose.with_grip(side, FLAT)
-        return self._cached(pose, side, np.asarray(grasp.point, float), None, lean, grasp)
+        return self._cached(pose, side, np.asarray(grasp.point, float), None, lean, grasp,
+                            max_lean)
 
     def _cached(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
-                lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
+                lean: bool, grasp: Grasp | None, max_lean: float = MAX_LEAN
+               ) -> tuple[Pose, float]:
         """`_solve`, or its answer for the same inputs given before (the same bytes)."""
-        key = (_pose_key(pose), side, target.tobytes(), _array_key(grip), lean,
+        key = (_pose_key(pose), side, target.tobytes(), _array_key(grip), lean, max_lean,
                None if grasp is None else tuple(_array_key(np.asarray(v, float)) for v in (
                    grasp.point, grasp.palm, grasp.fingers)))
         hit = self._solved.get(key)
         if hit is None:
-            hit = self._solved[key] = self._solve(pose, side, target, grip, lean, grasp)
+            hit = self._solved[key] = self._solve(pose, side, target, grip, lean, grasp,
+                                                  max_lean)
         solved, err = hit
         return replace(solved, joints=dict(solved.joints)), err
 
     def _solve(self, pose: Pose, side: str, target: np.ndarray, grip: np.ndarray | None,
-               lean: bool, grasp: Grasp | None) -> tuple[Pose, float]:
+               lean: bool, grasp: Grasp | None, max_lean: float = MAX_LEAN
+               ) -> tuple[Pose, float]:
         names = arm_joints(side, lean) + (wrist_joints(side) if grasp else ())
         values = np.array([float(pose.joints.get(n, 0.0)) for n in names])
         site = (self.scene.palm_sites if grasp else self.scene.hand_sites)[side]
@@ -159,6 +165,9 @@ class ArmIK:
         cols = [self._dof[n] for n in names]
         addrs = np.array([self.scene.joint_qpos[n] for n in names])
         lo, hi = np.array([self._range[n] for n in names]).T
+        if lean and max_lean < MAX_LEAN:
+            k = names.index("spine_pitch")
+            hi[k] = max(min(hi[k], max_lean), lo[k])
         eye = DAMPING**2 * np.eye(9 if grasp is not None else 3)
         # Only the solved joints change: the rest of the pose is written once.
         write_qpos(data.qpos, pose, self.scene.joint_qpos)

@@ -19,7 +19,7 @@ import numpy as np
 from homesim.render.agent import AgentShape
 from homesim.render.clearance import Clearance
 from homesim.render.gl import mujoco
-from homesim.render.ik import ArmIK, Grasp, crouched
+from homesim.render.ik import MAX_LEAN, ArmIK, Grasp, crouched
 from homesim.render.layout import Box, Layout
 from homesim.render.navigation import segment_hits, wall_boxes
 from homesim.render.poses import Pose, standing, write_qpos
@@ -66,6 +66,9 @@ wall is reached from its room)."""
 CLEAR = 0.02
 """Metres: a reach pose whose body passes deeper than this into anything but what the
 hand takes (or holds) is tried after those that do not."""
+LEAN_BACK = 0.15
+"""Radians: a reach whose body passes into something is tried again with the spine bent
+this much less each time (the hand stops short rather than the head entering a wall)."""
 WRIST = 0.02
 """Metres: a grasp holds when the palm touches the object and the wrist is this near its
 box (a palm touching with only its edge, the hand turned away, does not)."""
@@ -78,6 +81,27 @@ def box_gap(box: Box, point: np.ndarray) -> float:
     """Distance from a point to a box (0 inside it)."""
     d = np.maximum(np.abs(np.asarray(point, float) - box.center) - box.half, 0.0)
     return float(np.linalg.norm(d))
+
+
+def out_of_walls(box: Box, walls: tuple[np.ndarray, np.ndarray], keep: float = 0.02) -> Box:
+    """The part of a box outside the wall boxes (lo, hi) it overlaps: cut along the axis
+    it enters each the least, keeping the larger side (a faucet or a switch whose box
+    reaches into the wall behind it is touched on what stands out); `box` itself when
+    less than `keep` metres would be left."""
+    lo, hi = box.lo.copy(), box.hi.copy()
+    cut = False
+    for wlo, whi in zip(*walls, strict=True):
+        inner = np.minimum(hi, whi) - np.maximum(lo, wlo)
+        if np.any(inner <= 0.0):
+            continue
+        axis, cut = int(np.argmin(inner[:2])), True
+        if whi[axis] - lo[axis] < hi[axis] - wlo[axis]:  # the wall on the low side
+            lo[axis] = whi[axis]
+        else:
+            hi[axis] = wlo[axis]
+    if not cut or np.any(hi - lo < keep):
+        return box
+    return Box.from_bounds(lo, hi)
 
 
 def surface_point(box: Box, toward: np.ndarray, inset: float = 0.004) -> np.ndarray:
@@ -229,6 +253,8 @@ class ReachPlanner:
         self.hands_in: dict[str, set[int]] = {}
         """Per hand, the nodes it may be inside during the reach being planned (what it
         takes or holds); set by the caller before `plan`."""
+        self.max_lean = MAX_LEAN
+        """Radians: how far the spine may bend forward in the reaches being weighed."""
 
     def inside(self, pose: Pose) -> float:
         """How deep (m) the body in `pose` passes into anything but what the hands may be
@@ -277,13 +303,13 @@ class ReachPlanner:
             low = crouched(base, self.shape, drop)
             wrist = 0.0
             if grasp is not None:
-                reached, gap = self.ik.grasp(low, side, grasp)
+                reached, gap = self.ik.grasp(low, side, grasp, max_lean=self.max_lean)
                 if grasp.box is not None:
                     lo, hi = grasp.box
                     w = self.ik.site(reached, f"j:{side}_wrist")
                     wrist = float(np.linalg.norm(w - np.clip(w, lo, hi)))
             else:
-                reached, _ = self.ik.reach(low, side, point, grip)
+                reached, _ = self.ik.reach(low, side, point, grip, max_lean=self.max_lean)
                 gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
             plan = ReachPlan(reached, gap, self.inside(reached) if gap <= TOUCH else 0.0, wrist)
             if best is None or _better(plan, best):
@@ -299,7 +325,40 @@ class ReachPlanner:
         toward it (every `STEP` metres, while the body fits) from which the hand touches
         it without bowing more than `COMFORT_LEAN` (else the first from which it touches
         at all); else the nearest point around it (`AROUND`) from which it does; else the
-        point tried from which the hand comes closest."""
+        point tried from which the hand comes closest. A reach whose body then passes into
+        something bows less (`upright`)."""
+        return self.upright(self._search(start_xy, side, point, grip, grasp_of), side,
+                            point, grip, grasp_of)
+
+    def upright(self, plan: ReachPlan, side: str, point: np.ndarray,
+                grip: np.ndarray | None = None, grasp_of: GraspOf | None = None
+                ) -> ReachPlan:
+        """`plan`, or where its body passes deeper than `CLEAR` into something (a head in
+        the wall behind a desk, leaning for a thing out of reach), the same reach with the
+        spine bent `LEAN_BACK` less at a time: the first whose body is clear (that still
+        touches, when `plan` did), else the least deep."""
+        depth = plan.inside if plan.touches else self.inside(plan.pose)
+        if depth <= CLEAR:
+            return plan
+        best = replace(plan, inside=depth)
+        cap = _lean(plan) - LEAN_BACK
+        while cap > -LEAN_BACK:
+            self.max_lean = max(cap, 0.0)
+            try:
+                tried = self.reach_from(plan.pose.xy, side, point, grip, grasp_of)
+            finally:
+                self.max_lean = MAX_LEAN
+            if not tried.touches:
+                tried = replace(tried, inside=self.inside(tried.pose))
+            if tried.inside <= CLEAR and (tried.touches or not plan.touches):
+                return tried
+            if tried.inside < best.inside - 1e-3 and tried.touches >= plan.touches:
+                best = tried
+            cap -= LEAN_BACK
+        return best
+
+    def _search(self, start_xy: np.ndarray, side: str, point: np.ndarray,
+                grip: np.ndarray | None, grasp_of: GraspOf | None) -> ReachPlan:
         d = point[:2] - start_xy
         dist = float(np.hypot(*d))
         tries = [start_xy + d / dist * s for s in np.arange(STEP, dist, STEP)]

@@ -443,6 +443,7 @@ def build_layout(graph: EnvironmentGraph, seed: int = 0) -> Layout:
         part.is_on = S_ON in node.states
         parts.append(part)
     _carve_counters(parts, graph)
+    _clear_shelves(parts, graph)
     rooms_of = {p.node_id: r for p in parts if (r := graph.room_of(p.node_id)) is not None}
     return Layout(parts, home.rooms, {r.id: r.class_name for r in graph.rooms()}, floors,
                   _room_floors(home.tiles), _start(graph), FloorModel(graph), rooms_of)
@@ -684,6 +685,29 @@ def _carve_counters(parts: list[Part], graph: EnvironmentGraph) -> None:
             part.shapes = carve(part.shapes, holes)
             part.boxes = [Box((a + c) / 2, (c - a) / 2) for bx in part.boxes
                           for a, c in _box_pieces(bx, holes)]
+
+
+BOOK_ROOM = (0.03, 0.03, 0.25)
+"""Metres kept free of drawn books around a thing standing on a shelf (each side; above
+it more, for the hand that takes it from above)."""
+
+
+def _clear_shelves(parts: list[Part], graph: EnvironmentGraph) -> None:
+    """Cut a shelf's drawn rows of books (`role` "books") around what stands on its
+    shelves (a radio in a bookshelf stood inside a row of books, and the hand that
+    turned it on with it)."""
+    boxes = {n.id: b for n in graph if (b := to_mujoco(n)) is not None}
+    for part in parts:
+        if not any(s.role == "books" for s in part.shapes) or part.node_id not in boxes:
+            continue
+        sb = boxes[part.node_id]
+        room = np.array(BOOK_ROOM)
+        holes = [(b.lo - room * (1, 1, 0), b.hi + room) for n, b in boxes.items()
+                 if n != part.node_id and np.all(np.abs(b.center - sb.center) < sb.half)
+                 and np.all(b.half < sb.half) and not graph.node(n).is_room]
+        if holes:
+            books = carve([s for s in part.shapes if s.role == "books"], holes)
+            part.shapes = [s for s in part.shapes if s.role != "books"] + books
 
 
 def _holes(part: Part, parts: list[Part], graph: EnvironmentGraph, boxes: dict[int, Box],

@@ -55,13 +55,20 @@ class Grid:
     def point(self, ij: tuple[int, int]) -> np.ndarray:
         return self.origin + np.asarray(ij, float) * CELL
 
-    def nearest_free(self, xy) -> tuple[int, int]:
-        """The free cell closest to a point."""
+    def nearest_free(self, xy, seen_from=None) -> tuple[int, int]:
+        """The free cell closest to a point; with `seen_from` (a floor point), the
+        closest without a wall between it and that point, when there is one (one stands
+        up from a chair into its own room, not through the wall behind the desk)."""
         idx = np.argwhere(self.free)
         if len(idx) == 0:
             raise ExecutionError("the home has no free floor to walk on")
         pts = self.origin + idx * CELL
-        k = int(np.argmin(np.sum((pts - np.asarray(xy)[:2]) ** 2, axis=1)))
+        order = np.argsort(np.sum((pts - np.asarray(xy)[:2]) ** 2, axis=1), kind="stable")
+        k = int(order[0])
+        if seen_from is not None and len(self.walls[0]):
+            start = np.r_[np.asarray(seen_from, float)[:2], REACH_LEVEL]
+            k = next((int(i) for i in order if not segment_hits(
+                start, np.r_[pts[i] - start[:2], 0.0], *self.walls)), k)
         return int(idx[k][0]), int(idx[k][1])
 
     def line_free(self, a: np.ndarray, b: np.ndarray) -> bool:
@@ -171,7 +178,7 @@ def goal_cells(grid: Grid, target: Box, reach: float = 0.75) -> set[tuple[int, i
     dist = np.hypot(d[:, 0], d[:, 1])
     for more in WALLED_MORE:
         open_ = [c for c in idx[dist <= reach + more]
-                 if not _walled(grid, grid.point(c), target)]
+                 if not walled(grid, grid.point(c), target)]
         if open_:
             return {(int(i), int(j)) for i, j in open_}
     near = idx[dist <= reach]
@@ -180,7 +187,7 @@ def goal_cells(grid: Grid, target: Box, reach: float = 0.75) -> set[tuple[int, i
     return {(int(i), int(j)) for i, j in near}
 
 
-def _walled(grid: Grid, xy: np.ndarray, target: Box) -> bool:
+def walled(grid: Grid, xy: np.ndarray, target: Box) -> bool:
     """Whether a wall stands between floor point `xy` and the nearest point of a box's
     footprint (the level line at `REACH_LEVEL`)."""
     lo, hi = grid.walls

@@ -13,6 +13,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from homesim.errors import ExecutionError
+from homesim.render.ik import Grasp
 from homesim.render.layout import Box, Part, lights_on_by_switch, render_kind, to_mujoco
 from homesim.render.navigation import Grid
 from homesim.render.scene import SceneModel
@@ -48,6 +49,8 @@ class Props:
         self.grip: dict[str, np.ndarray] = {}
         # node id -> where it lay when last taken, and the (relation, node) it was on or in
         self.taken_from: dict[int, tuple[np.ndarray, frozenset[tuple[str, int]]]] = {}
+        # node id -> how the hand took it then (its palm's point and turn: `ik.Grasp`)
+        self.taken_with: dict[int, Grasp] = {}
         self.lit = {n for n, p in self.parts() if p.lamp and p.is_on}
         self.screens = {n for n, p in self.parts() if p.screen is not None and p.is_on}
         # Room id -> lit; None stands for "outside every room" (a switch there may be used).

@@ -33,6 +33,9 @@ _RINGS = (0.25, 0.45, 0.7, 1.0)
 _FLOOR_RINGS = (0.05, 0.2, 0.4, 0.6, 0.8, 1.0)
 """Distances (m) from an anchor's footprint at which a new object may stand on the floor."""
 _DIRECTIONS = 16
+_DOOR_CLEAR = 0.5
+"""Metres: a new object's footprint stays this far from every doorway (a television
+prepared on the floor before a door cut a room's floor in two)."""
 _COMPOSITE = 2.5
 """A box wider than this (m) is taken for a composite piece (L-shaped counter or sofa)."""
 
@@ -151,16 +154,33 @@ class FloorPlan:
             f = floors[rng.randrange(len(floors))]
             x = f.center[0] + rng.uniform(-0.5, 0.5) * f.size[0]
             z = f.center[2] + rng.uniform(-0.5, 0.5) * f.size[2]
-            if self.is_free(room, x, z, size_x, size_z) and self.reachable(x, z):
+            if (self.is_free(room, x, z, size_x, size_z) and self.reachable(x, z)
+                    and not self._by_door(x, z, size_x, size_z)):
                 return (x, z)
         return None
+
+    def _by_door(self, x: float, z: float, size_x: float, size_z: float) -> bool:
+        """Whether a footprint centred at (x, z) comes within `_DOOR_CLEAR` of a doorway."""
+        for d in self._door_boxes:
+            gx = abs(x - d.center[0]) - (size_x + d.size[0]) / 2
+            gz = abs(z - d.center[2]) - (size_z + d.size[2]) / 2
+            if max(gx, gz) < _DOOR_CLEAR:
+                return True
+        return False
+
+    @functools.cached_property
+    def _door_boxes(self) -> list[BoundingBox]:
+        """The boxes of the home's doors and door jambs."""
+        return [b for c in ("door", "doorjamb") for n in self.graph.nodes_of_class(c)
+                if (b := n.bounding_box) is not None]
 
     def free_floor_near(self, room: int, box: BoundingBox, size_x: float,
                         size_z: float) -> Spot | None:
         """The nearest spot around `box` where a footprint of this size fits, on the
         walkable floor, or None."""
         for x, z in self._ring_spots(box, max(size_x, size_z), _FLOOR_RINGS):
-            if self.is_free(room, x, z, size_x, size_z) and self.reachable(x, z):
+            if (self.is_free(room, x, z, size_x, size_z) and self.reachable(x, z)
+                    and not self._by_door(x, z, size_x, size_z)):
                 return (x, z)
         return None
 
