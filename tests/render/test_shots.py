@@ -136,12 +136,10 @@ def test_a_ray_stopped_by_where_the_object_goes_does_not_see_it(monkeypatch):
     asked = []
     monkeypatch.setattr(shots, "visible", lambda scene, data, eye, point, nodes, *a, **k:
                         asked.append(nodes) or True)
-    monkeypatch.setattr(shots, "_arm_bodies", lambda scene, side: frozenset())
-
     scene = types.SimpleNamespace(hand_sites={"r": 0})
     data = types.SimpleNamespace(site_xpos=np.zeros((1, 3)))
 
     it = Interaction(2, (254, 260), "r", 0, 5, 9, 1)  # the phone, then the bookshelf
     cam = CameraSpec("c", 1, np.ones(3), np.array([1.0, 0, 0]), np.array([0, 0, -1.0]), 40.0)
-    shots._score(scene, data, cam, it, [np.zeros(3)])
+    shots._score(scene, data, cam, it, [np.zeros(3)], frozenset())
     assert asked and all(nodes == (254,) for nodes in asked)

@@ -91,6 +91,7 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
     data = mujoco.MjData(scene.model)
     aspect = size[0] / size[1]
     plans = []
+    arms: dict[str, frozenset[int]] = {}  # per hand, `_arm_bodies` (the same each time)
     for k, it in enumerate(timeline.interactions):
         framed = _framed_points(scene, timeline, it, data)
         cams = _positions(scene, it.room, 0.5 * (framed.min(axis=0) + framed.max(axis=0)))
@@ -99,7 +100,9 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
         _pose(scene, timeline, it.peak, data)
         seen = _seen_part(scene, timeline, it)
         targets = _targets(scene, it, data, seen)
-        scored = sorted(((_score(scene, data, c, it, targets, seen), i)
+        if it.side not in arms:
+            arms[it.side] = _arm_bodies(scene, it.side)
+        scored = sorted(((_score(scene, data, c, it, targets, arms[it.side], seen), i)
                          for i, c in enumerate(cams)), reverse=True)[:DRAWN]
         tight = _effect_points(scene, timeline, it, data)
         plans.append((it, seen, [(_aim(cams[i], framed, aspect, k, it.step),
@@ -112,8 +115,7 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
     with Renderer(scene, *probe) as renderer, _spare_camera(scene) as spare:
         for it, seen, aimed in plans:
             _pose(scene, timeline, it.peak, data)
-            arm = _arm_bodies(scene, it.side)
-            best = _best_view(spare, renderer, data, it, arm, seen, aimed)
+            best = _best_view(spare, renderer, data, it, arms[it.side], seen, aimed)
             if best is not None:
                 shots.append(best)
     return shots
@@ -373,17 +375,18 @@ def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
 
 
 def _score(scene: SceneModel, data: mujoco.MjData, cam: CameraSpec, it: Interaction,
-           targets: list[np.ndarray], part: int | None = None) -> tuple[float, bool]:
+           targets: list[np.ndarray], arm: frozenset[int], part: int | None = None
+           ) -> tuple[float, bool]:
     """How well a camera position sees the object (2 per share of points seen; of its
     geom `part` only, when given) and the hand (1 when seen) at the effect, nearer cameras
-    winning ties; and whether it sees the hand. A ray stopped by where the object goes (a
-    bookshelf's side) does not see it."""
+    winning ties; and whether it sees the hand (its site on `arm`, `_arm_bodies`). A ray
+    stopped by where the object goes (a bookshelf's side) does not see it."""
     first = it.nodes[:1]  # what it puts on or in hides it, as anything else would
     owners, geoms = (first, frozenset()) if part is None else ((), frozenset({part}))
     seen = sum(visible(scene, data, cam.pos, p, owners, geoms=geoms) for p in targets)
     obj = seen / len(targets) if targets else 0.0
     hand = data.site_xpos[scene.hand_sites[it.side]]
-    hand_seen = visible(scene, data, cam.pos, hand, first, _arm_bodies(scene, it.side))
+    hand_seen = visible(scene, data, cam.pos, hand, first, arm)
     dist = float(np.linalg.norm(hand - cam.pos))
     return 2.0 * obj + float(hand_seen) - 0.05 * dist, hand_seen
 
