@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
+from numpy._core.umath import clip as _clip_ufunc  # type: ignore[attr-defined]
 from numpy.linalg import _umath_linalg
 
 from homesim.render.agent import AgentShape
@@ -177,9 +178,8 @@ class ArmIK:
             if step.done(err):
                 break
             history.append((values, err))
-            # Steps of at most 0.3 rad, within the joints' ranges (one array operation).
-            values = np.minimum(np.maximum(values + np.minimum(np.maximum(
-                step.dq(), -0.3), 0.3), lo), hi)
+            # Steps of at most 0.3 rad, within the joints' ranges.
+            values = _clip(values + _clip(step.dq(), -0.3, 0.3), lo, hi)
         return pose.with_joints(**dict(zip(names, values.tolist(), strict=True))), err
 
     def held_point(self, pose: Pose, side: str, grip: np.ndarray | None) -> np.ndarray:
@@ -248,12 +248,15 @@ class _Step:
         rows = 3 if grasp is None else 9
         self.jacs = np.zeros((6, model.nv))  # position rows, then rotation rows
         self.jacp, self.jacr = self.jacs[:3], self.jacs[3:]
-        # The Jacobian's rows: position, then the rotation's weighted once per turn.
-        self.pick = np.ix_([0, 1, 2, 3, 4, 5, 3, 4, 5][:rows], cols)
+        # The Jacobian's rows: position, then the rotation's weighted once per turn (as
+        # indices into `jacs` flattened).
+        self.pick = (np.array([0, 1, 2, 3, 4, 5, 3, 4, 5][:rows])[:, None] * model.nv
+                     + np.array(cols)[None, :])
         w1, w2 = ORIENT_WEIGHT
         self.weights = np.array([1.0, 1.0, 1.0, w1, w1, w1, w2, w2, w2])[:, None]
         # Fortran order, as `jacp[:, cols]` and its stack are: BLAS adds in that order.
         self.jac, self.e = np.zeros((rows, len(cols)), order="F"), np.zeros(rows)
+        self.e3 = self.e[:3]  # the position's rows
         self.eye = DAMPING**2 * np.eye(rows)
         self.sign = -1.0 if side == "l" else 1.0  # the palm faces the body: +-y
         self.wanted: tuple[list[float], list[float]] = (
@@ -268,17 +271,15 @@ class _Step:
         point = self.site_xpos[self.site]
         if self.offset is not None:
             point = point + self.xmat[self.body].reshape(3, 3) @ self.offset
-        else:
-            point = point.copy()
-        np.subtract(self.target, point, out=self.e[:3])
+        np.subtract(self.target, point, out=self.e3)
         mujoco.mj_jac(model, data, self.jacp, self.jacr, point, self.body)
-        return _norm(self.e[:3])
+        return _norm(self.e3)
 
     def done(self, err: float) -> bool:
         """Whether the hand is there (and turned as the grasp wants); else the error's
         turn rows and the Jacobian are filled for `dq`."""
         if self.grasp is None:
-            self.jac[:] = self.jacs[self.pick]
+            self.jac[:] = self.jacs.take(self.pick)
             return err < TOLERANCE
         r = self.xmat[self.body].tolist()  # the 3x3 rotation, row by row
         s = self.sign
@@ -290,7 +291,7 @@ class _Step:
         w1, w2 = ORIENT_WEIGHT
         self.e[3:] = [w1 * turns[0][0], w1 * turns[0][1], w1 * turns[0][2],
                       w2 * turns[1][0], w2 * turns[1][1], w2 * turns[1][2]]
-        np.multiply(self.jacs[self.pick], self.weights, out=self.jac)
+        np.multiply(self.jacs.take(self.pick), self.weights, out=self.jac)
         return False
 
     def dq(self) -> np.ndarray:
@@ -302,6 +303,12 @@ def _norm(v: np.ndarray) -> float:
     """`np.linalg.norm` of a vector, the same arithmetic (the square root of its dot
     product with itself) without the dispatch."""
     return math.sqrt(float(v.dot(v)))
+
+
+def _clip(x: np.ndarray, lo: float | np.ndarray, hi: float | np.ndarray) -> np.ndarray:
+    """`np.minimum(np.maximum(x, lo), hi)`: NumPy's clip ufunc, the same comparisons in
+    one call (without `np.clip`'s wrapper)."""
+    return _clip_ufunc(x, lo, hi)
 
 
 def _solve_linear(a: np.ndarray, b: np.ndarray) -> np.ndarray:
