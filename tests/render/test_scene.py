@@ -44,3 +44,16 @@ def test_a_home_over_the_node_limit_is_refused_before_compiling(box_home):
     with pytest.raises(LimitError, match="over the limit of 4,000 for rendering"):
         build_scene(big, AGENTS["male1"])
     assert time.monotonic() - t0 < 1
+
+
+def test_small_frames_draw_round_shapes_with_fewer_sides(box_home):
+    """Frames up to `SMALL_FRAME` pixels tall (the learn profile's 64x48) get the coarser
+    tessellation of spheres, cylinders and capsules; larger ones (320x240, the default)
+    keep the finer one."""
+    from homesim.render.scene import SMALL_TESSELLATION, TESSELLATION
+
+    assert SMALL_TESSELLATION < TESSELLATION
+    for size, want in [((64, 48), SMALL_TESSELLATION), ((160, 120), SMALL_TESSELLATION),
+                       ((320, 240), TESSELLATION), ((640, 480), TESSELLATION)]:
+        q = build_scene(box_home, AGENTS["male1"], max_size=size).model.vis.quality
+        assert (q.numslices, q.numstacks) == want, size

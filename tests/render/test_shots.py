@@ -136,12 +136,37 @@ def test_a_ray_stopped_by_where_the_object_goes_does_not_see_it(monkeypatch):
     asked = []
     monkeypatch.setattr(shots, "visible", lambda scene, data, eye, point, nodes, *a, **k:
                         asked.append(nodes) or True)
-    monkeypatch.setattr(shots, "_arm_bodies", lambda scene, side: frozenset())
-
     scene = types.SimpleNamespace(hand_sites={"r": 0})
     data = types.SimpleNamespace(site_xpos=np.zeros((1, 3)))
 
     it = Interaction(2, (254, 260), "r", 0, 5, 9, 1)  # the phone, then the bookshelf
     cam = CameraSpec("c", 1, np.ones(3), np.array([1.0, 0, 0]), np.array([0, 0, -1.0]), 40.0)
-    shots._score(scene, data, cam, it, [np.zeros(3)])
+    shots._score(scene, data, cam, it, [np.zeros(3)], frozenset())
     assert asked and all(nodes == (254,) for nodes in asked)
+
+
+def test_rays_among_points_leave_out_only_geoms_they_cannot_meet(prepared):
+    """Ranking close-up positions casts rays among a few points (cameras, the object,
+    the hand) against the geoms near them only (`_rays_among`): every ray between two
+    of the points sees what it sees against every geom, and the model's groups come
+    back as they were."""
+    from homesim.render import shots
+    from homesim.render.gl import mujoco
+
+    scene, tl, _ = prepared
+    m = scene.model
+    data = mujoco.MjData(m)
+    it = tl.interactions[0]
+    shots._pose(scene, tl, it.peak, data)
+    cams = shots._positions(scene, it.room, data.site_xpos[scene.hand_sites[it.side]])[:6]
+    targets = shots._targets(scene, it, data)
+    ends = np.array([*(c.pos for c in cams), *targets])
+    before = m.geom_group.copy()
+    pairs = [(a, b) for a in ends[:len(cams)] for b in ends[len(cams):]]
+    nodes = (it.nodes[0],)
+    want = [shots.visible(scene, data, a, b, nodes) for a, b in pairs]
+    with shots._rays_among(scene, data, ends) as groups:
+        assert groups is not None and np.count_nonzero(m.geom_group == shots.RAY_HIDDEN)
+        got = [shots.visible(scene, data, a, b, nodes, groups=groups) for a, b in pairs]
+    assert got == want and any(want) and not all(want)
+    np.testing.assert_array_equal(m.geom_group, before)

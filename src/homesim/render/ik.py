@@ -13,9 +13,12 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
+from numpy._core.umath import clip as _clip_ufunc  # type: ignore[attr-defined]
+from numpy.linalg import _umath_linalg
 
 from homesim.render.agent import AgentShape
 from homesim.render.gl import mujoco
@@ -86,7 +89,6 @@ class ArmIK:
         self._range["spine_pitch"] = (lo, min(hi, MAX_LEAN))
         self._solver = _agent_only(scene) or m
         self._solver_data = mujoco.MjData(self._solver)
-        self._jacp = np.zeros((3, self._solver.nv))
         self._solved: dict[tuple, tuple[Pose, float]] = {}
         """Solves by their inputs: a reach planner tries the same reach again (a grasp
         from each standing point it weighs; a third of an episode's solves repeat)."""
@@ -159,44 +161,34 @@ class ArmIK:
         values = np.array([float(pose.joints.get(n, 0.0)) for n in names])
         site = (self.scene.palm_sites if grasp else self.scene.hand_sites)[side]
         body = int(self.model.site_bodyid[site])
-        offset = np.zeros(3) if grip is None else np.asarray(grip, float)
+        offset = None if grip is None else np.asarray(grip, float)
         model, data = self._solver, self._solver_data
-        jacr = np.zeros((3, model.nv))
         cols = [self._dof[n] for n in names]
         addrs = np.array([self.scene.joint_qpos[n] for n in names])
         lo, hi = np.array([self._range[n] for n in names]).T
         if lean and max_lean < MAX_LEAN:
             k = names.index("spine_pitch")
             hi[k] = max(min(hi[k], max_lean), lo[k])
-        eye = DAMPING**2 * np.eye(9 if grasp is not None else 3)
         # Only the solved joints change: the rest of the pose is written once.
         write_qpos(data.qpos, pose, self.scene.joint_qpos)
         qpos = data.qpos
+        step = _Step(model, data, body, site, offset, target, cols, side, grasp)
+        limit = ITERATIONS * (2 if grasp else 1)
+        tried: dict[bytes, int] = {}  # joint values -> the iteration that had them
+        history: list[tuple[np.ndarray, float]] = []
         err = np.inf
-        for _ in range(ITERATIONS * (2 if grasp else 1)):
-            qpos[addrs] = values
-            mujoco.mj_kinematics(model, data)
-            mujoco.mj_comPos(model, data)
-            rot = data.xmat[body].reshape(3, 3)
-            point = data.site_xpos[site] + rot @ offset
-            e = target - point
-            err = float(np.linalg.norm(e))
-            mujoco.mj_jac(model, data, self._jacp, jacr, point, body)
-            jac = self._jacp[:, cols]
-            if grasp is not None:
-                turns = _turns(rot, side, grasp)
-                if err < TOLERANCE and max(np.linalg.norm(t) for t in turns) < ORIENT_TOLERANCE:
-                    break
-                e = np.concatenate([e] + [w * t for w, t in zip(ORIENT_WEIGHT, turns,
-                                                                  strict=True)])
-                jac = np.vstack([jac] + [w * jacr[:, cols] for w in ORIENT_WEIGHT])
-            elif err < TOLERANCE:
+        for i in range(limit):
+            first = tried.setdefault(values.tobytes(), i)
+            if first < i:  # the same values as then: the steps repeat from there on
+                values, err = _cycle_end(history, first, i - first, limit)
                 break
-            # dq = J^T (J J^T + damping^2 I)^-1 e
-            dq = jac.T @ np.linalg.solve(jac @ jac.T + eye, e)
-            # Steps of at most 0.3 rad, within the joints' ranges (one array operation).
-            values = np.minimum(np.maximum(values + np.minimum(np.maximum(dq, -0.3), 0.3), lo),
-                                hi)
+            qpos[addrs] = values
+            err = step.error()
+            if step.done(err):
+                break
+            history.append((values, err))
+            # Steps of at most 0.3 rad, within the joints' ranges.
+            values = _clip(values + _clip(step.dq(), -0.3, 0.3), lo, hi)
         return pose.with_joints(**dict(zip(names, values.tolist(), strict=True))), err
 
     def held_point(self, pose: Pose, side: str, grip: np.ndarray | None) -> np.ndarray:
@@ -240,17 +232,104 @@ def _agent_only(scene: SceneModel) -> mujoco.MjModel | None:
     return model if same else None
 
 
-def _turns(rot: np.ndarray, side: str, grasp: Grasp) -> tuple[np.ndarray, np.ndarray]:
-    """Rotation vectors (axis times sine of the angle) taking the palm's normal onto
-    `grasp.palm` and the fingers' direction onto `grasp.fingers`."""
-    palm = rot[:, 1] * (-1.0 if side == "l" else 1.0)  # the palm faces the body: +-y
-    fingers = -rot[:, 2]
-    return _cross(palm, grasp.palm), _cross(fingers, grasp.fingers)
+def _cycle_end(history: list[tuple[np.ndarray, float]], first: int, period: int,
+               limit: int) -> tuple[np.ndarray, float]:
+    """What `limit` iterations end with when the joint values of iteration `first` come
+    back `period` iterations later (a step is a function of the values alone, so they
+    cycle, never reaching the tolerance, to the end): the values after the last step
+    and the error measured at it. `history`: each iteration's (values, error)."""
+    values = history[first + (limit - first) % period][0]
+    return values, history[first + (limit - 1 - first) % period][1]
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b of two 3-vectors (the products and differences of `np.cross`, without its
-    per-call overhead: this runs ~10^5 times an episode)."""
-    a0, a1, a2 = a.tolist()
-    b0, b1, b2 = b.tolist()
-    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+class _Step:
+    """One damped-least-squares step of `ArmIK._solve`: the error (position, and the
+    palm's and fingers' turns of a grasp) and the joints' change, dq = J^T (J J^T +
+    damping^2 I)^-1 e, into buffers made once per solve: the same arithmetic as
+    stacking them anew each iteration (the same bytes), without its per-call overhead."""
+
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, body: int, site: int,
+                 offset: np.ndarray | None, target: np.ndarray, cols: list[int], side: str,
+                 grasp: Grasp | None):
+        self.model, self.data, self.body, self.site = model, data, body, site
+        self.offset, self.target, self.grasp = offset, target, grasp
+        self.xmat, self.site_xpos = data.xmat, data.site_xpos  # views, read each step
+        rows = 3 if grasp is None else 9
+        self.jacs = np.zeros((6, model.nv))  # position rows, then rotation rows
+        self.jacp, self.jacr = self.jacs[:3], self.jacs[3:]
+        # The Jacobian's rows: position, then the rotation's weighted once per turn (as
+        # indices into `jacs` flattened).
+        self.pick = (np.array([0, 1, 2, 3, 4, 5, 3, 4, 5][:rows])[:, None] * model.nv
+                     + np.array(cols)[None, :])
+        w1, w2 = ORIENT_WEIGHT
+        self.weights = np.array([1.0, 1.0, 1.0, w1, w1, w1, w2, w2, w2])[:, None]
+        # Fortran order, as `jacp[:, cols]` and its stack are: BLAS adds in that order.
+        self.jac, self.e = np.zeros((rows, len(cols)), order="F"), np.zeros(rows)
+        self.e3 = self.e[:3]  # the position's rows
+        self.eye = DAMPING**2 * np.eye(rows)
+        self.sign = -1.0 if side == "l" else 1.0  # the palm faces the body: +-y
+        self.wanted: tuple[list[float], list[float]] = (
+            ([], []) if grasp is None else (np.asarray(grasp.palm, float).tolist(),
+                                            np.asarray(grasp.fingers, float).tolist()))
+
+    def error(self) -> float:
+        """Pose the solver's data at its qpos; the hand's distance from its target."""
+        model, data = self.model, self.data
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_comPos(model, data)
+        point = self.site_xpos[self.site]
+        if self.offset is not None:
+            point = point + self.xmat[self.body].reshape(3, 3) @ self.offset
+        np.subtract(self.target, point, out=self.e3)
+        mujoco.mj_jac(model, data, self.jacp, self.jacr, point, self.body)
+        return _norm(self.e3)
+
+    def done(self, err: float) -> bool:
+        """Whether the hand is there (and turned as the grasp wants); else the error's
+        turn rows and the Jacobian are filled for `dq`."""
+        if self.grasp is None:
+            self.jac[:] = self.jacs.take(self.pick)
+            return err < TOLERANCE
+        r = self.xmat[self.body].tolist()  # the 3x3 rotation, row by row
+        s = self.sign
+        palm, fingers = self.wanted
+        turns = (_cross((s * r[1], s * r[4], s * r[7]), palm),
+                 _cross((-r[2], -r[5], -r[8]), fingers))
+        if err < TOLERANCE and max(_norm(np.array(t)) for t in turns) < ORIENT_TOLERANCE:
+            return True
+        w1, w2 = ORIENT_WEIGHT
+        self.e[3:] = [w1 * turns[0][0], w1 * turns[0][1], w1 * turns[0][2],
+                      w2 * turns[1][0], w2 * turns[1][1], w2 * turns[1][2]]
+        np.multiply(self.jacs.take(self.pick), self.weights, out=self.jac)
+        return False
+
+    def dq(self) -> np.ndarray:
+        jac = self.jac
+        return jac.T @ _solve_linear(jac @ jac.T + self.eye, self.e)
+
+
+def _norm(v: np.ndarray) -> float:
+    """`np.linalg.norm` of a vector, the same arithmetic (the square root of its dot
+    product with itself) without the dispatch."""
+    return math.sqrt(float(v.dot(v)))
+
+
+def _clip(x: np.ndarray, lo: float | np.ndarray, hi: float | np.ndarray) -> np.ndarray:
+    """`np.minimum(np.maximum(x, lo), hi)`: NumPy's clip ufunc, the same comparisons in
+    one call (without `np.clip`'s wrapper)."""
+    return _clip_ufunc(x, lo, hi)
+
+
+def _solve_linear(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """`np.linalg.solve(a, b)` for a float64 matrix and vector: the same LAPACK routine
+    (its gufunc), without the checks and error-state switching around it (the damped
+    matrix is never singular)."""
+    return _umath_linalg.solve1(a, b, signature="dd->d")
+
+
+def _cross(a: Sequence[float], b: Sequence[float]) -> tuple[float, float, float]:
+    """a x b of two 3-vectors (the products and differences of `np.cross`, in Python
+    floats: this runs ~10^5 times an episode)."""
+    a0, a1, a2 = a
+    b0, b1, b2 = b
+    return (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)

@@ -91,6 +91,7 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
     data = mujoco.MjData(scene.model)
     aspect = size[0] / size[1]
     plans = []
+    arms: dict[str, frozenset[int]] = {}  # per hand, `_arm_bodies` (the same each time)
     for k, it in enumerate(timeline.interactions):
         framed = _framed_points(scene, timeline, it, data)
         cams = _positions(scene, it.room, 0.5 * (framed.min(axis=0) + framed.max(axis=0)))
@@ -99,8 +100,14 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
         _pose(scene, timeline, it.peak, data)
         seen = _seen_part(scene, timeline, it)
         targets = _targets(scene, it, data, seen)
-        scored = sorted(((_score(scene, data, c, it, targets, seen), i)
-                         for i, c in enumerate(cams)), reverse=True)[:DRAWN]
+        if it.side not in arms:
+            arms[it.side] = _arm_bodies(scene, it.side)
+        ends = np.array([*(c.pos for c in cams), *targets,
+                         data.site_xpos[scene.hand_sites[it.side]]])
+        with _rays_among(scene, data, ends) as groups:
+            scored = sorted(((_score(scene, data, c, it, targets, arms[it.side], seen,
+                                     groups), i)
+                             for i, c in enumerate(cams)), reverse=True)[:DRAWN]
         tight = _effect_points(scene, timeline, it, data)
         plans.append((it, seen, [(_aim(cams[i], framed, aspect, k, it.step),
                                   _aim(cams[i], tight, aspect, k, it.step, TIGHT_MARGIN))
@@ -112,8 +119,7 @@ def plan_shots(scene: SceneModel, timeline: Timeline, size: tuple[int, int]
     with Renderer(scene, *probe) as renderer, _spare_camera(scene) as spare:
         for it, seen, aimed in plans:
             _pose(scene, timeline, it.peak, data)
-            arm = _arm_bodies(scene, it.side)
-            best = _best_view(spare, renderer, data, it, arm, seen, aimed)
+            best = _best_view(spare, renderer, data, it, arms[it.side], seen, aimed)
             if best is not None:
                 shots.append(best)
     return shots
@@ -341,20 +347,50 @@ def _targets(scene: SceneModel, it: Interaction, data: mujoco.MjData,
 
 def visible(scene: SceneModel, data: mujoco.MjData, eye: np.ndarray, point: np.ndarray,
             nodes: tuple[int, ...], bodies: frozenset[int] = frozenset(),
-            geoms: frozenset[int] = frozenset()) -> bool:
+            geoms: frozenset[int] = frozenset(), groups: np.ndarray | None = None) -> bool:
     """Whether the first geom on the ray from `eye` to `point` belongs to one of `nodes`
-    or of `bodies`, or is one of `geoms` (or nothing stands before the point)."""
+    or of `bodies`, or is one of `geoms` (or nothing stands before the point); `groups`:
+    the geom groups the ray meets (`_rays_among`; None: every geom)."""
     vec = point - eye
     dist = float(np.linalg.norm(vec))
     if dist < 1e-6:
         return True
     geom = np.zeros(1, np.int32)
-    hit = mujoco.mj_ray(scene.model, data, eye, vec / dist, None, 1, -1, geom)
+    hit = mujoco.mj_ray(scene.model, data, eye, vec / dist, groups, 1, -1, geom)
     if hit < 0 or hit >= dist - 1e-3:
         return True
     g = int(geom[0])
     return bool(int(scene.geom_node[g]) in nodes or int(scene.model.geom_bodyid[g]) in bodies
                 or g in geoms)
+
+
+RAY_HIDDEN = 5
+"""The geom group `_rays_among` moves the geoms no ray can meet to."""
+
+
+@contextmanager
+def _rays_among(scene: SceneModel, data: mujoco.MjData, ends: np.ndarray
+                ) -> Iterator[np.ndarray | None]:
+    """Inside: the geom groups (`mj_ray`'s `geomgroup`) with the geoms whose bounding
+    spheres lie wholly outside the box around `ends` left out; the model's groups as
+    they were after. `visible` asks about segments between those points: what a ray
+    meets before its point lies in the box, so the answers are the same, and a ray tests
+    the geoms of a room, not of the home. None (every geom) where the model uses
+    `RAY_HIDDEN` itself."""
+    m = scene.model
+    if np.any(m.geom_group == RAY_HIDDEN):
+        yield None
+        return
+    lo, hi = ends.min(axis=0), ends.max(axis=0)
+    radius = m.geom_rbound[:, None]
+    out = np.any((data.geom_xpos - radius > hi) | (data.geom_xpos + radius < lo), axis=1)
+    out &= m.geom_rbound > 0  # 0: a plane, unbounded
+    saved = m.geom_group.copy()
+    m.geom_group[out] = RAY_HIDDEN
+    try:
+        yield np.array([g != RAY_HIDDEN for g in range(6)], np.uint8)
+    finally:
+        m.geom_group[:] = saved
 
 
 def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
@@ -373,17 +409,19 @@ def _arm_bodies(scene: SceneModel, side: str) -> frozenset[int]:
 
 
 def _score(scene: SceneModel, data: mujoco.MjData, cam: CameraSpec, it: Interaction,
-           targets: list[np.ndarray], part: int | None = None) -> tuple[float, bool]:
+           targets: list[np.ndarray], arm: frozenset[int], part: int | None = None,
+           groups: np.ndarray | None = None) -> tuple[float, bool]:
     """How well a camera position sees the object (2 per share of points seen; of its
     geom `part` only, when given) and the hand (1 when seen) at the effect, nearer cameras
-    winning ties; and whether it sees the hand. A ray stopped by where the object goes (a
-    bookshelf's side) does not see it."""
+    winning ties; and whether it sees the hand (its site on `arm`, `_arm_bodies`). A ray
+    stopped by where the object goes (a bookshelf's side) does not see it."""
     first = it.nodes[:1]  # what it puts on or in hides it, as anything else would
     owners, geoms = (first, frozenset()) if part is None else ((), frozenset({part}))
-    seen = sum(visible(scene, data, cam.pos, p, owners, geoms=geoms) for p in targets)
+    seen = sum(visible(scene, data, cam.pos, p, owners, geoms=geoms, groups=groups)
+               for p in targets)
     obj = seen / len(targets) if targets else 0.0
     hand = data.site_xpos[scene.hand_sites[it.side]]
-    hand_seen = visible(scene, data, cam.pos, hand, first, _arm_bodies(scene, it.side))
+    hand_seen = visible(scene, data, cam.pos, hand, first, arm, groups=groups)
     dist = float(np.linalg.norm(hand - cam.pos))
     return 2.0 * obj + float(hand_seen) - 0.05 * dist, hand_seen
 

@@ -56,6 +56,26 @@ def test_train_resume_and_eval_video2prog(tiny_plan, tmp_path):
     assert "--plan tiny --n 4" in text and "--seeds 2 --frame-size 32x24" in text
 
 
+def test_a_sitting_stopped_inside_the_frame_stage_keeps_the_times_of_its_done_stages(
+        tiny_plan, tmp_path, monkeypatch):
+    from homesim.learn.video import table
+
+    def stop(run):
+        raise KeyboardInterrupt  # the sitting ends while the segmentation network trains
+
+    monkeypatch.setattr(table, "_segmentation", stop)
+    config = table.VideoRunConfig(str(tiny_plan), frame_size="32x24", frame_epochs=1,
+                                  cache=str(tmp_path / "cache"))
+    with pytest.raises(KeyboardInterrupt):
+        table.train_video(config, tmp_path / "run")
+    seconds = json.loads((tmp_path / "run" / "train.json").read_text())["seconds"]
+    assert {"read", "frames_rgb", "frames_oracle"} <= set(seconds)
+    with pytest.raises(KeyboardInterrupt):  # the next sitting adds its reading time
+        table.train_video(config, tmp_path / "run")
+    again = json.loads((tmp_path / "run" / "train.json").read_text())["seconds"]
+    assert again["frames_rgb"] == seconds["frames_rgb"] and again["read"] >= seconds["read"]
+
+
 def test_settings_file_replaces_fields_and_refuses_unknown_ones(tmp_path):
     from homesim.errors import HomesimError
     from homesim.learn.video.table import VideoRunConfig

@@ -143,6 +143,9 @@ class Run:
     device: str
     report: Report | None
     seconds: dict[str, float] = field(default_factory=dict)
+    after_stage: Callable[[], object] | None = None
+    """Called when a stage's time is recorded (`train_video` writes train.json then, so
+    a sitting that ends inside a stage keeps the times of those done before it)."""
 
     def episodes(self, role: str) -> list[StoredEpisode]:
         eps = [e for p in self.split.parts(role) for e in self.store.part(p)]
@@ -155,6 +158,8 @@ class Run:
     def timed(self, name: str, start: float) -> None:
         self.seconds[name] = self.seconds.get(name, 0.0) + time.perf_counter() - start
         self.say(f"{name}: {time.perf_counter() - start:.0f} s")
+        if self.after_stage:
+            self.after_stage()
 
 
 def train_subset(episodes: list[StoredEpisode], share: float) -> list[StoredEpisode]:
@@ -424,12 +429,13 @@ def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
     out.mkdir(parents=True, exist_ok=True)
     seconds = _check_config(out, config, force)
     run = open_run(config, out, device, report)
-    run.seconds = {**seconds, "read": run.seconds["read"]}
+    run.seconds = {**seconds, "read": seconds.get("read", 0.0) + run.seconds["read"]}
     if not run.episodes("train"):
         raise HomesimError(f"{config.data}: no training episodes")
     run.say(f"data: {', '.join(f'{p} {len(run.store.part(p))}' for p in run.split.roles)} "
             f"episodes, {len(run.store.step)} frames")
     _write_summary(run, total_start)
+    run.after_stage = lambda: _write_summary(run, total_start)
     labels = train_labels(run)
     features = frame_stage(run, labels)
     _write_summary(run, total_start)
