@@ -31,7 +31,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from homesim.dataset import DatasetConfig, Summary, generate_dataset
-from homesim.dataset.spec import PROFILES
+from homesim.dataset.spec import MODALITIES, PROFILES
 
 PAPER_EPISODES = 5193
 LEARN_GOAL = 2000  # episodes per hour per core
@@ -101,9 +101,10 @@ def clips_per_second(root: Path, workers: int, modalities: tuple[str, ...]
     return clips, clips / (time.perf_counter() - t0), (cpu_seconds() - c0) / clips
 
 
-def time_loader(root: Path) -> None:
-    """Clips/s with 2 DataLoader workers against 0, RGB only and every modality."""
-    for modalities in (("rgb",), ("rgb", "depth", "class", "instance", "flow")):
+def time_loader(root: Path, kept: tuple[str, ...] = MODALITIES) -> None:
+    """Clips/s with 2 DataLoader workers against 0, RGB only and every modality the data
+    set keeps (`kept`: the learn profile has no depth, instance or flow)."""
+    for modalities in (("rgb",), tuple(m for m in MODALITIES if m in kept)):
         _, rate0, _ = clips_per_second(root, 0, modalities)
         n2, rate2, cpu = clips_per_second(root, 2, modalities)
         print(f"loader, {'+'.join(modalities)}, 2 s clips: {rate2:.1f} clips/s with 2 "
@@ -128,7 +129,7 @@ def scaling(n: int, seed: int, profile: str) -> None:
               f"{per_episode / 1e6:.1f} MB per episode -> {PAPER_EPISODES} episodes: "
               f"{per_episode * PAPER_EPISODES / 1e9:.1f} GB")
         if "rgb" in config.modalities:
-            time_loader(Path(tmp) / "w2")
+            time_loader(Path(tmp) / "w2", config.modalities)
 
 
 def main() -> None:
