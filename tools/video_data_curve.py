@@ -25,10 +25,9 @@ import torch
 from homesim.learn.video import clips as C
 from homesim.learn.video.eval import load_features
 from homesim.learn.video.table import (
-    VideoRunConfig,
     clip_path,
     load_clip_model,
-    open_run,
+    reopen_run,
     seed_dir,
     train_labels,
 )
@@ -44,9 +43,8 @@ def val_scores(model: C.ClipModel, features: np.ndarray, val: C.ClipSet,
 
 def curve(out: Path, inputs: list[str], shares: list[float], seed: int) -> list[dict]:
     """One row per input and share: training episodes and clips, validation scores."""
-    summary = json.loads((out / "train.json").read_text(encoding="utf-8"))
-    config = VideoRunConfig(**summary["config"])
-    run = open_run(config, out)
+    run, _ = reopen_run(out)
+    config = run.config
     labels = train_labels(run)
     features = load_features(out)
     val = C.clip_set(run.episodes("val"), run.store.step)

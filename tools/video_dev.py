@@ -36,10 +36,9 @@ from homesim.learn.video.eval import (
 from homesim.learn.video.table import (
     PROGRAM_MODELS,
     Run,
-    VideoRunConfig,
     clip_path,
     load_clip_model,
-    open_run,
+    reopen_run,
     seed_dir,
 )
 
@@ -92,9 +91,8 @@ def program_scores(run: Run, seed: int, features: dict[str, np.ndarray]) -> dict
 
 def dev_report(out: Path) -> dict:
     """Everything above for one run folder."""
-    summary = json.loads((out / "train.json").read_text(encoding="utf-8"))
-    config = VideoRunConfig(**summary["config"])
-    run = open_run(config, out)
+    run, summary = reopen_run(out)
+    config = run.config
     features = load_features(out)
     seeds = {seed: {"clips": clip_scores(run, seed, features),
                     "programs": program_scores(run, seed, features)}

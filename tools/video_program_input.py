@@ -19,42 +19,39 @@ from pathlib import Path
 
 import torch
 
-from homesim.learn.text.train import BestOnDev, TrainConfig, train_mle
 from homesim.learn.video.data import example
 from homesim.learn.video.eval import load_features
 from homesim.learn.video.table import (
-    VideoRunConfig,
     clip_path,
+    fit_mle,
     load_clip_model,
-    open_run,
+    reopen_run,
     seed_dir,
     video_features,
 )
-from homesim.learn.video.video2prog import Video2Prog
 
 
-def mle_on(out: Path, inp: str, seed: int) -> dict:
-    """Validation steps LCS per epoch of an MLE over input `inp`'s TRN clip features."""
-    start = time.perf_counter()
-    summary = json.loads((out / "train.json").read_text(encoding="utf-8"))
-    cfg = VideoRunConfig(**summary["config"])
-    run = open_run(cfg, out)
+def mle_on(out: Path, inputs: list[str], seed: int) -> list[dict]:
+    """Per input, the validation steps LCS per epoch of an MLE over that input's TRN clip
+    features (`table.fit_mle`, the run's own settings)."""
+    run, _ = reopen_run(out)
     features = load_features(out)
-    clip_model, _, _ = load_clip_model(clip_path(seed_dir(out, seed), "trn", inp))
     train_eps, val_eps = run.episodes("train"), run.episodes("val")
     train = [example(e) for e in train_eps]
     val = [example(e) for e in val_eps]
-    v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, "cpu",
-                                  word_dim=cfg.word_dim, hidden=cfg.hidden,
-                                  step_dim=cfg.step_dim)
-    v2p.features = video_features(clip_model, train_eps + val_eps, features[inp])
-    best = BestOnDev(v2p, val)
-    train_mle(v2p, train, TrainConfig(epochs=cfg.mle_epochs, batch_size=cfg.batch_size,
-                                      lr=cfg.mle_lr, seed=seed), after_epoch=best)
-    return {"input": inp, "seed": seed, "best_epoch": best.epoch,
-            "val_steps_lcs": round(best.best, 4),
-            "val_per_epoch": [round(s, 4) for s in best.scores],
-            "seconds": round(time.perf_counter() - start)}
+    rows = []
+    for inp in inputs:
+        start = time.perf_counter()
+        clip_model, _, _ = load_clip_model(clip_path(seed_dir(out, seed), "trn", inp))
+        feats = video_features(clip_model, train_eps + val_eps, features[inp])
+        _, best, _ = fit_mle(run, seed, clip_model.cfg.feature, feats, train, val)
+        row = {"input": inp, "seed": seed, "best_epoch": best.epoch,
+               "val_steps_lcs": round(best.best, 4),
+               "val_per_epoch": [round(s, 4) for s in best.scores],
+               "seconds": round(time.perf_counter() - start)}
+        print(json.dumps(row), flush=True)
+        rows.append(row)
+    return rows
 
 
 def main() -> None:
@@ -64,8 +61,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     torch.set_num_threads(1)
-    for inp in args.inputs:
-        print(json.dumps(mle_on(args.run, inp, args.seed)), flush=True)
+    mle_on(args.run, args.inputs, args.seed)
 
 
 if __name__ == "__main__":

@@ -25,7 +25,6 @@ from pathlib import Path
 
 import numpy as np
 
-from homesim.errors import HomesimError
 from homesim.learn.eval.scores import example_scores
 from homesim.learn.eval.summary import BOOTSTRAP, BOOTSTRAP_SEED, summarize
 from homesim.learn.execution import executable
@@ -35,10 +34,9 @@ from homesim.learn.video.store import StoredEpisode
 from homesim.learn.video.table import (
     PROGRAM_MODELS,
     Run,
-    VideoRunConfig,
     clip_path,
     load_clip_model,
-    open_run,
+    reopen_run,
     seed_dir,
     video_features,
 )
@@ -187,11 +185,7 @@ def _program_rows(run: Run, features: dict[str, np.ndarray], rows: dict[str, lis
 
 def evaluate_video(out: Path, device: str = "cpu") -> dict:
     """Every row of Table 2 on the run in `out` (its train.json names the data set)."""
-    path = out / "train.json"
-    if not path.is_file():
-        raise HomesimError(f"{path}: not found; run 'homesim learn train --task video2prog'")
-    summary = json.loads(path.read_text(encoding="utf-8"))
-    run = open_run(VideoRunConfig(**summary["config"]), out, device)
+    run, summary = reopen_run(out, device)
     features = load_features(out)
     rows = row_episodes(run)
     start = time.perf_counter()

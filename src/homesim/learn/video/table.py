@@ -334,6 +334,23 @@ def video_features(clip_model: C.ClipModel, episodes: list[StoredEpisode],
     return {e.key: episode_features(clip_model, e, features) for e in episodes}
 
 
+def fit_mle(run: Run, seed: int, feature_dim: int, feats: dict[str, torch.Tensor],
+            train: list, val: list) -> tuple[Video2Prog, BestOnDev, list[float]]:
+    """The video -> program MLE of one seed over clip features `feats` (by example id),
+    its best epoch on `val` restored; with the chooser and the loss of each epoch."""
+    cfg = run.config
+    v2p = Video2Prog.create_video(train, feature_dim, seed, run.device,
+                                  word_dim=cfg.word_dim, hidden=cfg.hidden,
+                                  step_dim=cfg.step_dim)
+    v2p.features = feats
+    best = BestOnDev(v2p, val)
+    mle = TrainConfig(epochs=cfg.mle_epochs, batch_size=cfg.batch_size, lr=cfg.mle_lr,
+                      seed=seed)
+    history = train_mle(v2p, train, mle, after_epoch=best if val else None)
+    best.restore()
+    return v2p, best, history
+
+
 def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> None:
     """MLE, then PG (LCS) and PG (LCS+Sim) from it; each keeps its best epoch on val."""
     folder = seed_dir(run.out, seed)
@@ -351,16 +368,7 @@ def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> Non
         v2p = Video2Prog(base.model, base.words, base.steps, base.meta, feats)
     else:
         start = time.perf_counter()
-        cfg = run.config
-        v2p = Video2Prog.create_video(train, clip_model.cfg.feature, seed, run.device,
-                                      word_dim=cfg.word_dim, hidden=cfg.hidden,
-                                      step_dim=cfg.step_dim)
-        v2p.features = feats
-        best = BestOnDev(v2p, val)
-        mle = TrainConfig(epochs=cfg.mle_epochs, batch_size=cfg.batch_size, lr=cfg.mle_lr,
-                          seed=seed)
-        history = train_mle(v2p, train, mle, after_epoch=best if val else None)
-        best.restore()
+        v2p, best, history = fit_mle(run, seed, clip_model.cfg.feature, feats, train, val)
         v2p.meta.update(model="mle", input=inp, history=history, val=best.scores,
                         best_epoch=best.epoch)
         v2p.save(mle_path)
@@ -419,6 +427,16 @@ def open_run(config: VideoRunConfig, out: Path, device: str = "cpu",
     run = Run(config, out, store, split, device, report)
     run.timed("read", start)
     return run
+
+
+def reopen_run(out: Path, device: str = "cpu") -> tuple[Run, dict]:
+    """A trained (or partly trained) run folder's run, from its train.json, and that
+    summary."""
+    path = out / "train.json"
+    if not path.is_file():
+        raise HomesimError(f"{path}: not found; run 'homesim learn train --task video2prog'")
+    summary = json.loads(path.read_text(encoding="utf-8"))
+    return open_run(VideoRunConfig(**summary["config"]), out, device), summary
 
 
 def train_video(config: VideoRunConfig, out: Path, device: str = "cpu",
