@@ -97,6 +97,14 @@ switch, a faucet) is tried again this far off its face, then twice as far."""
 SIT_ALONG = tuple(x for k in range(1, 7) for x in (0.2 * k, -0.2 * k))
 """Metres along a seat (sideways) tried when sitting at the spot would put the body into
 something lying there."""
+BACK_OFF = (0.1, 0.2, 0.3)
+"""Metres back from where it stands the agent tries, when its body there passes into
+something, before it uses a held object in place."""
+SIT_SLIDE = 0.1
+"""Metres between the places along a seat tried for one that is clear with a free floor
+before it..."""
+SIT_TRIES = 8
+"""... at most this many such places that are not clear."""
 SIT_APPROACH = (0.35, 0.5, 0.65)
 """Metres from the seated pelvis of the floor points tried to sit down from, when the one
 before the seat's front is taken."""
@@ -458,6 +466,26 @@ class Animator:
             diff = abs((yaw - self.pose.yaw + math.pi) % (2 * math.pi) - math.pi)
             self.move_to(target, max(0.1, diff / TURN_SPEED))
 
+    def back_off(self) -> None:
+        """Standing where the body passes deeper than `CLEAR` into something (a hand
+        hanging into the counter it took a glass from: scene5), a step back to the first
+        point `BACK_OFF` behind from which it does not, if any (before a held object is
+        used in place)."""
+        if self.posture != "stand":
+            return
+        pose = self.pose
+        for side in self.props.held:
+            pose = self._carried(pose, side)
+        if self._clash(pose) <= CLEAR:
+            return
+        ahead = np.array([math.cos(pose.yaw), math.sin(pose.yaw)])
+        for d in BACK_OFF:
+            xy = self.pose.xy - d * ahead
+            if self.planner.fits(xy) and self._clash(replace(
+                    pose, x=float(xy[0]), y=float(xy[1]))) <= CLEAR:
+                self.step_to(xy, xy + ahead)
+                return
+
     def shoulder(self, side: str) -> np.ndarray:
         """World position of a shoulder in the current pose."""
         return self.ik.site(self.pose, f"j:{side}_shoulder")
@@ -468,12 +496,8 @@ class Animator:
         seat = self.props.box_of(node)
         self.walk(seat, reach=0.5)
         spot, yaw = self._seat_spot(node, seat)
-        spot, seated = self._seated_along(node, seat, spot, yaw)
         ahead = np.array([math.cos(yaw), math.sin(yaw)])
-        edge = float(abs(ahead @ seat.half[:2]))  # from the spot's axis to the front edge
-        front = spot + ahead * (max(edge - float(abs(ahead @ (spot - seat.center[:2]))), 0.0)
-                                + SIT_FRONT)
-        approach = front if self.planner.fits(front) else self._sit_approach(seated)
+        seated, approach = self._sit_place(node, seat, spot, yaw)
         if approach is not None:
             self.step_to(approach, approach + ahead)
         else:
@@ -572,6 +596,47 @@ class Animator:
                 break
         assert best is not None
         return best[1]
+
+    def _sit_place(self, node: int, seat: Box, spot: np.ndarray, yaw: float
+                   ) -> tuple[Pose, np.ndarray | None]:
+        """How to sit on a seat and where to stand before getting down (None: where the
+        agent stands). At `spot` when the body clears everything on its way down there
+        (`_sit_clash`) and the floor before the seat is free; else the nearest place
+        along the seat (every `SIT_SLIDE` m) that is clear with a free floor before it
+        (a pillow or the arm at the spot, a coffee table before it: gen-1, -3, -4, where
+        the agent slid up to 1 m sideways across the seat getting down); else the least
+        deep place of `_seated_along` with a way down from beside the seat
+        (`_sit_approach`); else the least deep of those tried with a free floor before
+        them."""
+        ahead = np.array([math.cos(yaw), math.sin(yaw)])
+        along = np.array([-math.sin(yaw), math.cos(yaw)])
+        edge = float(abs(ahead @ seat.half[:2]))  # from the seat's axis to its front edge
+        room = float(abs(along @ seat.half[:2])) - SIT_INSET / 2
+        fronted: list[tuple[float, Pose, np.ndarray]] = []
+        offsets = sorted((SIT_SLIDE * k for k in range(-int(2 * room / SIT_SLIDE) - 1,
+                                                        int(2 * room / SIT_SLIDE) + 2)),
+                         key=lambda o: (abs(o), o < 0))
+        for offset in offsets:
+            xy = spot + offset * along
+            if offset and abs(float(along @ (xy - seat.center[:2]))) > room:
+                continue
+            front = xy + ahead * (max(edge - float(abs(ahead @ (xy - seat.center[:2]))), 0.0)
+                                  + SIT_FRONT)
+            if not self.planner.fits(front):
+                continue
+            pose = self._seated(node, xy, yaw)
+            depth = self._sit_clash(pose)
+            if depth <= REST_CLEAR:
+                return pose, front
+            fronted.append((depth, pose, front))
+            if len(fronted) >= SIT_TRIES:
+                break
+        spot, seated = self._seated_along(node, seat, spot, yaw)
+        approach = self._sit_approach(seated)
+        if approach is not None or not fronted:
+            return seated, approach
+        depth, pose, front = min(fronted, key=lambda t: t[0])
+        return pose, front
 
     def _seated_along(self, node: int, seat: Box, spot: np.ndarray, yaw: float
                       ) -> tuple[np.ndarray, Pose]:
@@ -844,6 +909,7 @@ def use_held(anim: Animator, rec: StepRecord) -> None:
     if side is None:
         _touch(anim, target, {})
         return
+    anim.back_off()
     sign = 1.0 if side == "l" else -1.0
     bent = {f"{side}_sh_pitch": -1.0, f"{side}_elbow": -2.3, f"{side}_sh_yaw": 0.0,
             f"{side}_sh_roll": 0.3 * sign}  # forearm folded up before the chest
