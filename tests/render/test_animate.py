@@ -455,6 +455,40 @@ def test_sitting_moves_along_the_sofa_away_from_a_pillow():
     assert tl.qpos[-1][2] < 0.7  # on the seat, not on the pillow
 
 
+def test_sitting_where_the_floor_before_the_seat_is_free():
+    """A coffee table stands 12 cm before most of the sofa, the agent comes to the sofa
+    beside it: it walks round to where the floor before the seat is free and sits there
+    (`Animator._sit_place`), not sliding sideways across the seat getting down (gen-1:
+    up to 1 m, 16 parts 9-11 cm in the sofa)."""
+    from homesim.render.clearance import Clearance
+    from homesim.render.recorder import SceneState
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()
+    d["nodes"] += [
+        {"id": 40, "class_name": "sofa", "category": "Furniture",
+         "properties": ["SITTABLE", "SURFACES"],
+         "bounding_box": {"center": [-1.5, 0.4, 0.2], "size": [0.85, 0.8, 2.0]}},
+        {"id": 42, "class_name": "coffeetable", "category": "Furniture",
+         "properties": ["SURFACES"],
+         "bounding_box": {"center": [-0.7, 0.2, -0.2], "size": [0.5, 0.4, 1.2]}}]
+    d["edges"] += [{"from_id": 40, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 42, "relation_type": "INSIDE", "to_id": 1}]
+    g = EnvironmentGraph.from_dict(d)
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program("[Walk] <sofa> (40)\n[Sit] <sofa> (40)\n"),
+                             g, trace=True, reference=True)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
+    state, clear = SceneState(scene, tl, aim_cameras=False), Clearance(scene)
+    (rest,) = tl.rests
+    assert not any(clear.penetrations(state.apply(f), {}, 0.03) for f in range(rest[0], rest[1] + 1))
+    seated = tl.qpos[rest[1]][:2]
+    assert seated[1] > 0.4  # beside the table, not behind it
+    assert abs(tl.qpos[rest[0]][1] - seated[1]) < 0.1  # got down from before it, not beside
+
+
 def test_put_back_on_a_high_shelf_is_done_the_way_it_was_taken():
     """A phone taken from a 1.6 m shelf is put back with the palm as it took it (the
     arm's reach with the phone in the hand fell 28 cm short, the body leaning into the

@@ -1135,14 +1135,18 @@ def _swing(anim: Animator, target: int, after: frozenset[str]) -> None:
             anim.step_to(spot, handle)
     done = anim.reach(side, handle, 0.5, back=False, hold=0.1, acts_on=(target,))
     pose, holding = done.pose, True
+    depth = anim.planner.inside(pose)  # how deep the body is in something: no deeper
     n = max(1, round(SWING_SECONDS * anim.fps))
     for i in range(1, n + 1):
         angle = start + (goal - start) * (0.5 - 0.5 * math.cos(math.pi * i / n))
         props.hinge_angle[target] = angle
-        if holding:
+        if holding:  # the hand follows the handle while the arm reaches it and the
+            # body bends into nothing (scene3: the head into the toaster on the counter
+            # above a dishwasher's front swinging down)
             follow, err = anim.ik.reach(pose, side, props.handle_world(target, local, angle))
-            holding = err <= HANDLE_SLIP
-            pose = follow if holding else pose
+            deep = anim.planner.inside(follow) if err <= HANDLE_SLIP else math.inf
+            holding = deep <= max(CLEAR, depth)
+            pose, depth = (follow, deep) if holding else (pose, depth)
         anim.emit(pose)
     peak = len(anim.timeline) - 1
     anim.move_to(done.rest, 0.5)
