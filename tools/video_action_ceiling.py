@@ -10,7 +10,10 @@ thing, so no recogniser tells them apart. Two bounds on mean per-class action ac
 - *motion only*: a recogniser that sees the motion perfectly and nothing else;
 - *motion and objects*: one that also sees every object of the step (the step's object
   classes) but not what changes (a door swinging open or shut, a lamp lighting, a thing
-  leaving the hand): what a clip model reaches unless it reads those changes.
+  leaving the hand): what a clip model reaches unless it reads those changes;
+- *motion and the objects the maps show*: as the last, but an object none of whose
+  pixels is in the clip's ground-truth class maps (at the store's map size) is not seen:
+  the oracle's bound at that resolution.
 
 Each bound assigns every group of indistinguishable clips to the one action that adds
 most to the mean per-class recall (a group's clips all get one answer).
@@ -20,7 +23,7 @@ on the same validation clips: its action accuracy, its accuracy on the motion (a
 mapped to their motion), and the share of its action errors that stay within the true
 motion.
 
-    python tools/video_action_ceiling.py out/dev --input oracle seg
+    python tools/video_action_ceiling.py out/dev --input oracle seg oracle:e2e
 """
 
 from __future__ import annotations
@@ -30,11 +33,19 @@ import json
 from collections import Counter, defaultdict
 from pathlib import Path
 
+import numpy as np
 import torch
 
 from homesim.learn.video import clips as C
 from homesim.learn.video.eval import load_features
-from homesim.learn.video.table import clip_path, load_clip_model, reopen_run, seed_dir
+from homesim.learn.video.table import (
+    Run,
+    clip_path,
+    load_clip_model,
+    model_inputs,
+    reopen_run,
+    seed_dir,
+)
 from homesim.render.animate import ACTIONS
 
 VISUAL = {"find": "walk"}
@@ -66,9 +77,23 @@ def ceiling(actions: list[str], groups: list[str]) -> float:
     return 100.0 * sum(recall.values()) / len(counts)
 
 
-def label_report(val: C.ClipSet) -> dict:
+def shown_objects(val: C.ClipSet, maps: np.ndarray, classes: list[str]) -> list[str]:
+    """Each clip's step objects, ``?`` for one no pixel of its clip's class maps shows."""
+    index = {c: i for i, c in enumerate(classes)}
+    out = []
+    for rows, step in zip(val.rows, val.steps, strict=True):
+        present = set(np.unique(np.asarray(maps[np.sort(rows)])).tolist())
+        names = [w.strip("<>") for w in objects_of(step).split()]
+        out.append(" ".join(n if index.get(n) in present else "?" for n in names))
+    return out
+
+
+def label_report(val: C.ClipSet, maps: np.ndarray, classes: list[str]) -> dict:
     motions = [motion_of(a) for a in val.actions]
     with_objects = [f"{m} {objects_of(s)}" for m, s in zip(motions, val.steps, strict=True)]
+    shown = shown_objects(val, maps, classes)
+    with_shown = [f"{m} {o}" for m, o in zip(motions, shown, strict=True)]
+    objects = [o for o in shown if o]
     per_motion: dict[str, set] = defaultdict(set)
     for a, m in zip(val.actions, motions, strict=True):
         per_motion[m].add(a)
@@ -76,13 +101,18 @@ def label_report(val: C.ClipSet) -> dict:
             "motions": len(set(motions)),
             "actions_per_motion": {m: sorted(a) for m, a in sorted(per_motion.items())},
             "ceiling_motion_only": round(ceiling(val.actions, motions), 1),
-            "ceiling_motion_and_objects": round(ceiling(val.actions, with_objects), 1)}
+            "ceiling_motion_and_objects": round(ceiling(val.actions, with_objects), 1),
+            "map_size": list(maps.shape[1:]),
+            "clips_with_every_object_shown": round(
+                100.0 * sum("?" not in o for o in objects) / max(len(objects), 1), 1),
+            "ceiling_motion_and_shown_objects": round(ceiling(val.actions, with_shown), 1)}
 
 
-def model_report(run_out: Path, inp: str, seed: int, val: C.ClipSet,
-                 features: dict) -> dict:
-    model, labels, _ = load_clip_model(clip_path(seed_dir(run_out, seed), "trn", inp))
-    pred, _ = C.predict_clips(model, features[inp], val, labels)
+def model_report(run: Run, name: str, seed: int, val: C.ClipSet, features: dict) -> dict:
+    """`name`: an input (its TRN) or ``input:kind`` (the file ``clip_<input>_<kind>.pt``)."""
+    inp, _, kind = name.partition(":")
+    model, labels, _ = load_clip_model(clip_path(seed_dir(run.out, seed), kind or "trn", inp))
+    pred, _ = C.predict_clips(model, model_inputs(run, model, features), val, labels)
     truth_m = [motion_of(a) for a in val.actions]
     pred_m = [motion_of(a) for a in pred]
     wrong = [(p, t) for p, t in zip(pred, val.actions, strict=True) if p != t]
@@ -90,7 +120,7 @@ def model_report(run_out: Path, inp: str, seed: int, val: C.ClipSet,
     recall = {a: round(100.0 * sum(p == a for p, t in zip(pred, val.actions, strict=True)
                                    if t == a) / n, 1)
               for a, n in Counter(val.actions).most_common()}
-    return {"input": inp, "seed": seed,
+    return {"model": name, "seed": seed,
             "action": round(C.mean_class_accuracy(pred, val.actions), 1),
             "motion": round(C.mean_class_accuracy(pred_m, truth_m), 1),
             "errors_within_true_motion": round(100.0 * same_motion / max(len(wrong), 1), 1),
@@ -100,17 +130,18 @@ def model_report(run_out: Path, inp: str, seed: int, val: C.ClipSet,
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("run", type=Path)
-    parser.add_argument("--input", nargs="*", default=[], help="TRN inputs to score.")
+    parser.add_argument("--input", nargs="*", default=[],
+                        help="Clip models to score: an input (its TRN) or input:kind.")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     torch.set_num_threads(1)
     run, _ = reopen_run(args.run)
     val = C.clip_set(run.episodes("val"), run.store.step)
-    report = {"labels": label_report(val)}
+    report = {"labels": label_report(val, run.store.maps, run.store.classes)}
     if args.input:
         features = load_features(args.run)
-        report["models"] = [model_report(args.run, inp, args.seed, val, features)
-                            for inp in args.input]
+        report["models"] = [model_report(run, name, args.seed, val, features)
+                            for name in args.input]
     print(json.dumps(report, indent=1))
 
 

@@ -36,6 +36,7 @@ from homesim.learn.video.table import (
     Run,
     clip_path,
     load_clip_model,
+    model_inputs,
     reopen_run,
     seed_dir,
     video_features,
@@ -68,7 +69,8 @@ def clip_predictions(run: Run, seed: int, test: C.ClipSet, features: dict[str, n
     out = {RANDOM: {"action": [a for a, _ in drawn], "step": [s for _, s in drawn]}}
     for (inp, kind), name in CLIP_ROWS.items():
         model, labels, _ = load_clip_model(clip_path(folder, kind, inp), run.device)
-        actions, steps = C.predict_clips(model, features[inp], test, labels)
+        actions, steps = C.predict_clips(model, model_inputs(run, model, features), test,
+                                         labels)
         out[name] = {"action": actions, "step": steps}
     return out
 
@@ -119,7 +121,7 @@ def program_predictions(run: Run, seed: int, tested: list[StoredEpisode],
               for name in PROGRAM_MODELS}
     inp = models["mle"].meta.get("input", "rgb")
     clip_model, _, _ = load_clip_model(clip_path(folder, "trn", inp), run.device)
-    feats = video_features(clip_model, tested, features[inp])
+    feats = video_features(clip_model, tested, model_inputs(run, clip_model, features))
     rng = random.Random(seed)
     train_programs = [example(e).program for e in run.episodes("train")]
     out: dict[str, Callable[[], list[Program]]] = {
