@@ -148,9 +148,11 @@ def program_examples(run: Run, seed: int, tested: list[StoredEpisode],
 
 
 def load_features(out: Path) -> dict[str, np.ndarray]:
-    """The frame-feature cache of a run (`table.frame_stage`)."""
+    """The frame-feature cache of a run (`table.frame_stage`): the inputs whose features
+    are written (all of them once the frame stage is done)."""
     folder = out / "features"
-    return {inp: np.load(folder / f"{inp}.npy") for inp in ("rgb", "seg", "oracle")}
+    paths = {inp: folder / f"{inp}.npy" for inp in ("rgb", "seg", "oracle")}
+    return {inp: np.load(path) for inp, path in paths.items() if path.is_file()}
 
 
 def _clip_rows(run: Run, features: dict[str, np.ndarray], rows: dict[str, list]) -> dict:

@@ -79,6 +79,9 @@ class VideoRunConfig:
     frames_per_epoch: int = 60000
     frame_lr: float = 2e-3
     frame_dropout: float = 0.3
+    frame_grid: str = "1x1"
+    """The frame encoders' last features averaged over WxH cells ("1x1": the spatial
+    mean; "4x3" keeps where things are: `FrameCNNConfig.grid_w`)."""
     seg_epochs: int = 4
     seg_frames_per_epoch: int = 40000
     seg_width: int = 16
@@ -212,6 +215,17 @@ def _save_model(model: torch.nn.Module, path: Path, **extra: object) -> None:
     tmp.replace(path)
 
 
+def _grid(text: str) -> tuple[int, int]:
+    """``"4x3"`` -> (4, 3), refusing anything else in one line."""
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        w = h = 0
+    if w < 1 or h < 1:
+        raise HomesimError(f"frame_grid {text!r}: cells across x down, e.g. '4x3'")
+    return w, h
+
+
 def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
                    n: tuple[int, int]) -> np.ndarray:
     """Train (or load) a frame encoder on `data` and return its feature of every row,
@@ -222,10 +236,11 @@ def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
     start = time.perf_counter()
     cfg = run.config
     kind = "map" if data.ndim == 3 else "rgb"
+    grid_w, grid_h = _grid(cfg.frame_grid)
     model_cfg = FrameCNNConfig(n[0], n[1], kind, len(run.store.classes),
                                epochs=cfg.frame_epochs, seed=cfg.backbone_seed,
                                frames_per_epoch=cfg.frames_per_epoch, lr=cfg.frame_lr,
-                               dropout=cfg.frame_dropout)
+                               dropout=cfg.frame_dropout, grid_w=grid_w, grid_h=grid_h)
     folder = run.out / "frames"
     folder.mkdir(parents=True, exist_ok=True)
     model, fitted = train_frame_cnn(
