@@ -38,6 +38,7 @@ from homesim.learn.video.table import (
     Run,
     clip_path,
     load_clip_model,
+    model_inputs,
     reopen_run,
     seed_dir,
 )
@@ -62,7 +63,8 @@ def clip_scores(run: Run, seed: int, features: dict[str, np.ndarray]) -> dict[st
         if not path.is_file():
             continue
         model, labels, saved = load_clip_model(path)
-        actions, steps = C.predict_clips(model, features[inp], val, labels)
+        actions, steps = C.predict_clips(model, model_inputs(run, model, features), val,
+                                         labels)
         out[name] = {"action": round(C.mean_class_accuracy(actions, val.actions), 2),
                      "step": round(C.mean_class_accuracy(steps, val.steps), 2),
                      "best_epoch": saved.get("best_epoch"),

@@ -25,6 +25,7 @@ from homesim.learn.video.table import (
     clip_path,
     fit_mle,
     load_clip_model,
+    model_inputs,
     reopen_run,
     seed_dir,
     video_features,
@@ -43,7 +44,8 @@ def mle_on(out: Path, inputs: list[str], seed: int) -> list[dict]:
     for inp in inputs:
         start = time.perf_counter()
         clip_model, _, _ = load_clip_model(clip_path(seed_dir(out, seed), "trn", inp))
-        feats = video_features(clip_model, train_eps + val_eps, features[inp])
+        feats = video_features(clip_model, train_eps + val_eps,
+                               model_inputs(run, clip_model, features))
         _, best, _ = fit_mle(run, seed, clip_model.cfg.feature, feats, train, val)
         row = {"input": inp, "seed": seed, "best_epoch": best.epoch,
                "val_steps_lcs": round(best.best, 4),

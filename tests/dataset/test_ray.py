@@ -108,6 +108,16 @@ def test_ray_start_is_tried_again(monkeypatch):
     assert len(tries) == 3
 
 
+def test_local_workers_run_at_the_drivers_priority():
+    """Ray started its workers at nice 15 over the driver's (19 under `nice -n 5`): with
+    any other load on the machine generation crawled. They get the driver's now."""
+    runners_mod._init(ray, runners_mod.RayOptions(workers=1))
+    try:
+        assert ray.get(ray.remote(lambda: os.nice(0)).remote()) == os.nice(0)
+    finally:
+        ray.shutdown()
+
+
 # ------------------------------------------------------------------ signals
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
 def test_a_signalled_ray_run_stops_clean(program_file, tmp_path, signum):

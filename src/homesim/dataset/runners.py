@@ -35,6 +35,8 @@ OBJECT_STORE_BYTES = 256 * 1024**2
 """Object store of a local Ray (its default takes 30% of the memory)."""
 TAIL_PER_SLOT = 4
 """The last ``TAIL_PER_SLOT x slots`` episodes of a run are submitted longest first."""
+WORKER_NICENESS = 0
+"""Local Ray workers' niceness above the driver's (Ray's own default is 15)."""
 MAX_CALLS = 16
 """A Ray worker process is replaced after this many episodes: whatever a renderer leaks
 (GL contexts, caches) is given back."""
@@ -246,9 +248,12 @@ def _init(ray: Any, options: RayOptions) -> None:
         ray.init(address=options.address, log_to_driver=False, configure_logging=False)
         return
     # Tasks return small rows (the episodes go to disk): a small object store will do.
+    # Ray starts its workers 15 nicer than the driver; they get the driver's priority
+    # instead (what `nice` gave the command), or under any other load they starve.
     ray.init(num_cpus=options.workers, num_gpus=_local_gpus(), include_dashboard=False,
              log_to_driver=False, configure_logging=False,
-             object_store_memory=OBJECT_STORE_BYTES)
+             object_store_memory=OBJECT_STORE_BYTES,
+             _system_config={"worker_niceness": WORKER_NICENESS})
 
 
 def _local_gpus() -> int:

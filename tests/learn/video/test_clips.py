@@ -46,3 +46,43 @@ def test_a_clip_model_is_built_from_its_settings():
     assert model.scales == [2, 3] and model.relations[0][0].out_features == 16
     assert model.features(torch.zeros(5, FRAMES, 2)).shape == (5, 8)
     assert ClipConfig(**cfg.to_dict()) == cfg
+
+
+def test_an_end_to_end_clip_model_reads_maps_and_trains_its_backbone():
+    """With a backbone the clip model reads class maps itself, starts from the given
+    frame encoder's weights and fine-tunes them: a label shown only by which class
+    fills the frames is learnt."""
+    import torch
+
+    from homesim.learn.video.clips import (
+        FRAMES,
+        ClipConfig,
+        ClipSet,
+        Labels,
+        predict_clips,
+        train_clip_model,
+    )
+    from homesim.learn.video.framecnn import FrameCNN, FrameCNNConfig
+
+    rng = np.random.default_rng(0)
+    n = 64
+    maps = np.zeros((n * FRAMES, 6, 8), np.uint8)
+    names = []
+    for i in range(n):
+        cls = i % 2
+        maps[i * FRAMES:(i + 1) * FRAMES] = rng.integers(0, 2, (FRAMES, 6, 8)) + 2 * cls
+        names.append("Open" if cls else "Grab")
+    rows = np.arange(n * FRAMES).reshape(n, FRAMES)
+    data = ClipSet(rows, [str(i) for i in range(n)], names, [f"[{a}] <x>" for a in names])
+    labels = Labels.build(data)
+    backbone = FrameCNNConfig(2, 2, "map", num_classes=4, feature=8)
+    start = FrameCNN(backbone).state_dict()
+    cfg = ClipConfig("trn", "oracle", 8, 2, 2, feature=8, hidden=16, epochs=8, lr=5e-3,
+                     batch_size=8, dropout=0.0,
+                     backbone=backbone.to_dict())
+    model, _ = train_clip_model(cfg, maps, data, labels, backbone_state=start)
+    actions, _ = predict_clips(model, maps, data, labels)
+    assert actions == names
+    moved = model.backbone.state_dict()
+    assert any(not torch.equal(moved[k], start[k]) for k in start if k.endswith("weight"))
+    assert ClipConfig(**cfg.to_dict()) == cfg

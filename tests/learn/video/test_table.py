@@ -107,3 +107,28 @@ def test_train_subset_is_nested_and_keeps_store_order():
     assert {e.key for e in quarter} < {e.key for e in half}
     assert [e.key for e in half] == sorted(e.key for e in half)  # store order
     assert {e.key for e in quarter} != {e.key for e in eps[:10]}  # not the first ten
+
+
+def test_end_to_end_clip_models_train_their_frame_encoders_and_are_scored(tiny_plan,
+                                                                         tmp_path):
+    """`clip_end_to_end`: each clip model holds the frame stage's encoder of its input
+    and fine-tunes it; the programs and the table read the frames and maps through it."""
+    import torch
+
+    from homesim.learn.video import table
+    from homesim.learn.video.eval import evaluate_video
+
+    config = table.VideoRunConfig(str(tiny_plan), frame_size="32x24", frame_epochs=1,
+                                  seg_epochs=1, clip_epochs=1, mle_epochs=1, pg_epochs=1,
+                                  clip_end_to_end=True, cache=str(tmp_path / "cache"))
+    out = tmp_path / "run"
+    table.train_video(config, out)
+    for inp, kind in table.CLIP_MODELS:
+        model, _, _ = table.load_clip_model(table.clip_path(out / "seed-0", kind, inp))
+        encoder = torch.load(out / "frames" / f"{inp}.pt", weights_only=True)["state"]
+        tuned = model.backbone.state_dict()
+        assert tuned.keys() == encoder.keys()
+        assert any(not torch.equal(tuned[k], encoder[k]) for k in encoder)
+    result = evaluate_video(out)
+    assert 0 <= result["clips"]["all"]["TRN (predicted segmentation)"]["action"]["mean"] <= 100
+    assert result["programs"]["all"]["MLE"]["steps"]["mean"] >= 0

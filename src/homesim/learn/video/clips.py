@@ -13,6 +13,11 @@ Glossary:
         frames, spread over all of them, are concatenated and passed through an MLP g_k;
         the mean over subsets, summed over scales, is the clip feature.
     single frame: the clip feature is the middle frame's encoding (the baseline).
+    end to end: with `ClipConfig.backbone`, the clip model holds the frame encoder itself
+        (a `framecnn.FrameCNN`, started from the frame stage's trained weights) and reads
+        the frames or class maps, fine-tuning the encoder with the TRN on the clips'
+        labels, as TRN is trained (its backbone fine-tuned end to end); without it the
+        descriptors are fixed features computed once.
 Two linear heads read the clip feature (class-weighted cross-entropy on both). Scores are
 mean per-class accuracy (recall averaged over the test classes; a class never seen in
 training scores 0).
@@ -32,7 +37,7 @@ import torch.nn.functional as F
 from torch import nn
 
 from homesim.learn.video.fit import FitResult, batches, fit
-from homesim.learn.video.framecnn import class_weights
+from homesim.learn.video.framecnn import FrameCNN, FrameCNNConfig, class_weights
 
 FRAMES = 8
 """Frames sampled evenly from a clip."""
@@ -64,6 +69,9 @@ class ClipConfig:
     hidden: int = 256
     """Width of the relation MLPs' hidden layer."""
     dropout: float = 0.3
+    backbone: dict | None = None
+    """A `FrameCNNConfig` as a dict: the clip model reads frames or maps through this
+    frame encoder and trains it too (end to end); None: it reads fixed descriptors."""
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -83,6 +91,7 @@ class ClipModel(nn.Module):
         super().__init__()
         self.cfg = cfg
         f = cfg.feature
+        self.backbone = FrameCNN(FrameCNNConfig(**cfg.backbone)) if cfg.backbone else None
         self.frames = nn.Sequential(nn.Linear(cfg.n_inputs, f), nn.ReLU())
         self.scales = list(range(2, cfg.max_scale + 1)) if cfg.kind == "trn" else []
         self.relations = nn.ModuleList(
@@ -93,8 +102,17 @@ class ClipModel(nn.Module):
         self.action_head = nn.Linear(f, cfg.n_actions)
         self.step_head = nn.Linear(f, cfg.n_steps)
 
+    def describe(self, clips: torch.Tensor) -> torch.Tensor:
+        """(B, FRAMES, ...) inputs -> (B, FRAMES, width) descriptors: through the
+        backbone when the model has one, else as given."""
+        if self.backbone is None:
+            return clips
+        return self.backbone(clips.flatten(0, 1)).view(clips.shape[0], FRAMES, -1)
+
     def features(self, clips: torch.Tensor) -> torch.Tensor:
-        """(B, FRAMES, width) descriptors -> (B, feature) clip features."""
+        """(B, FRAMES, width) descriptors (or frames or maps, with a backbone) -> (B,
+        feature) clip features."""
+        clips = self.describe(clips)
         if not self.scales:
             return self.frames(clips[:, FRAMES // 2])
         b = clips.shape[0]
@@ -120,6 +138,13 @@ def windows(length: int, fps: int, hop: float | None = None) -> list[tuple[int, 
 def clip_rows(a: int, b: int) -> np.ndarray:
     """The `FRAMES` frames of window [a, b), evenly spaced (relative rows)."""
     return np.linspace(a, b - 1, FRAMES).round().astype(np.int64)
+
+
+def clip_inputs(features: np.ndarray, rows: np.ndarray) -> torch.Tensor:
+    """The clips' inputs, (B, FRAMES, ...) for frame rows (B, FRAMES): float descriptors,
+    or frames and class maps (uint8) as stored, for a model with a backbone."""
+    x = np.asarray(features[rows])
+    return torch.from_numpy(x if x.dtype == np.uint8 else x.astype(np.float32))
 
 
 @dataclass
@@ -177,12 +202,16 @@ class Labels:
 
 def train_clip_model(cfg: ClipConfig, features: np.ndarray, data: ClipSet, labels: Labels,
                      val: ClipSet | None = None, device: str = "cpu",
-                     checkpoint: Path | None = None) -> tuple[ClipModel, FitResult]:
+                     checkpoint: Path | None = None,
+                     backbone_state: dict | None = None) -> tuple[ClipModel, FitResult]:
     """Class-weighted cross-entropy on both heads over the clips' descriptors (`features`:
-    (store rows, width)); with `val`, the epoch scoring best on it (mean of the two
+    (store rows, width); with a backbone, the stored frames or maps, its weights started
+    from `backbone_state`); with `val`, the epoch scoring best on it (mean of the two
     heads' mean per-class accuracy) is kept. Resumes from `checkpoint`."""
     torch.manual_seed(cfg.seed)
     model = ClipModel(cfg).to(device)
+    if model.backbone is not None and backbone_state is not None:
+        model.backbone.load_state_dict(backbone_state)
     y_a = labels.ids(data.actions, labels.actions)
     y_s = labels.ids(data.steps, labels.steps)
     w_a = class_weights(y_a, cfg.n_actions).to(device)
@@ -191,8 +220,7 @@ def train_clip_model(cfg: ClipConfig, features: np.ndarray, data: ClipSet, label
     def step(opt: torch.optim.Optimizer, rng: np.random.Generator) -> float:
         losses = []
         for batch in batches(len(y_s), cfg.batch_size, rng):
-            x = torch.from_numpy(features[data.rows[batch]].astype(np.float32)).to(device)
-            la, ls = model(x)
+            la, ls = model(clip_inputs(features, data.rows[batch]).to(device))
             loss = (F.cross_entropy(la, torch.from_numpy(y_a[batch]).to(device), w_a,
                                     ignore_index=-100)
                     + F.cross_entropy(ls, torch.from_numpy(y_s[batch]).to(device), w_s,
@@ -223,8 +251,7 @@ def predict_clips(model: ClipModel, features: np.ndarray, data: ClipSet, labels:
     actions: list[str] = []
     steps: list[str] = []
     for i in range(0, len(data.steps), batch_size):
-        x = torch.from_numpy(features[data.rows[i:i + batch_size]].astype(np.float32))
-        la, ls = model(x.to(device))
+        la, ls = model(clip_inputs(features, data.rows[i:i + batch_size]).to(device))
         actions += [labels.actions[j] for j in la.argmax(1).tolist()]
         steps += [labels.steps[j] for j in ls.argmax(1).tolist()]
     return actions, steps
@@ -236,8 +263,7 @@ def clip_features(model: ClipModel, features: np.ndarray, rows: np.ndarray,
     """(len(rows), feature) clip features (no dropout) of clips given by frame rows."""
     model.eval()
     device = next(model.parameters()).device
-    out = [model.features(torch.from_numpy(features[rows[i:i + batch_size]]
-                                           .astype(np.float32)).to(device)).cpu()
+    out = [model.features(clip_inputs(features, rows[i:i + batch_size]).to(device)).cpu()
            for i in range(0, len(rows), batch_size)]
     return torch.cat(out) if out else torch.zeros(0, model.cfg.feature)
 

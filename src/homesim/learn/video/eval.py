@@ -36,6 +36,7 @@ from homesim.learn.video.table import (
     Run,
     clip_path,
     load_clip_model,
+    model_inputs,
     reopen_run,
     seed_dir,
     video_features,
@@ -68,7 +69,8 @@ def clip_predictions(run: Run, seed: int, test: C.ClipSet, features: dict[str, n
     out = {RANDOM: {"action": [a for a, _ in drawn], "step": [s for _, s in drawn]}}
     for (inp, kind), name in CLIP_ROWS.items():
         model, labels, _ = load_clip_model(clip_path(folder, kind, inp), run.device)
-        actions, steps = C.predict_clips(model, features[inp], test, labels)
+        actions, steps = C.predict_clips(model, model_inputs(run, model, features), test,
+                                         labels)
         out[name] = {"action": actions, "step": steps}
     return out
 
@@ -119,7 +121,7 @@ def program_predictions(run: Run, seed: int, tested: list[StoredEpisode],
               for name in PROGRAM_MODELS}
     inp = models["mle"].meta.get("input", "rgb")
     clip_model, _, _ = load_clip_model(clip_path(folder, "trn", inp), run.device)
-    feats = video_features(clip_model, tested, features[inp])
+    feats = video_features(clip_model, tested, model_inputs(run, clip_model, features))
     rng = random.Random(seed)
     train_programs = [example(e).program for e in run.episodes("train")]
     out: dict[str, Callable[[], list[Program]]] = {
@@ -146,9 +148,11 @@ def program_examples(run: Run, seed: int, tested: list[StoredEpisode],
 
 
 def load_features(out: Path) -> dict[str, np.ndarray]:
-    """The frame-feature cache of a run (`table.frame_stage`)."""
+    """The frame-feature cache of a run (`table.frame_stage`): the inputs whose features
+    are written (all of them once the frame stage is done)."""
     folder = out / "features"
-    return {inp: np.load(folder / f"{inp}.npy") for inp in ("rgb", "seg", "oracle")}
+    paths = {inp: folder / f"{inp}.npy" for inp in ("rgb", "seg", "oracle")}
+    return {inp: np.load(path) for inp, path in paths.items() if path.is_file()}
 
 
 def _clip_rows(run: Run, features: dict[str, np.ndarray], rows: dict[str, list]) -> dict:

@@ -8,7 +8,8 @@ cross-entropy, so the loss matches the metric, mean per-class accuracy), keeping
 epoch that scores best on the validation frames. Two inputs:
 
     rgb: the (3, H, W) frame; four 3x3 convolutions (three strided), then the spatial
-        mean (~8 MFLOP a 64x48 frame).
+        mean, or the means of a grid of cells (`FrameCNNConfig.grid_w`, `grid_h`) (~8
+        MFLOP a 64x48 frame).
     map: a (H/2, W/2) class map (ground truth, or `segment`'s prediction): each class id
         becomes a learned 16-d vector (a 1x1 convolution of the one-hot map), then three
         3x3 convolutions (two strided) and the spatial mean. The map's layout (what is next
@@ -51,6 +52,11 @@ class FrameCNNConfig:
     frames_per_epoch: int = 60000  # training frames drawn each epoch (all if fewer)
     dropout: float = 0.3
     """Dropout on the feature before the heads."""
+    grid_w: int = 1
+    grid_h: int = 1
+    """The last convolution's output is averaged over a grid_w x grid_h grid of cells
+    (1 x 1: the spatial mean), whose means all reach the feature: with more than one
+    cell, where things are in the frame (the agent's place and height) is kept."""
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -73,8 +79,9 @@ class FrameCNN(nn.Module):
         for a, b, stride in plan:
             layers += [nn.Conv2d(a, b, 3, stride=stride, padding=1), nn.BatchNorm2d(b),
                        nn.ReLU()]
-        self.net = nn.Sequential(*layers, nn.AdaptiveAvgPool2d(1), nn.Flatten(),
-                                 nn.Linear(64, cfg.feature), nn.ReLU())
+        cells = cfg.grid_h * cfg.grid_w
+        self.net = nn.Sequential(*layers, nn.AdaptiveAvgPool2d((cfg.grid_h, cfg.grid_w)),
+                                 nn.Flatten(), nn.Linear(64 * cells, cfg.feature), nn.ReLU())
         self.action_head = nn.Linear(cfg.feature, cfg.n_actions)
         self.step_head = nn.Linear(cfg.feature, cfg.n_steps)
 

@@ -79,6 +79,9 @@ class VideoRunConfig:
     frames_per_epoch: int = 60000
     frame_lr: float = 2e-3
     frame_dropout: float = 0.3
+    frame_grid: str = "1x1"
+    """The frame encoders' last features averaged over WxH cells ("1x1": the spatial
+    mean; "4x3" keeps where things are: `FrameCNNConfig.grid_w`)."""
     seg_epochs: int = 4
     seg_frames_per_epoch: int = 40000
     seg_width: int = 16
@@ -88,6 +91,10 @@ class VideoRunConfig:
     clip_feature: int = 128
     clip_hidden: int = 256
     clip_dropout: float = 0.3
+    clip_end_to_end: bool = False
+    """The clip models hold their frame encoder, started from the frame stage's, and
+    fine-tune it with the TRN on the clips' labels (as TRN trains its backbone); False:
+    they read the fixed frame features (`OUT/features/`)."""
     mle_epochs: int = 60
     mle_lr: float = 2e-3
     pg_epochs: int = 10
@@ -208,6 +215,17 @@ def _save_model(model: torch.nn.Module, path: Path, **extra: object) -> None:
     tmp.replace(path)
 
 
+def _grid(text: str) -> tuple[int, int]:
+    """``"4x3"`` -> (4, 3), refusing anything else in one line."""
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        w = h = 0
+    if w < 1 or h < 1:
+        raise HomesimError(f"frame_grid {text!r}: cells across x down, e.g. '4x3'")
+    return w, h
+
+
 def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
                    n: tuple[int, int]) -> np.ndarray:
     """Train (or load) a frame encoder on `data` and return its feature of every row,
@@ -218,10 +236,11 @@ def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
     start = time.perf_counter()
     cfg = run.config
     kind = "map" if data.ndim == 3 else "rgb"
+    grid_w, grid_h = _grid(cfg.frame_grid)
     model_cfg = FrameCNNConfig(n[0], n[1], kind, len(run.store.classes),
                                epochs=cfg.frame_epochs, seed=cfg.backbone_seed,
                                frames_per_epoch=cfg.frames_per_epoch, lr=cfg.frame_lr,
-                               dropout=cfg.frame_dropout)
+                               dropout=cfg.frame_dropout, grid_w=grid_w, grid_h=grid_h)
     folder = run.out / "frames"
     folder.mkdir(parents=True, exist_ok=True)
     model, fitted = train_frame_cnn(
@@ -280,6 +299,34 @@ def frame_stage(run: Run, labels: C.Labels) -> dict[str, np.ndarray]:
     return {"rgb": rgb, "seg": seg, "oracle": oracle}
 
 
+def raw_inputs(run: Run, inp: str) -> np.ndarray:
+    """What an end-to-end clip model of `inp` reads: the frames (rgb), the predicted class
+    maps (seg) or the ground-truth ones (oracle)."""
+    if inp == "rgb":
+        return run.store.frames
+    if inp == "oracle":
+        return run.store.maps
+    return np.load(run.out / "features" / "segmaps.npy", mmap_mode="r")
+
+
+def model_inputs(run: Run, model: C.ClipModel, features: dict[str, np.ndarray]
+                 ) -> np.ndarray:
+    """What a clip model reads: its input's frame features, or the frames or maps
+    themselves when it holds its frame encoder (`VideoRunConfig.clip_end_to_end`)."""
+    inp = model.cfg.input
+    return raw_inputs(run, inp) if model.backbone is not None else features[inp]
+
+
+def _backbone(run: Run, inp: str) -> tuple[dict | None, dict | None]:
+    """The frame stage's encoder of `inp` (config, weights) for an end-to-end clip model;
+    (None, None) when the clip models read fixed features."""
+    if not run.config.clip_end_to_end:
+        return None, None
+    saved = torch.load(run.out / "frames" / f"{inp}.pt", map_location="cpu",
+                       weights_only=True)
+    return saved["config"], saved["state"]
+
+
 def clip_path(folder: Path, kind: str, inp: str) -> Path:
     return folder / f"clip_{inp}_{kind}.pt"
 
@@ -308,12 +355,14 @@ def _clip_models(run: Run, seed: int, labels: C.Labels, features: dict[str, np.n
             continue
         start = time.perf_counter()
         rc = run.config
+        backbone, weights = _backbone(run, inp)
         cfg = C.ClipConfig(kind, inp, features[inp].shape[1], len(labels.actions),
                            len(labels.steps), feature=rc.clip_feature, epochs=rc.clip_epochs,
                            lr=rc.clip_lr, seed=seed, hidden=rc.clip_hidden,
-                           dropout=rc.clip_dropout)
-        model, fitted = C.train_clip_model(cfg, features[inp], train, labels, val,
-                                           run.device, path.with_suffix(".ckpt"))
+                           dropout=rc.clip_dropout, backbone=backbone)
+        data = raw_inputs(run, inp) if backbone else features[inp]
+        model, fitted = C.train_clip_model(cfg, data, train, labels, val, run.device,
+                                           path.with_suffix(".ckpt"), weights)
         _save_model(model, path, actions=labels.actions, steps=labels.steps,
                     best_epoch=fitted.best_epoch, scores=fitted.scores,
                     val_score=max(fitted.scores, default=0.0))
@@ -361,7 +410,8 @@ def _program_models(run: Run, seed: int, features: dict[str, np.ndarray]) -> Non
     train_eps, val_eps = run.episodes("train"), run.episodes("val")
     train = [example(e) for e in train_eps]
     val = [example(e) for e in val_eps]
-    feats = video_features(clip_model, train_eps + val_eps, features[inp])
+    feats = video_features(clip_model, train_eps + val_eps,
+                           model_inputs(run, clip_model, features))
     mle_path = folder / "mle.pt"
     if mle_path.is_file():
         base = Video2Prog.load(mle_path, run.device)
@@ -399,10 +449,14 @@ def _check_config(out: Path, config: VideoRunConfig, force: bool) -> dict[str, f
     if not path.is_file():
         return {}
     old = json.loads(path.read_text(encoding="utf-8"))
-    if old.get("config") != asdict(config) and not force:
+    try:  # settings added since the run was made take their defaults
+        same = asdict(VideoRunConfig(**old.get("config", {}))) == asdict(config)
+    except TypeError:
+        same = False
+    if not same and not force:
         raise HomesimError(f"{path}: a run with other settings; use another --out folder "
                            "or --force")
-    return old.get("seconds", {}) if old.get("config") == asdict(config) else {}
+    return old.get("seconds", {}) if same else {}
 
 
 def _write_summary(run: Run, total_start: float) -> dict:
