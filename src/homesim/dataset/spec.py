@@ -56,7 +56,7 @@ SPEED_RANGE = (0.8, 1.25)
 MAX_MOVES = 6
 """At most this many objects are moved to other allowed places per episode."""
 
-FORMAT = "homesim-activity/7"
+FORMAT = "homesim-activity/8"
 """Data set format; /2: the mp4 encoded as `video.H264Writer` does since x264 was pinned
 to SSE2 (other bytes than /1 for the same frames); /3: an episode whose program does not
 run in its drawn home is made in the next home it runs in (`episode.homes_to_try`; /2
@@ -69,7 +69,10 @@ of switching a screen on or off is chosen by how much of the screen it shows, no
 whole set (`shots._seen_part`; /5 often filmed a TV's back); /7: issue 43's third round
 (close-ups of small things framed at the effect, reaches and walks never from behind a
 wall, put back where taken from, carried water, fingertips on switches) gives other
-close-ups and poses, and where a reach or walk changed, other frame counts."""
+close-ups and poses, and where a reach or walk changed, other frame counts; /8: issue
+43's fourth and fifth rounds (bodies out of furniture: standing spots on the object's
+side of walls, reaches that bow less, sitting where the seat is clear, stepping back
+before drinking, letting a door's handle go) give other poses and walks."""
 
 
 @dataclass(frozen=True)
