@@ -424,10 +424,15 @@ def test_a_spot_behind_a_wall_from_its_object_is_not_used(box_home):
         assert end[0] < 1.95  # the room's side of the wall (inner face x = 1.95)
 
 
-def test_sitting_moves_along_the_sofa_away_from_a_pillow():
-    """A pillow lies on the sofa where the agent comes to it: it sits beside the pillow,
-    along the seat (`SIT_ALONG`), not in it (the thighs 4-7 cm in pillows in gen-0, -3, -4
-    and scene 1), on the way down and once seated."""
+SOFA = {"id": 40, "class_name": "sofa", "category": "Furniture",
+        "properties": ["SITTABLE", "SURFACES"],
+        "bounding_box": {"center": [-1.5, 0.4, 0.2], "size": [0.85, 0.8, 2.0]}}
+
+
+def _sit_on_the_sofa(things: list[dict], edges: list[tuple[int, str, int]]):
+    """The box home with `SOFA` and `things` in room 1 (and `edges` besides): the agent
+    walks to the sofa and sits; no body part more than 3 cm inside anything from getting
+    down to standing up. Returns the timeline and the seated rest's frames."""
     from homesim.render.clearance import Clearance
     from homesim.render.recorder import SceneState
     from homesim.world.graph import EnvironmentGraph
@@ -435,15 +440,10 @@ def test_sitting_moves_along_the_sofa_away_from_a_pillow():
     from .conftest import box_home_dict
 
     d = box_home_dict()
-    d["nodes"] += [
-        {"id": 40, "class_name": "sofa", "category": "Furniture",
-         "properties": ["SITTABLE", "SURFACES"],
-         "bounding_box": {"center": [-1.5, 0.4, 0.2], "size": [0.85, 0.8, 2.0]}},
-        {"id": 41, "class_name": "pillow", "category": "Props", "properties": ["GRABBABLE"],
-         "bounding_box": {"center": [-1.4, 0.55, -0.3], "size": [0.45, 0.2, 0.45]}}]
-    d["edges"] += [{"from_id": 40, "relation_type": "INSIDE", "to_id": 1},
-                   {"from_id": 41, "relation_type": "INSIDE", "to_id": 1},
-                   {"from_id": 41, "relation_type": "ON", "to_id": 40}]
+    d["nodes"] += [SOFA, *things]
+    d["edges"] += [{"from_id": n["id"], "relation_type": "INSIDE", "to_id": 1}
+                   for n in [SOFA, *things]]
+    d["edges"] += [{"from_id": a, "relation_type": r, "to_id": b} for a, r, b in edges]
     g = EnvironmentGraph.from_dict(d)
     scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
     result = homesim.execute(homesim.parse_program("[Walk] <sofa> (40)\n[Sit] <sofa> (40)\n"),
@@ -452,6 +452,16 @@ def test_sitting_moves_along_the_sofa_away_from_a_pillow():
     state, clear = SceneState(scene, tl, aim_cameras=False), Clearance(scene)
     (rest,) = tl.rests
     assert not any(clear.penetrations(state.apply(f), {}, 0.03) for f in range(rest[0], rest[1] + 1))
+    return tl, rest
+
+
+def test_sitting_moves_along_the_sofa_away_from_a_pillow():
+    """A pillow lies on the sofa where the agent comes to it: it sits beside the pillow,
+    along the seat (`SIT_ALONG`), not in it (the thighs 4-7 cm in pillows in gen-0, -3, -4
+    and scene 1), on the way down and once seated."""
+    pillow = {"id": 41, "class_name": "pillow", "category": "Props", "properties": ["GRABBABLE"],
+              "bounding_box": {"center": [-1.4, 0.55, -0.3], "size": [0.45, 0.2, 0.45]}}
+    tl, _ = _sit_on_the_sofa([pillow], [(41, "ON", 40)])
     assert tl.qpos[-1][2] < 0.7  # on the seat, not on the pillow
 
 
@@ -460,30 +470,10 @@ def test_sitting_where_the_floor_before_the_seat_is_free():
     beside it: it walks round to where the floor before the seat is free and sits there
     (`Animator._sit_place`), not sliding sideways across the seat getting down (gen-1:
     up to 1 m, 16 parts 9-11 cm in the sofa)."""
-    from homesim.render.clearance import Clearance
-    from homesim.render.recorder import SceneState
-    from homesim.world.graph import EnvironmentGraph
-
-    from .conftest import box_home_dict
-
-    d = box_home_dict()
-    d["nodes"] += [
-        {"id": 40, "class_name": "sofa", "category": "Furniture",
-         "properties": ["SITTABLE", "SURFACES"],
-         "bounding_box": {"center": [-1.5, 0.4, 0.2], "size": [0.85, 0.8, 2.0]}},
-        {"id": 42, "class_name": "coffeetable", "category": "Furniture",
-         "properties": ["SURFACES"],
-         "bounding_box": {"center": [-0.7, 0.2, -0.2], "size": [0.5, 0.4, 1.2]}}]
-    d["edges"] += [{"from_id": 40, "relation_type": "INSIDE", "to_id": 1},
-                   {"from_id": 42, "relation_type": "INSIDE", "to_id": 1}]
-    g = EnvironmentGraph.from_dict(d)
-    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
-    result = homesim.execute(homesim.parse_program("[Walk] <sofa> (40)\n[Sit] <sofa> (40)\n"),
-                             g, trace=True, reference=True)
-    tl = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
-    state, clear = SceneState(scene, tl, aim_cameras=False), Clearance(scene)
-    (rest,) = tl.rests
-    assert not any(clear.penetrations(state.apply(f), {}, 0.03) for f in range(rest[0], rest[1] + 1))
+    table = {"id": 42, "class_name": "coffeetable", "category": "Furniture",
+             "properties": ["SURFACES"],
+             "bounding_box": {"center": [-0.7, 0.2, -0.2], "size": [0.5, 0.4, 1.2]}}
+    tl, rest = _sit_on_the_sofa([table], [])
     seated = tl.qpos[rest[1]][:2]
     assert seated[1] > 0.4  # beside the table, not behind it
     assert abs(tl.qpos[rest[0]][1] - seated[1]) < 0.1  # got down from before it, not beside
