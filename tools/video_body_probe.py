@@ -30,7 +30,7 @@ import numpy as np
 import torch
 
 from homesim.learn.video import clips as C
-from homesim.learn.video.table import Run, reopen_run, train_labels
+from homesim.learn.video.table import Run, clip_config, reopen_run, train_labels
 
 JOINTS = 16
 
@@ -106,10 +106,7 @@ def probe(run: Run, name: str, descriptors: np.ndarray, seed: int) -> dict:
     train = C.clip_set(run.episodes("train"), run.store.step, cfg_run.train_hop)
     val = C.clip_set(run.episodes("val"), run.store.step)
     x = descriptors.astype(np.float16)
-    cfg = C.ClipConfig("trn", "oracle", x.shape[1], len(labels.actions), len(labels.steps),
-                       feature=cfg_run.clip_feature, epochs=cfg_run.clip_epochs,
-                       lr=cfg_run.clip_lr, seed=seed, hidden=cfg_run.clip_hidden,
-                       dropout=cfg_run.clip_dropout)
+    cfg = clip_config(cfg_run, labels, "trn", "oracle", x.shape[1], seed)
     model, _ = C.train_clip_model(cfg, x, train, labels, val)
     actions, steps = C.predict_clips(model, x, val, labels)
     recall = {a: round(100.0 * sum(p == a for p, t in zip(actions, val.actions, strict=True)

@@ -25,6 +25,7 @@ import torch
 from homesim.learn.video import clips as C
 from homesim.learn.video.eval import load_features
 from homesim.learn.video.table import (
+    clip_config,
     clip_path,
     load_clip_model,
     reopen_run,
@@ -58,10 +59,7 @@ def curve(out: Path, inputs: list[str], shares: list[float], seed: int) -> list[
             if share == 1.0:
                 model, _, _ = load_clip_model(clip_path(seed_dir(out, seed), "trn", inp))
             else:
-                cfg = C.ClipConfig("trn", inp, features[inp].shape[1], len(labels.actions),
-                                   len(labels.steps), feature=config.clip_feature,
-                                   epochs=config.clip_epochs, lr=config.clip_lr, seed=seed,
-                                   hidden=config.clip_hidden, dropout=config.clip_dropout)
+                cfg = clip_config(config, labels, "trn", inp, features[inp].shape[1], seed)
                 model, _ = C.train_clip_model(cfg, features[inp], train, labels, val)
             row = {"input": inp, "share": share, "episodes": len(episodes),
                    "clips": len(train.steps), **val_scores(model, features[inp], val, labels),

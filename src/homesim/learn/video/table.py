@@ -342,6 +342,15 @@ def load_clip_model(path: Path, device: str = "cpu") -> tuple[C.ClipModel, C.Lab
     return model.eval(), C.Labels(data["actions"], data["steps"]), data
 
 
+def clip_config(config: VideoRunConfig, labels: C.Labels, kind: str, inp: str,
+                n_inputs: int, seed: int, backbone: dict | None = None) -> C.ClipConfig:
+    """A clip model of the run's settings over descriptors `n_inputs` wide."""
+    return C.ClipConfig(kind, inp, n_inputs, len(labels.actions), len(labels.steps),
+                        feature=config.clip_feature, epochs=config.clip_epochs,
+                        lr=config.clip_lr, seed=seed, hidden=config.clip_hidden,
+                        dropout=config.clip_dropout, backbone=backbone)
+
+
 def _clip_models(run: Run, seed: int, labels: C.Labels, features: dict[str, np.ndarray]
                  ) -> None:
     """The clip models of one seed (each skipped when saved)."""
@@ -356,10 +365,7 @@ def _clip_models(run: Run, seed: int, labels: C.Labels, features: dict[str, np.n
         start = time.perf_counter()
         rc = run.config
         backbone, weights = _backbone(run, inp)
-        cfg = C.ClipConfig(kind, inp, features[inp].shape[1], len(labels.actions),
-                           len(labels.steps), feature=rc.clip_feature, epochs=rc.clip_epochs,
-                           lr=rc.clip_lr, seed=seed, hidden=rc.clip_hidden,
-                           dropout=rc.clip_dropout, backbone=backbone)
+        cfg = clip_config(rc, labels, kind, inp, features[inp].shape[1], seed, backbone)
         data = raw_inputs(run, inp) if backbone else features[inp]
         model, fitted = C.train_clip_model(cfg, data, train, labels, val, run.device,
                                            path.with_suffix(".ckpt"), weights)
