@@ -132,3 +132,13 @@ def test_end_to_end_clip_models_train_their_frame_encoders_and_are_scored(tiny_p
     result = evaluate_video(out)
     assert 0 <= result["clips"]["all"]["TRN (predicted segmentation)"]["action"]["mean"] <= 100
     assert result["programs"]["all"]["MLE"]["steps"]["mean"] >= 0
+
+
+def test_frame_grid_is_cells_across_by_down_or_a_one_line_error():
+    from homesim.errors import HomesimError
+    from homesim.learn.video.table import _grid
+
+    assert _grid("4x3") == (4, 3) and _grid("1X1") == (1, 1)
+    for bad in ("4", "0x3", "ax3", "4x3x2"):
+        with pytest.raises(HomesimError, match=r"frame_grid .*cells across x down"):
+            _grid(bad)
