@@ -6,23 +6,24 @@ clips (never a test part):
 
 - ``box``: the oracle map features + the agent's box in the ground-truth class map (its
   size, centre, extent, whether it shows: 7 numbers);
-- ``pose``: the agent's ground-truth 2-D joints alone (the episodes' ``joints2d``: each
-  joint relative to the body's centre in body heights, its visibility, the centre's place
-  in the frame);
-- ``oracle+pose``: the oracle map features and the joints.
+- ``pose``: the agent's ground-truth 2-D joints alone (the store's ``joints``, from the
+  episodes' ``joints2d``, as `pose.pose_descriptor` describes them);
+- ``oracle+pose``: the oracle map features and the ground-truth joints;
+- ``predicted-pose``: the joints the run's pose network predicts (`table.pose_network`,
+  trained first if the run has none), alone;
+- ``seg+pose``: the predicted maps' features and the predicted joints (the Table 2 row
+  of that name).
 
-The joints come from the data set's shards (the animation's ground truth), so these are
-upper bounds for a recogniser that sees the body perfectly, not Table 2 rows.
+The ground-truth joints are the animation's, so ``pose`` and ``oracle+pose`` are upper
+bounds for a recogniser that sees the body perfectly, not Table 2 rows.
 
-    python tools/video_body_probe.py out/dev DATA --probes box pose oracle+pose
+    python tools/video_body_probe.py out/dev --probes box pose oracle+pose seg+pose
 """
 
 from __future__ import annotations
 
 import argparse
-import io
 import json
-import tarfile
 import time
 from pathlib import Path
 
@@ -30,9 +31,15 @@ import numpy as np
 import torch
 
 from homesim.learn.video import clips as C
-from homesim.learn.video.table import Run, clip_config, reopen_run, train_labels
-
-JOINTS = 16
+from homesim.learn.video.pose import pose_descriptor
+from homesim.learn.video.table import (
+    Run,
+    clip_config,
+    pose_network,
+    reopen_run,
+    train_labels,
+    with_pose,
+)
 
 
 def agent_box(maps: np.ndarray, agent: int, chunk: int = 20000) -> np.ndarray:
@@ -57,49 +64,6 @@ def agent_box(maps: np.ndarray, agent: int, chunk: int = 20000) -> np.ndarray:
     return out
 
 
-def _episode_pose(joints: np.ndarray, visible: np.ndarray, width: int, height: int
-                  ) -> np.ndarray:
-    j = joints.astype(np.float32) / np.array([width, height], np.float32)
-    centre = j.mean(1, keepdims=True)
-    tall = (j[..., 1].max(1) - j[..., 1].min(1))[:, None, None] + 1e-3
-    rel = ((j - centre) / tall).reshape(len(j), -1)
-    return np.concatenate([rel, visible.astype(np.float32), centre.reshape(len(j), 2)], 1)
-
-
-def body_pose(run: Run, data: Path) -> np.ndarray:
-    """(store rows, 3 x JOINTS + 2): each stored frame's joints (`_episode_pose`), read
-    from the shards of the train and val parts (zeros elsewhere)."""
-    where = {e.key: e for e in run.store.episodes}
-    pose = np.zeros((len(run.store.step), 3 * JOINTS + 2), np.float32)
-    for part in (*run.split.parts("train"), *run.split.parts("val")):
-        size = _frame_size(data / part)
-        for shard in sorted((data / part / "shards").glob("*.tar")):
-            with tarfile.open(shard) as tar:
-                members = {m.name: m for m in tar.getmembers()}
-                for name, member in members.items():
-                    ep = name.split(".")[0]
-                    e = where.get(f"{part}/{ep}")
-                    if not name.endswith(".joints2d.npy") or e is None:
-                        continue
-                    rows = _episode_pose(_array(tar, member),
-                                         _array(tar, members[f"{ep}.joints_visible.npy"]),
-                                         *size)
-                    n = min(len(rows), e.length)
-                    pose[e.start:e.start + n] = rows[:n]
-    return pose
-
-
-def _array(tar: tarfile.TarFile, member: tarfile.TarInfo) -> np.ndarray:
-    data = tar.extractfile(member)
-    assert data is not None
-    return np.load(io.BytesIO(data.read()))
-
-
-def _frame_size(folder: Path) -> tuple[int, int]:
-    config = json.loads((folder / "dataset.json").read_text(encoding="utf-8"))["config"]
-    return int(config["width"]), int(config["height"])
-
-
 def probe(run: Run, name: str, descriptors: np.ndarray, seed: int) -> dict:
     """The TRN of `seed` over `descriptors` (store rows, width), scored on validation."""
     cfg_run, labels = run.config, train_labels(run)
@@ -116,31 +80,38 @@ def probe(run: Run, name: str, descriptors: np.ndarray, seed: int) -> dict:
             "step": round(C.mean_class_accuracy(steps, val.steps), 2), "recall": recall}
 
 
+def descriptors(run: Run, name: str) -> np.ndarray:
+    """The per-frame descriptors of probe `name` (see the module)."""
+    train_rows = run.store.rows(run.episodes("train"))
+    features = run.out / "features"
+    if name == "box":
+        oracle = np.load(features / "oracle.npy")
+        box = agent_box(run.store.maps, run.store.classes.index("character"))
+        scale = 4 * float(np.abs(oracle).mean())  # the box on the features' scale
+        return np.concatenate([oracle.astype(np.float32), box * scale], 1)
+    if name == "pose":
+        return pose_descriptor(run.store.joints)
+    if name == "oracle+pose":
+        return with_pose(np.load(features / "oracle.npy"), run.store.joints, train_rows)
+    if name == "predicted-pose":
+        return pose_descriptor(pose_network(run))
+    if name == "seg+pose":
+        return with_pose(np.load(features / "seg.npy"), pose_network(run), train_rows)
+    raise SystemExit(f"--probes {name}: choose box, pose, oracle+pose, predicted-pose or "
+                     "seg+pose")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("run", type=Path)
-    parser.add_argument("data", type=Path, help="The run's plan folder (its shards).")
     parser.add_argument("--probes", nargs="+", default=["box", "pose", "oracle+pose"])
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     torch.set_num_threads(1)
     run, _ = reopen_run(args.run)
-    oracle = np.load(args.run / "features" / "oracle.npy").astype(np.float32)
-    scale = 4 * float(np.abs(oracle).mean())  # extra numbers on the features' scale
-    pose = body_pose(run, args.data) * scale if {"pose", "oracle+pose"} & set(args.probes) \
-        else None
     for name in args.probes:
         start = time.perf_counter()
-        if name == "box":
-            box = agent_box(run.store.maps, run.store.classes.index("character"))
-            x = np.concatenate([oracle, box * scale], 1)
-        elif name == "pose" and pose is not None:
-            x = pose
-        elif name == "oracle+pose" and pose is not None:
-            x = np.concatenate([oracle, pose], 1)
-        else:
-            raise SystemExit(f"--probes {name}: choose box, pose or oracle+pose")
-        row = probe(run, name, x, args.seed)
+        row = probe(run, name, descriptors(run, name), args.seed)
         print(json.dumps({**row, "seconds": round(time.perf_counter() - start)}), flush=True)
 
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -22,19 +21,23 @@ def start_cli(args: list[str], env: dict[str, str] | None = None,
     `prelude` is Python code run first (e.g. to put a stand-in for pip)."""
     full_env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [SRC, *filter(None, [os.environ.get("PYTHONPATH")])]), **(env or {})}
-    code = f"{prelude}\nimport sys\nfrom homesim.cli.main import main\nsys.exit(main({args!r}))"
+    code = (f"{_INTERRUPTIBLE}\n{prelude}\nimport sys\nfrom homesim.cli.main import main\n"
+            f"sys.exit(main({args!r}))")
     proc = subprocess.Popen([sys.executable, "-c", code], env=full_env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=_interruptible)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     _CHILDREN.append(proc)
     return proc
 
 
-def _interruptible() -> None:
-    """In the child before exec: SIGINT back to its default, as in a terminal. A test run
-    started in the background (``cmd &`` without job control) inherits SIGINT ignored,
-    and Python then never turns Ctrl-C into KeyboardInterrupt."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
+_INTERRUPTIBLE = "import signal\nsignal.signal(signal.SIGINT, signal.default_int_handler)"
+"""The child's first line: Ctrl-C raises KeyboardInterrupt, as in a terminal. A test run
+started in the background (``cmd &`` without job control) inherits SIGINT ignored, and
+Python then never turns Ctrl-C into KeyboardInterrupt. Set in the child's own code, not
+with Popen's ``preexec_fn``: that runs between fork and exec, where a lock held by another
+thread of this process at the fork (the renderer's rasterizer threads, a thread pool)
+deadlocks the child before exec, and Popen then waits for the exec for ever: the likely
+cause of CI stop 49, which hung until its time limit in the render-interrupt tests, after
+an in-process render had left such threads."""
 
 
 def kill_leftover_children() -> None:

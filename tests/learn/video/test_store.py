@@ -17,7 +17,8 @@ def _episode(path, key, classes, n, value):
     np.savez(path, meta=np.array(json.dumps(meta)),
              frames=np.full((n, 3, 4, 6), value, np.uint8),
              maps=np.tile(np.arange(len(classes), dtype=np.uint8), (n, 2, 1))[:, :, :3],
-             step=np.zeros(n, np.int64))
+             step=np.zeros(n, np.int64),
+             joints=np.full((n, 2, 3), value / 4, np.float16))
     return path
 
 
@@ -32,6 +33,7 @@ def test_a_store_holds_every_frame_with_global_classes(tmp_path):
     assert store.frames[3:].max() == 2 and store.frames[:3].max() == 1
     # episode a: local [bg, tv, sofa] -> global [0, 3, 2]; b: [bg, cup, tv] -> [0, 1, 3]
     assert store.maps[0, 0].tolist() == [0, 3, 2] and store.maps[4, 0].tolist() == [0, 1, 3]
+    assert store.joints.shape == (5, 2, 3) and store.joints[3:].max() == 0.5
     assert [e.key for e in store.part("test")] == ["test/ep-0"]
     assert store.rows(store.episodes).tolist() == [0, 1, 2, 3, 4]
     again = build_store(root, items)  # built once: read back

@@ -7,7 +7,9 @@ decoded; the clip models read small frames at a few frames per second (a 2-s cli
 at `VideoFormat.fps` (the nearest source frame of each tick; never more than the source
 has), RGB is area-scaled to the format's size by ffmpeg while decoding, and each kept
 frame's ground-truth class map is sampled at half the format's size (the segmentation
-network's target and the oracle's input, with layout). The result is written to
+network's target and the oracle's input, with layout), and its agent's 2-D joints as
+shares of the frame with their visibility (the pose network's target). The result is
+written to
 ``<cache>/<format>/<episode checksum>.npz`` and read from there the next time (an
 episode is identified by its member checksum, so a cache file never goes stale, and the
 episodes of a generation still running can be cached from its staging folder:
@@ -32,8 +34,8 @@ from homesim.dataset.verify import iter_episodes
 from homesim.errors import HomesimError
 from homesim.files import atomic_write
 
-CACHE_VERSION = 2
-ARRAYS = ("frames", "maps", "step")
+CACHE_VERSION = 3
+ARRAYS = ("frames", "maps", "step", "joints")
 META_FIELDS = ("key", "home", "agent", "title", "description", "program", "classes")
 
 
@@ -123,13 +125,23 @@ def _maps(ep: EncodedEpisode, keep: np.ndarray, fmt: VideoFormat) -> np.ndarray:
     return out
 
 
+def _joints(ep: EncodedEpisode, keep: np.ndarray) -> np.ndarray:
+    """(kept, J, 3) float16: each kept frame's joints as shares of the frame's width and
+    height, and their visibility (1 or 0)."""
+    size = np.array([ep.meta["width"], ep.meta["height"]], np.float32)
+    xy = np.asarray(ep.arrays["joints2d"], np.float32)[keep] / size
+    seen = np.asarray(ep.arrays["joints_visible"], np.float32)[keep]
+    return np.concatenate([xy, seen[..., None]], 2).astype(np.float16)
+
+
 def reduce_episode(ep: EncodedEpisode, fmt: VideoFormat) -> dict[str, Any]:
-    """One episode as arrays at `fmt`: frames, class maps at half size, step, and its
-    meta."""
+    """One episode as arrays at `fmt`: frames, class maps at half size, step, joints, and
+    its meta."""
     meta = ep.meta
     keep = kept_frames(ep.num_frames, int(meta["fps"]), fmt.fps)
     return {"frames": _rgb(ep, keep, fmt), "maps": _maps(ep, keep, fmt),
             "step": np.asarray(ep.arrays["step"], np.int64)[keep],
+            "joints": _joints(ep, keep),
             "meta": {**{k: meta[k] for k in META_FIELDS},
                      "fps": min(int(meta["fps"]), fmt.fps),
                      "steps": [s["step"] for s in meta["steps"]]}}

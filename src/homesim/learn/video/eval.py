@@ -3,7 +3,8 @@ seed of a run written by `homesim.learn.video.table.train_video`; mean and sampl
 the seeds and a 95 % bootstrap interval over test episodes.
 
 Left half (clips, mean per-class accuracy %): random retrieval, single frame (RGB), TRN on
-RGB, TRN on the predicted segmentation, TRN on the ground-truth class maps (the oracle).
+RGB, TRN on the predicted segmentation, TRN on the predicted segmentation and pose (`pose`),
+TRN on the ground-truth class maps (the oracle).
 Right half (programs: LCS and Simulator %): random retrieval, MLE, PG (LCS),
 PG (LCS+Sim), each also with constrained decoding, and the ground truth as a reference.
 Each model predicts every test episode once; a row scores its episodes.
@@ -32,6 +33,7 @@ from homesim.learn.video import clips as C
 from homesim.learn.video.data import example
 from homesim.learn.video.store import StoredEpisode
 from homesim.learn.video.table import (
+    INPUTS,
     PROGRAM_MODELS,
     Run,
     clip_path,
@@ -46,6 +48,7 @@ from homesim.program.model import Program
 
 CLIP_ROWS = {("rgb", "single"): "Single frame (RGB)", ("rgb", "trn"): "TRN (RGB)",
              ("seg", "trn"): "TRN (predicted segmentation)",
+             ("seg+pose", "trn"): "TRN (predicted segmentation + pose)",
              ("oracle", "trn"): "TRN (ground-truth class maps: oracle)"}
 RANDOM = "Random retrieval"
 CONSTRAINED = " + constrained decoding"
@@ -151,7 +154,7 @@ def load_features(out: Path) -> dict[str, np.ndarray]:
     """The frame-feature cache of a run (`table.frame_stage`): the inputs whose features
     are written (all of them once the frame stage is done)."""
     folder = out / "features"
-    paths = {inp: folder / f"{inp}.npy" for inp in ("rgb", "seg", "oracle")}
+    paths = {inp: folder / f"{inp}.npy" for inp in INPUTS}
     return {inp: np.load(path) for inp, path in paths.items() if path.is_file()}
 
 
@@ -196,7 +199,9 @@ def evaluate_video(out: Path, device: str = "cpu") -> dict:
     clips = _clip_rows(run, features, rows)
     programs = _program_rows(run, features, rows)
     segment = json.loads((out / "frames" / "segment.json").read_text(encoding="utf-8"))
+    pose_path = out / "frames" / "pose.json"
+    pose = json.loads(pose_path.read_text(encoding="utf-8")) if pose_path.is_file() else None
     return {"train": summary, "rows": {r: len(v) for r, v in rows.items()},
             "labels": {r: label for r, label, _ in run.split.rows},
-            "clips": clips, "programs": programs, "segment": segment,
+            "clips": clips, "programs": programs, "segment": segment, "pose": pose,
             "eval_seconds": time.perf_counter() - start}

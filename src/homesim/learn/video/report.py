@@ -113,6 +113,16 @@ def _segment_line(result: dict) -> str:
     return f"Segmentation network (pixel accuracy / mean IoU): {parts}."
 
 
+def _pose_line(result: dict) -> str:
+    """The pose network's scores (a run trained before it had one has none)."""
+    if not result.get("pose"):
+        return "Pose network: none in this run."
+    parts = "; ".join(f"{part} {s['error_px']:.1f} px / {s['pck']:.1f} % / "
+                      f"{s['visibility']:.1f} %" for part, s in result["pose"]["scores"].items())
+    return ("Pose network (mean joint error in frame pixels / PCK within a fifth of the "
+            f"body's height / visibility right): {parts}.")
+
+
 def _times(train: dict) -> str:
     return ", ".join(f"{k} {v:.0f} s" for k, v in train["seconds"].items())
 
@@ -134,7 +144,7 @@ def table2_markdown(result: dict, machine: str) -> str:
         f"and the segmentation network are trained once (seed {cfg['backbone_seed']}). "
         "Every model keeps its best epoch on the validation part, which no test row "
         f"pools. Measured on: {machine}.", "",
-        _segment_line(result), "",
+        _segment_line(result), "", _pose_line(result), "",
         "## Left: step recognition in 2-second clips (mean per-class accuracy, %)", "",
         *_clip_lines(result), "",
         "## Right: whole videos to programs (LCS; Simulator % executes in the episode's "

@@ -9,6 +9,8 @@ order, into
     <store>/frames.npy   (N, 3, H, W) uint8   RGB
     <store>/maps.npy     (N, H/2, W/2) uint8  ground-truth class map (`classes` index)
     <store>/step.npy     (N,) int16           the episode step shown (-1: none)
+    <store>/joints.npy   (N, J, 3) float16    the agent's 2-D joints: x, y as shares of
+                                              the frame, visible (1/0)
     <store>/index.json   classes; per episode its part, key, first row, frame count,
                          home, agent, fps, step texts, title, description, program
 
@@ -31,7 +33,7 @@ import numpy as np
 from homesim.errors import HomesimError
 from homesim.files import write_text
 
-STORE_VERSION = 1
+STORE_VERSION = 2
 
 
 @dataclass(frozen=True)
@@ -64,6 +66,7 @@ class FrameStore:
         self.frames = np.load(root / "frames.npy", mmap_mode="r")
         self.maps = np.load(root / "maps.npy", mmap_mode="r")
         self.step = np.load(root / "step.npy")
+        self.joints = np.load(root / "joints.npy", mmap_mode="r")
 
     def part(self, name: str) -> list[StoredEpisode]:
         return [e for e in self.episodes if e.part == name]
@@ -106,10 +109,13 @@ def build_store(root: Path, items: list[tuple[str, str, Path]]) -> FrameStore:
     total = sum(n for _, n in metas)
     with np.load(items[0][2], allow_pickle=False) as data:
         frame_shape, map_shape = data["frames"].shape[1:], data["maps"].shape[1:]
+        joint_shape = data["joints"].shape[1:]
     root.mkdir(parents=True, exist_ok=True)
     frames = np.lib.format.open_memmap(root / "frames.npy", "w+", np.uint8,
                                        (total, *frame_shape))
     maps = np.lib.format.open_memmap(root / "maps.npy", "w+", np.uint8, (total, *map_shape))
+    joints = np.lib.format.open_memmap(root / "joints.npy", "w+", np.float16,
+                                       (total, *joint_shape))
     step = np.zeros(total, np.int16)
     stored, row = [], 0
     for (part, key, path), (meta, n) in zip(items, metas, strict=True):
@@ -117,13 +123,14 @@ def build_store(root: Path, items: list[tuple[str, str, Path]]) -> FrameStore:
             frames[row:row + n] = data["frames"]
             maps[row:row + n] = _lut(meta["classes"], index)[data["maps"]]
             step[row:row + n] = data["step"]
+            joints[row:row + n] = data["joints"]
         program = f"{meta['title']}\n{meta['description']}\n\n{meta['program']}"
         stored.append(StoredEpisode(key, part, row, n, meta["home"], meta["agent"],
                                     int(meta["fps"]), meta["steps"], program).__dict__)
         row += n
-    frames.flush()
-    maps.flush()
-    del frames, maps
+    for array in (frames, maps, joints):
+        array.flush()
+    del frames, maps, joints
     np.save(root / "step.npy", step)
     write_text(root / "index.json", json.dumps({"version": STORE_VERSION,
                                                 "classes": classes, "episodes": stored}),

@@ -6,9 +6,12 @@ video -> program models of every seed, each stage resumable.
 1. frame stage (once; seed `backbone_seed`): the RGB frame encoder, the segmentation
    network (`segment`; its pixel accuracy and mean IoU on validation and test frames go
    to ``OUT/frames/segment.json``), its predicted class map of every frame, and the map
-   encoders on ground-truth and on predicted maps (`framecnn`). Each model's 64-d
-   feature of every frame goes to ``OUT/features/<input>.npy``: the frame-feature cache
-   every seed and clip model reads.
+   encoders on ground-truth and on predicted maps (`framecnn`); the pose network
+   (`pose`; its joint error and PCK go to ``OUT/frames/pose.json``) and its predicted
+   joints of every frame. Each encoder's 64-d feature of every frame goes to
+   ``OUT/features/<input>.npy``, and ``seg+pose.npy`` joins the predicted maps' feature
+   with the predicted joints' descriptor: the frame-feature cache every seed and clip
+   model reads.
 2. per seed, ``OUT/seed-<seed>/``: the clip models (TRN on each input, single frame on
    RGB) and the video -> program models (MLE, PG (LCS), PG (LCS+Sim)) over the clip
    features of the TRN whose validation score is best among the inputs that are not the
@@ -45,6 +48,13 @@ from homesim.learn.video.framecnn import (
     frame_features,
     train_frame_cnn,
 )
+from homesim.learn.video.pose import (
+    PoseConfig,
+    pose_descriptor,
+    pose_scores,
+    predict_joints,
+    train_posenet,
+)
 from homesim.learn.video.segment import (
     SegConfig,
     predict_maps,
@@ -55,9 +65,15 @@ from homesim.learn.video.splits import Split
 from homesim.learn.video.store import FrameStore, StoredEpisode
 from homesim.learn.video.video2prog import Video2Prog, episode_features
 
-CLIP_MODELS = (("rgb", "trn"), ("rgb", "single"), ("seg", "trn"), ("oracle", "trn"))
-PERCEIVED = ("rgb", "seg")
+CLIP_MODELS = (("rgb", "trn"), ("rgb", "single"), ("seg", "trn"), ("seg+pose", "trn"),
+               ("oracle", "trn"))
+PERCEIVED = ("rgb", "seg", "seg+pose")
 """Inputs a model may read at test time (the oracle reads the ground truth)."""
+INPUTS = ("rgb", "seg", "seg+pose", "oracle")
+"""Every input's frame features (``OUT/features/<input>.npy``)."""
+ENCODED = ("rgb", "seg", "oracle")
+"""The inputs read through one frame encoder (`framecnn`): those an end-to-end clip model
+can hold; the others join features and read them fixed."""
 PROGRAM_MODELS = {"mle": "MLE", "pg_lcs": "PG (LCS)", "pg_lcs_sim": "PG (LCS+Sim)"}
 DEFAULT_CACHE = Path.home() / ".cache" / "homesim" / "video"
 Report = Callable[[str], None]
@@ -86,6 +102,10 @@ class VideoRunConfig:
     seg_frames_per_epoch: int = 40000
     seg_width: int = 16
     seg_lr: float = 2e-3
+    pose_epochs: int = 4
+    pose_frames_per_epoch: int = 40000
+    pose_width: int = 16
+    pose_lr: float = 2e-3
     clip_epochs: int = 20
     clip_lr: float = 1e-3
     clip_feature: int = 128
@@ -289,14 +309,71 @@ def _segmentation(run: Run) -> np.ndarray:
     return maps
 
 
+def pose_network(run: Run) -> np.ndarray:
+    """Train (or load) the pose network; its predicted joints of every frame
+    (OUT/features/joints.npy) and its scores (OUT/frames/pose.json)."""
+    path = run.out / "features" / "joints.npy"
+    if path.is_file():
+        return np.load(path)
+    start = time.perf_counter()
+    cfg, store = run.config, run.store
+    pose_cfg = PoseConfig(store.joints.shape[1], width=cfg.pose_width, epochs=cfg.pose_epochs,
+                          lr=cfg.pose_lr, seed=cfg.backbone_seed,
+                          frames_per_epoch=cfg.pose_frames_per_epoch)
+    folder = run.out / "frames"
+    folder.mkdir(parents=True, exist_ok=True)
+    model, fitted = train_posenet(pose_cfg, store.frames, store.joints,
+                                  store.rows(run.episodes("train")),
+                                  store.rows(run.episodes("val")), run.device,
+                                  folder / "pose.ckpt")
+    _save_model(model, folder / "pose.pt", best_epoch=fitted.best_epoch, scores=fitted.scores)
+    parts = {part: store.rows(store.part(part))
+             for part in [*run.split.parts("val"), *run.split.parts("test")]}
+    parts["all test"] = store.rows(run.episodes("test"))
+    scores = {part: pose_scores(model, store.frames, store.joints, rows)
+              for part, rows in parts.items()}
+    write_text(folder / "pose.json", json.dumps(
+        {"scores": scores, "best_epoch": fitted.best_epoch, "val": fitted.scores},
+        indent=2) + "\n", force=True)
+    joints = predict_joints(model, store.frames)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    np.save(path, joints)
+    run.timed("frames_pose", start)
+    return joints
+
+
+def with_pose(features: np.ndarray, joints: np.ndarray, train_rows: np.ndarray
+              ) -> np.ndarray:
+    """(N, width + descriptor) float16: the frame features and the joints' `pose_descriptor`,
+    each descriptor column standardised over `train_rows` and brought to the features'
+    spread (the clip model's first layer reads both on one scale)."""
+    desc = pose_descriptor(joints)
+    mean, std = desc[train_rows].mean(0), desc[train_rows].std(0) + 1e-6
+    spread = float(np.asarray(features[train_rows], np.float32).std())
+    joined = np.concatenate([np.asarray(features, np.float32),
+                             (desc - mean) / std * spread], 1)
+    return joined.astype(np.float16)
+
+
+def _joined(run: Run, name: str, features: np.ndarray, joints: np.ndarray) -> np.ndarray:
+    """`with_pose` of the features and joints, cached in OUT/features/<name>.npy."""
+    path = run.out / "features" / f"{name}.npy"
+    if path.is_file():
+        return np.load(path)
+    joined = with_pose(features, joints, run.store.rows(run.episodes("train")))
+    np.save(path, joined)
+    return joined
+
+
 def frame_stage(run: Run, labels: C.Labels) -> dict[str, np.ndarray]:
-    """Every frame encoder's feature of every frame (see the module)."""
+    """Every input's feature of every frame (see the module)."""
     per_row = frame_labels(run.store, labels)
     n = (len(labels.actions), len(labels.steps))
     rgb = _frame_encoder(run, "rgb", run.store.frames, per_row, n)
     oracle = _frame_encoder(run, "oracle", run.store.maps, per_row, n)
     seg = _frame_encoder(run, "seg", _segmentation(run), per_row, n)
-    return {"rgb": rgb, "seg": seg, "oracle": oracle}
+    seg_pose = _joined(run, "seg+pose", seg, pose_network(run))
+    return {"rgb": rgb, "seg": seg, "seg+pose": seg_pose, "oracle": oracle}
 
 
 def raw_inputs(run: Run, inp: str) -> np.ndarray:
@@ -319,8 +396,8 @@ def model_inputs(run: Run, model: C.ClipModel, features: dict[str, np.ndarray]
 
 def _backbone(run: Run, inp: str) -> tuple[dict | None, dict | None]:
     """The frame stage's encoder of `inp` (config, weights) for an end-to-end clip model;
-    (None, None) when the clip models read fixed features."""
-    if not run.config.clip_end_to_end:
+    (None, None) when the clip models read fixed features, and for joined inputs."""
+    if not run.config.clip_end_to_end or inp not in ENCODED:
         return None, None
     saved = torch.load(run.out / "frames" / f"{inp}.pt", map_location="cpu",
                        weights_only=True)
