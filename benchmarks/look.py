@@ -1,7 +1,7 @@
 """Bodies and close-ups on real programs in built-in and generated homes (issue 43).
 
 The programs and homes are fixed by seed in `_look_sets.py` (chosen before any tuning):
-`--set dev` (looked at while tuning) or `--set fresh` (only measured). Each program is run
+`--set dev` (looked at while tuning), `--set fresh` or `--set fresh2` (only measured). Each program is run
 as `homesim render` runs it (`homesim.run_program`: prepared, grounded, executed; then
 animated with grounding's standing spots and its close-ups planned). Printed per home and
 in total:
@@ -199,7 +199,7 @@ def _good(c: dict) -> bool:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--set", choices=("dev", "fresh"), default="dev")
+    ap.add_argument("--set", choices=tuple(HOMES), default="dev")
     ap.add_argument("--programs", type=int, default=20)
     ap.add_argument("--homes", nargs="+", default=None)
     ap.add_argument("--no-closeups", action="store_true")
