@@ -2,8 +2,8 @@
 
 The programs and homes are fixed by seed in `_look_sets.py` (chosen before any tuning):
 `--set dev` (looked at while tuning), `--set fresh` or `--set fresh2` (only measured).
-Each program is run as `homesim render` runs it (`homesim.run_program`: prepared, grounded, executed; then
-animated with grounding's standing spots and its close-ups planned). Printed per home and
+Each program is run as `homesim render` runs it (`homesim.run_program`: prepared,
+grounded, executed; then animated with grounding's standing spots and its close-ups planned). Printed per home and
 in total:
 
 (a) interpenetration: agent body parts (head, torso, forearm...: agent bodies) more than
