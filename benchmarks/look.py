@@ -1,10 +1,10 @@
 """Bodies and close-ups on real programs in built-in and generated homes (issue 43).
 
 The programs and homes are fixed by seed in `_look_sets.py` (chosen before any tuning):
-`--set dev` (looked at while tuning), `--set fresh` or `--set fresh2` (only measured).
-Each program is run as `homesim render` runs it (`homesim.run_program`: prepared,
-grounded, executed; then animated with grounding's standing spots and its close-ups planned). Printed per home and
-in total:
+`--set dev` (looked at while tuning), `--set fresh` or `--set fresh2` (only measured). Each
+program is run as `homesim render` runs it (`homesim.run_program`: prepared, grounded,
+executed; then animated with grounding's standing spots and its close-ups planned). Printed
+per home and in total:
 
 (a) interpenetration: agent body parts (head, torso, forearm...: agent bodies) more than
     3 cm inside any object's geom (its oriented box as posed; `homesim.render.clearance`)
