@@ -275,6 +275,16 @@ def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
     return features
 
 
+def scored_parts(run: Run) -> dict[str, np.ndarray]:
+    """The store rows a frame model is scored on: each validation and test part, and all
+    test parts together ("all test"); parts without frames are left out."""
+    store = run.store
+    parts = {part: store.rows(store.part(part))
+             for part in [*run.split.parts("val"), *run.split.parts("test")]}
+    parts["all test"] = store.rows(run.episodes("test"))
+    return {part: rows for part, rows in parts.items() if len(rows)}
+
+
 def _segmentation(run: Run) -> np.ndarray:
     """Train (or load) the segmentation network; its predicted map of every frame
     (OUT/features/segmaps.npy) and its scores (OUT/frames/segment.json)."""
@@ -294,11 +304,8 @@ def _segmentation(run: Run) -> np.ndarray:
                                  folder / "segment.ckpt")
     _save_model(model, folder / "segment.pt", best_epoch=fitted.best_epoch,
                 scores=fitted.scores)
-    scores = {part: segmentation_scores(model, store.frames, store.maps,
-                                        store.rows(store.part(part)))
-              for part in [*run.split.parts("val"), *run.split.parts("test")]}
-    scores["all test"] = segmentation_scores(model, store.frames, store.maps,
-                                             store.rows(run.episodes("test")))
+    scores = {part: segmentation_scores(model, store.frames, store.maps, rows)
+              for part, rows in scored_parts(run).items()}
     write_text(folder / "segment.json", json.dumps(
         {"scores": scores, "best_epoch": fitted.best_epoch, "val": fitted.scores},
         indent=2) + "\n", force=True)
@@ -327,11 +334,8 @@ def pose_network(run: Run) -> np.ndarray:
                                   store.rows(run.episodes("val")), run.device,
                                   folder / "pose.ckpt")
     _save_model(model, folder / "pose.pt", best_epoch=fitted.best_epoch, scores=fitted.scores)
-    parts = {part: store.rows(store.part(part))
-             for part in [*run.split.parts("val"), *run.split.parts("test")]}
-    parts["all test"] = store.rows(run.episodes("test"))
     scores = {part: pose_scores(model, store.frames, store.joints, rows)
-              for part, rows in parts.items()}
+              for part, rows in scored_parts(run).items()}
     write_text(folder / "pose.json", json.dumps(
         {"scores": scores, "best_epoch": fitted.best_epoch, "val": fitted.scores},
         indent=2) + "\n", force=True)
