@@ -63,3 +63,20 @@ def test_it_learns_to_place_joints_it_can_see():
     pred = predict_joints(model, frames, rows[:5])
     assert pred.shape == (5, 2, 3) and pred.dtype == np.float16
     assert ((pred[..., :2] >= 0) & (pred[..., :2] <= 1)).all()
+
+
+def test_joined_features_keep_the_features_and_bring_the_joints_to_their_spread():
+    from homesim.learn.video.table import with_pose
+
+    rng = np.random.default_rng(1)
+    features = rng.normal(0, 3, (50, 4)).astype(np.float16)
+    joints = np.concatenate([rng.uniform(0, 1, (50, 2, 2)), np.ones((50, 2, 1))], 2)
+    train = np.arange(40)
+    joined = with_pose(features, joints.astype(np.float16), train)
+    assert joined.shape == (50, 4 + 3 * 2 + 3) and joined.dtype == np.float16
+    assert np.array_equal(joined[:, :4], features)
+    desc = joined[train, 4:].astype(np.float32)
+    spread = float(features[train].astype(np.float32).std())
+    moving = desc.std(0) > 0.01  # the visibilities are all 1: constant columns stay 0
+    assert np.allclose(desc.mean(0), 0, atol=0.02)
+    assert np.allclose(desc.std(0)[moving], spread, rtol=0.02)
