@@ -18,17 +18,17 @@ from homesim.learn.video.pose import (
 
 
 def test_the_descriptor_is_each_joint_from_the_centre_in_body_heights():
-    # a head at the top and feet 0.5 of the frame below it; the third joint is unseen
-    joints = np.array([[[0.5, 0.2, 1.0], [0.5, 0.7, 1.0], [0.9, 0.9, 0.0]]], np.float32)
+    # a head at the top, feet 0.5 of the frame below it, a hidden hand between them
+    joints = np.array([[[0.5, 0.2, 1.0], [0.5, 0.7, 1.0], [0.8, 0.45, 0.0]]], np.float32)
     d = pose_descriptor(joints)
     assert d.shape == (1, 3 * 3 + 3)
     rel, vis, centre, height = d[0, :6], d[0, 6:9], d[0, 9:11], d[0, 11]
-    assert rel.tolist() == pytest.approx([0, -0.5, 0, 0.5, 0, 0])  # unseen: zero
+    assert rel.tolist() == pytest.approx([-0.2, -0.5, -0.2, 0.5, 0.4, 0], abs=1e-6)
     assert vis.tolist() == [1, 1, 0]
-    assert centre.tolist() == pytest.approx([0.5, 0.45]) and height == pytest.approx(0.5)
+    assert centre.tolist() == pytest.approx([0.6, 0.45]) and height == pytest.approx(0.5)
 
 
-def test_a_frame_without_visible_joints_has_a_finite_descriptor():
+def test_a_frame_without_joints_in_view_has_a_finite_descriptor():
     d = pose_descriptor(np.zeros((2, 4, 3), np.float32))
     assert np.isfinite(d).all() and d[:, :8].max() == 0
 
