@@ -103,7 +103,7 @@ class VideoRunConfig:
     seg_frames_per_epoch: int = 40000
     seg_width: int = 16
     seg_lr: float = 2e-3
-    pose_epochs: int = 4
+    pose_epochs: int = 6
     pose_frames_per_epoch: int = 40000
     pose_width: int = 16
     pose_lr: float = 2e-3
