@@ -44,7 +44,7 @@ class PoseConfig:
 
     joints: int
     width: int = 16  # channels of the half-size features (as `SegConfig.width`)
-    epochs: int = 6  # validation PCK still rose at the 6th (development plan: 50.4 % at 4)
+    epochs: int = 6  # validation PCK on the development plan: 51.7 % after 4, 54.9 % after 6
     batch_size: int = 64
     lr: float = 2e-3
     seed: int = 0
