@@ -35,7 +35,7 @@ started in the background (``cmd &`` without job control) inherits SIGINT ignore
 Python then never turns Ctrl-C into KeyboardInterrupt. Set in the child's own code, not
 with Popen's ``preexec_fn``: that runs between fork and exec, where a lock held by another
 thread of this process at the fork (the renderer's rasterizer threads, a thread pool)
-deadlocks the child before exec, and Popen then waits for the exec for ever: the likely
+deadlocks the child before exec, and Popen then waits for the exec for ever: a likely
 cause of CI stop 49, which hung until its time limit in the render-interrupt tests, after
 an in-process render had left such threads."""
 

@@ -39,7 +39,9 @@ def test_clips_are_two_seconds_with_their_step(tiny_dataset):
 
 def test_dataloader_workers_split_the_shards(tiny_dataset):
     alone = [(c["key"], c["clip_start"]) for c in ActivityClips(tiny_dataset)]
-    loader = DataLoader(ActivityClips(tiny_dataset), batch_size=2, num_workers=2)
+    # forked workers (the default) after this process decoded videos itself (the tests
+    # before); a worker that hangs fails the test in 120 s
+    loader = DataLoader(ActivityClips(tiny_dataset), batch_size=2, num_workers=2, timeout=120)
     seen = []
     for batch in loader:
         assert batch["rgb"].shape[1:] == (4, 24, 32, 3)

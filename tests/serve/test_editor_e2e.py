@@ -62,7 +62,7 @@ def test_editor_builds_runs_and_marks_the_failing_block(chromium, live_server, t
     done = subprocess.run(
         [node, str(SCRIPT), "--url", f"{live_server}/", "--screenshot", str(shot),
          "--chromium", str(chromium)],
-        cwd=WEB, capture_output=True, text=True, timeout=300)
+        cwd=WEB, capture_output=True, text=True, timeout=600)  # its slowest steps wait up to 180 s
     assert done.returncode == 0, (done.stdout + done.stderr).strip()[-2000:]
     assert '"ok":true' in done.stdout
     assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and shot.stat().st_size > 10_000

@@ -402,9 +402,10 @@ async function main() {
     await page.locator("#description").fill("Turn on the TV and watch it from the sofa.");
     await page.locator("#write").click();
     // The server never fits the writer's model: it is there ('homesim learn fit-writer',
-    // which make test runs first) and a write takes seconds, or the answer says so.
+    // which make test runs first) and a write takes seconds once it is loaded, or the
+    // answer says so. The first write loads it: over 60 s on a loaded two-core machine.
     await page.waitForFunction(() => /^✓ written|^✗ written|homesim data fetch|fit-writer|not available/
-      .test(document.querySelector("#status").textContent), null, { timeout: 60000 });
+      .test(document.querySelector("#status").textContent), null, { timeout: 180000 });
     const writeStatus = await page.locator("#status").textContent();
     const writtenBlocks = await page.evaluate(() => window.homesimEditor.workspace()
       .getAllBlocks(false).map((b) => b.type));

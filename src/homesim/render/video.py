@@ -109,7 +109,9 @@ def iter_video(source: bytes | Path, size: tuple[int, int] | None = None
             if size is not None and (frame.width, frame.height) != size:
                 raise DataError(f"video frames are {frame.width}x{frame.height}, "
                                 f"expected {size[0]}x{size[1]}")
-            yield frame.to_ndarray(format="rgb24")
+            # threads=1: PyAV's default scales with a thread pool, which hangs in a
+            # process forked after one was used (a DataLoader's forked workers)
+            yield frame.to_ndarray(format="rgb24", threads=1)
 
 
 def decode_video(source: bytes | Path, width: int, height: int) -> np.ndarray:

@@ -88,10 +88,13 @@ def _write_atomically(path: Path, data: bytes) -> None:
 
 def limit_worker(timeout: float | None) -> None:
     """A render worker's own limits: lower priority, `WORKER_MEMORY_BYTES`, and an alarm
-    that ends it a little after `timeout` even if the server that should stop it is gone."""
+    that ends it a little after `timeout` even if the server that should stop it is gone
+    (SIGALRM's default action: a handler a forked worker inherits, e.g. a test runner's
+    time limit, would turn the alarm into an exception its job may catch)."""
     lower_priority()
     limit_memory(WORKER_MEMORY_BYTES)
     if timeout:
+        signal.signal(signal.SIGALRM, signal.SIG_DFL)
         signal.alarm(math.ceil(timeout) + 2)
 
 

@@ -42,6 +42,7 @@ from homesim.learn.text.train import BestOnDev, TrainConfig, train_mle, train_pg
 from homesim.learn.video import clips as C
 from homesim.learn.video.cache import VideoFormat
 from homesim.learn.video.data import example, read_store
+from homesim.learn.video.fit import FitResult
 from homesim.learn.video.framecnn import (
     FrameCNNConfig,
     FrameLabels,
@@ -102,7 +103,7 @@ class VideoRunConfig:
     seg_frames_per_epoch: int = 40000
     seg_width: int = 16
     seg_lr: float = 2e-3
-    pose_epochs: int = 4
+    pose_epochs: int = 6
     pose_frames_per_epoch: int = 40000
     pose_width: int = 16
     pose_lr: float = 2e-3
@@ -275,6 +276,23 @@ def _frame_encoder(run: Run, name: str, data: np.ndarray, labels: FrameLabels,
     return features
 
 
+def scored_parts(run: Run) -> dict[str, np.ndarray]:
+    """The store rows a frame model is scored on: each validation and test part, and all
+    test parts together ("all test"); parts without frames are left out."""
+    store = run.store
+    parts = {part: store.rows(store.part(part))
+             for part in [*run.split.parts("val"), *run.split.parts("test")]}
+    parts["all test"] = store.rows(run.episodes("test"))
+    return {part: rows for part, rows in parts.items() if len(rows)}
+
+
+def _write_scores(path: Path, fitted: FitResult, scores: dict[str, dict[str, float]]
+                  ) -> None:
+    """A frame model's scores per part, its best epoch and validation curve, as JSON."""
+    write_text(path, json.dumps({"scores": scores, "best_epoch": fitted.best_epoch,
+                                 "val": fitted.scores}, indent=2) + "\n", force=True)
+
+
 def _segmentation(run: Run) -> np.ndarray:
     """Train (or load) the segmentation network; its predicted map of every frame
     (OUT/features/segmaps.npy) and its scores (OUT/frames/segment.json)."""
@@ -294,14 +312,9 @@ def _segmentation(run: Run) -> np.ndarray:
                                  folder / "segment.ckpt")
     _save_model(model, folder / "segment.pt", best_epoch=fitted.best_epoch,
                 scores=fitted.scores)
-    scores = {part: segmentation_scores(model, store.frames, store.maps,
-                                        store.rows(store.part(part)))
-              for part in [*run.split.parts("val"), *run.split.parts("test")]}
-    scores["all test"] = segmentation_scores(model, store.frames, store.maps,
-                                             store.rows(run.episodes("test")))
-    write_text(folder / "segment.json", json.dumps(
-        {"scores": scores, "best_epoch": fitted.best_epoch, "val": fitted.scores},
-        indent=2) + "\n", force=True)
+    _write_scores(folder / "segment.json", fitted, {
+        part: segmentation_scores(model, store.frames, store.maps, rows)
+        for part, rows in scored_parts(run).items()})
     maps = predict_maps(model, store.frames)
     path.parent.mkdir(parents=True, exist_ok=True)
     np.save(path, maps)
@@ -327,14 +340,9 @@ def pose_network(run: Run) -> np.ndarray:
                                   store.rows(run.episodes("val")), run.device,
                                   folder / "pose.ckpt")
     _save_model(model, folder / "pose.pt", best_epoch=fitted.best_epoch, scores=fitted.scores)
-    parts = {part: store.rows(store.part(part))
-             for part in [*run.split.parts("val"), *run.split.parts("test")]}
-    parts["all test"] = store.rows(run.episodes("test"))
-    scores = {part: pose_scores(model, store.frames, store.joints, rows)
-              for part, rows in parts.items()}
-    write_text(folder / "pose.json", json.dumps(
-        {"scores": scores, "best_epoch": fitted.best_epoch, "val": fitted.scores},
-        indent=2) + "\n", force=True)
+    _write_scores(folder / "pose.json", fitted, {
+        part: pose_scores(model, store.frames, store.joints, rows)
+        for part, rows in scored_parts(run).items()})
     joints = predict_joints(model, store.frames)
     path.parent.mkdir(parents=True, exist_ok=True)
     np.save(path, joints)
