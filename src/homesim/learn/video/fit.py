@@ -105,3 +105,21 @@ def batches(n: int, size: int, rng: np.random.Generator, min_batch: int = 1
     `min_batch` is dropped)."""
     order = rng.permutation(n)
     return [order[i:i + size] for i in range(0, n, size) if len(order[i:i + size]) >= min_batch]
+
+
+def frame_epoch(opt: torch.optim.Optimizer, rng: np.random.Generator, rows: np.ndarray,
+                per_epoch: int, batch_size: int,
+                batch_loss: Callable[[np.ndarray], torch.Tensor]) -> float:
+    """One epoch of a frame model: `per_epoch` of `rows` drawn (all if fewer), shuffled
+    into batches of `batch_size` (each sorted: memory-mapped reads in order), an optimiser
+    step on `batch_loss(rows of the batch)` each; the mean loss."""
+    drawn = rows if len(rows) <= per_epoch else np.sort(
+        rng.choice(rows, per_epoch, replace=False))
+    losses = []
+    for batch in batches(len(drawn), batch_size, rng, min_batch=2):
+        loss = batch_loss(np.sort(drawn[batch]))
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+        losses.append(float(loss.detach()))
+    return float(np.mean(losses)) if losses else 0.0

@@ -30,7 +30,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.video.fit import FitResult, batches, fit
+from homesim.learn.video.fit import FitResult, fit, frame_epoch
 
 INPUTS = ("rgb", "map")
 IGNORE = -100
@@ -141,22 +141,15 @@ def train_frame_cnn(cfg: FrameCNNConfig, data: np.ndarray, labels: FrameLabels,
     w_a = class_weights(labels.actions[rows], cfg.n_actions).to(device)
     w_s = class_weights(labels.steps[rows], cfg.n_steps).to(device)
 
+    def batch_loss(idx: np.ndarray) -> torch.Tensor:
+        la, ls = model.heads(_inputs(data, idx).to(device))
+        ya = torch.from_numpy(labels.actions[idx]).long().to(device)
+        ys = torch.from_numpy(labels.steps[idx]).long().to(device)
+        return (F.cross_entropy(la, ya, w_a, ignore_index=IGNORE)
+                + F.cross_entropy(ls, ys, w_s, ignore_index=IGNORE))
+
     def step(opt: torch.optim.Optimizer, rng: np.random.Generator) -> float:
-        drawn = rows if len(rows) <= cfg.frames_per_epoch else np.sort(
-            rng.choice(rows, cfg.frames_per_epoch, replace=False))
-        losses = []
-        for batch in batches(len(drawn), cfg.batch_size, rng, min_batch=2):
-            idx = np.sort(drawn[batch])
-            la, ls = model.heads(_inputs(data, idx).to(device))
-            ya = torch.from_numpy(labels.actions[idx]).long().to(device)
-            ys = torch.from_numpy(labels.steps[idx]).long().to(device)
-            loss = (F.cross_entropy(la, ya, w_a, ignore_index=IGNORE)
-                    + F.cross_entropy(ls, ys, w_s, ignore_index=IGNORE))
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            losses.append(float(loss.detach()))
-        return float(np.mean(losses)) if losses else 0.0
+        return frame_epoch(opt, rng, rows, cfg.frames_per_epoch, cfg.batch_size, batch_loss)
 
     score = None
     if val_rows is not None and len(val_rows):

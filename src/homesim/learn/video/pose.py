@@ -31,7 +31,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.video.fit import FitResult, batches, fit
+from homesim.learn.video.fit import FitResult, fit, frame_epoch
 from homesim.learn.video.segment import SegConfig, SegNet
 
 PCK_SHARE = 0.2
@@ -101,21 +101,14 @@ def train_posenet(cfg: PoseConfig, frames: np.ndarray, joints: np.ndarray,
     model = PoseNet(cfg).to(device)
     map_size = (frames.shape[3] // 2, frames.shape[2] // 2)
 
+    def batch_loss(idx: np.ndarray) -> torch.Tensor:
+        x = torch.from_numpy(np.asarray(frames[idx])).to(device)
+        y = torch.from_numpy(np.asarray(joints[idx], np.float32)).to(device)
+        return pose_loss(model(x), y, map_size)
+
     def step(opt: torch.optim.Optimizer, rng: np.random.Generator) -> float:
-        rows = train_rows
-        if len(rows) > cfg.frames_per_epoch:
-            rows = np.sort(rng.choice(rows, cfg.frames_per_epoch, replace=False))
-        losses = []
-        for batch in batches(len(rows), cfg.batch_size, rng, min_batch=2):
-            idx = np.sort(rows[batch])
-            x = torch.from_numpy(np.asarray(frames[idx])).to(device)
-            y = torch.from_numpy(np.asarray(joints[idx], np.float32)).to(device)
-            loss = pose_loss(model(x), y, map_size)
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            losses.append(float(loss.detach()))
-        return float(np.mean(losses)) if losses else 0.0
+        return frame_epoch(opt, rng, train_rows, cfg.frames_per_epoch, cfg.batch_size,
+                           batch_loss)
 
     score = None
     if val_rows is not None and len(val_rows):

@@ -21,7 +21,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.video.fit import FitResult, batches, fit
+from homesim.learn.video.fit import FitResult, fit, frame_epoch
 
 
 @dataclass
@@ -88,21 +88,14 @@ def train_segnet(cfg: SegConfig, frames: np.ndarray, maps: np.ndarray, train_row
     torch.manual_seed(cfg.seed)
     model = SegNet(cfg).to(device)
 
+    def batch_loss(idx: np.ndarray) -> torch.Tensor:
+        x = torch.from_numpy(np.asarray(frames[idx])).to(device)
+        y = torch.from_numpy(np.asarray(maps[idx]).astype(np.int64)).to(device)
+        return pixel_loss(model(x), y.clamp(max=cfg.num_classes - 1))
+
     def step(opt: torch.optim.Optimizer, rng: np.random.Generator) -> float:
-        rows = train_rows
-        if len(rows) > cfg.frames_per_epoch:
-            rows = np.sort(rng.choice(rows, cfg.frames_per_epoch, replace=False))
-        losses = []
-        for batch in batches(len(rows), cfg.batch_size, rng, min_batch=2):
-            idx = np.sort(rows[batch])
-            x = torch.from_numpy(np.asarray(frames[idx])).to(device)
-            y = torch.from_numpy(np.asarray(maps[idx]).astype(np.int64)).to(device)
-            loss = pixel_loss(model(x), y.clamp(max=cfg.num_classes - 1))
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            losses.append(float(loss.detach()))
-        return float(np.mean(losses)) if losses else 0.0
+        return frame_epoch(opt, rng, train_rows, cfg.frames_per_epoch, cfg.batch_size,
+                           batch_loss)
 
     score = None
     if val_rows is not None and len(val_rows):
