@@ -123,3 +123,17 @@ def frame_epoch(opt: torch.optim.Optimizer, rng: np.random.Generator, rows: np.n
         opt.step()
         losses.append(float(loss.detach()))
     return float(np.mean(losses)) if losses else 0.0
+
+
+@torch.no_grad()
+def over_frames(model: nn.Module, frames: np.ndarray, rows: np.ndarray | None,
+                batch_size: int, read: Callable[[torch.Tensor], np.ndarray]
+                ) -> list[np.ndarray]:
+    """`read(model(batch))` of each batch of `rows` of `frames` (every frame when None),
+    in order, the model in eval mode on its device."""
+    model.eval()
+    device = next(model.parameters()).device
+    rows = np.arange(len(frames)) if rows is None else rows
+    return [read(model(torch.from_numpy(np.asarray(frames[rows[i:i + batch_size]]))
+                       .to(device)))
+            for i in range(0, len(rows), batch_size)]

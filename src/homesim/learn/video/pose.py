@@ -31,7 +31,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.video.fit import FitResult, fit, frame_epoch
+from homesim.learn.video.fit import FitResult, fit, frame_epoch, over_frames
 from homesim.learn.video.segment import SegConfig, SegNet
 
 PCK_SHARE = 0.2
@@ -124,15 +124,11 @@ def predict_joints(model: PoseNet, frames: np.ndarray, rows: np.ndarray | None =
                    batch_size: int = 256) -> np.ndarray:
     """(len(rows), J, 3) float16: each joint's x and y shares and its visibility's
     probability."""
-    model.eval()
-    device = next(model.parameters()).device
-    rows = np.arange(len(frames)) if rows is None else rows
-    out = []
-    for i in range(0, len(rows), batch_size):
-        x = torch.from_numpy(np.asarray(frames[rows[i:i + batch_size]])).to(device)
-        pred = model(x)
+    def read(pred: torch.Tensor) -> np.ndarray:
         pred[..., 2] = torch.sigmoid(pred[..., 2])
-        out.append(pred.cpu().numpy().astype(np.float16))
+        return pred.cpu().numpy().astype(np.float16)
+
+    out = over_frames(model, frames, rows, batch_size, read)
     return np.concatenate(out) if out else np.zeros((0, model.cfg.joints, 3), np.float16)
 
 

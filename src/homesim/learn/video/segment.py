@@ -21,7 +21,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from homesim.learn.video.fit import FitResult, fit, frame_epoch
+from homesim.learn.video.fit import FitResult, fit, frame_epoch, over_frames
 
 
 @dataclass
@@ -110,13 +110,8 @@ def train_segnet(cfg: SegConfig, frames: np.ndarray, maps: np.ndarray, train_row
 def predict_maps(model: SegNet, frames: np.ndarray, rows: np.ndarray | None = None,
                  batch_size: int = 256) -> np.ndarray:
     """(len(rows), H/2, W/2) uint8: the predicted class of every pixel."""
-    model.eval()
-    device = next(model.parameters()).device
-    rows = np.arange(len(frames)) if rows is None else rows
-    out = []
-    for i in range(0, len(rows), batch_size):
-        x = torch.from_numpy(np.asarray(frames[rows[i:i + batch_size]])).to(device)
-        out.append(model(x).argmax(1).to(torch.uint8).cpu().numpy())
+    out = over_frames(model, frames, rows, batch_size,
+                      lambda logits: logits.argmax(1).to(torch.uint8).cpu().numpy())
     h, w = frames.shape[2] // 2, frames.shape[3] // 2
     return np.concatenate(out) if out else np.zeros((0, h, w), np.uint8)
 
