@@ -286,11 +286,22 @@ def scored_parts(run: Run) -> dict[str, np.ndarray]:
     return {part: rows for part, rows in parts.items() if len(rows)}
 
 
-def _write_scores(path: Path, fitted: FitResult, scores: dict[str, dict[str, float]]
-                  ) -> None:
-    """A frame model's scores per part, its best epoch and validation curve, as JSON."""
-    write_text(path, json.dumps({"scores": scores, "best_epoch": fitted.best_epoch,
-                                 "val": fitted.scores}, indent=2) + "\n", force=True)
+def _keep_frame_model(run: Run, name: str, model: torch.nn.Module, fitted: FitResult,
+                     scores: dict[str, dict[str, float]], predicted: np.ndarray, path: Path,
+                     start: float) -> np.ndarray:
+    """Save a trained frame model (OUT/frames/<name>.pt), its scores per part with its
+    best epoch and validation curve (<name>.json) and its prediction for every frame
+    (`path`); record the stage's time. Returns the prediction."""
+    folder = run.out / "frames"
+    _save_model(model, folder / f"{name}.pt", best_epoch=fitted.best_epoch,
+                scores=fitted.scores)
+    write_text(folder / f"{name}.json", json.dumps(
+        {"scores": scores, "best_epoch": fitted.best_epoch, "val": fitted.scores},
+        indent=2) + "\n", force=True)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    np.save(path, predicted)
+    run.timed(f"frames_{name}", start)
+    return predicted
 
 
 def _segmentation(run: Run) -> np.ndarray:
@@ -310,16 +321,10 @@ def _segmentation(run: Run) -> np.ndarray:
                                  store.rows(run.episodes("train")),
                                  store.rows(run.episodes("val")), run.device,
                                  folder / "segment.ckpt")
-    _save_model(model, folder / "segment.pt", best_epoch=fitted.best_epoch,
-                scores=fitted.scores)
-    _write_scores(folder / "segment.json", fitted, {
-        part: segmentation_scores(model, store.frames, store.maps, rows)
-        for part, rows in scored_parts(run).items()})
-    maps = predict_maps(model, store.frames)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    np.save(path, maps)
-    run.timed("frames_segment", start)
-    return maps
+    scores = {part: segmentation_scores(model, store.frames, store.maps, rows)
+              for part, rows in scored_parts(run).items()}
+    return _keep_frame_model(run, "segment", model, fitted, scores,
+                             predict_maps(model, store.frames), path, start)
 
 
 def pose_network(run: Run) -> np.ndarray:
@@ -339,15 +344,10 @@ def pose_network(run: Run) -> np.ndarray:
                                   store.rows(run.episodes("train")),
                                   store.rows(run.episodes("val")), run.device,
                                   folder / "pose.ckpt")
-    _save_model(model, folder / "pose.pt", best_epoch=fitted.best_epoch, scores=fitted.scores)
-    _write_scores(folder / "pose.json", fitted, {
-        part: pose_scores(model, store.frames, store.joints, rows)
-        for part, rows in scored_parts(run).items()})
-    joints = predict_joints(model, store.frames)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    np.save(path, joints)
-    run.timed("frames_pose", start)
-    return joints
+    scores = {part: pose_scores(model, store.frames, store.joints, rows)
+              for part, rows in scored_parts(run).items()}
+    return _keep_frame_model(run, "pose", model, fitted, scores,
+                             predict_joints(model, store.frames), path, start)
 
 
 def with_pose(features: np.ndarray, joints: np.ndarray, train_rows: np.ndarray
