@@ -164,7 +164,6 @@ def pose_descriptor(joints: np.ndarray) -> np.ndarray:
     the visibilities, the centre and the height."""
     j = np.asarray(joints, np.float32)
     centre = j[..., :2].mean(1)
-    height = (j[..., 1].max(1) - j[..., 1].min(1))[:, None] if j.shape[1] else \
-        np.zeros((len(j), 1), np.float32)
+    height = (j[..., 1].max(1) - j[..., 1].min(1))[:, None]
     rel = (j[..., :2] - centre[:, None]) / np.maximum(height, 0.02)[..., None]
     return np.concatenate([rel.reshape(len(j), -1), j[..., 2], centre, height], 1)
