@@ -145,3 +145,34 @@ def test_a_reach_whose_body_enters_something_bows_less(touches):
     assert plan.touches == touches
     clear = ReachPlan(replace(deep, joints={"spine_pitch": 0.3}), 0.3)
     assert planner.upright(clear, "r", np.array([1.0, 0.0, 1.0])) is clear
+
+
+class _WallAtTheLeftHand(ReachPlanner):
+    """A planner whose body enters a wall while the left arm hangs at the side (gen-4's
+    bathroom: the free hand in the wall beside the sink as the right one takes the
+    faucet): deep unless the left elbow is bent."""
+
+    def __init__(self, spare):
+        self.spare, self.tried = spare, []
+
+    def inside(self, pose: Pose) -> float:
+        self.tried.append(pose)
+        return 0.0 if pose.joints.get("l_elbow", 0.0) < -1.0 else 0.045
+
+
+@pytest.mark.parametrize("spare", ["l", None])
+def test_the_spare_arm_comes_out_of_the_wall_beside_the_agent(spare):
+    """A reach whose body passes into something tries the free arm (holding nothing) out
+    of the way (`SPARE`): before the belly; with no spare arm (the other hand holds
+    something, or it is the one reaching) the pose is kept."""
+    from homesim.render.poses import SPARE
+
+    planner = _WallAtTheLeftHand(spare)
+    hanging = Pose(0.0, 0.0, 0.96, 0.0, joints={"l_elbow": -0.22, "r_elbow": -1.0})
+    pose, depth = planner.spare_arm(hanging, "r", 0.045)
+    if spare is None:
+        assert pose is hanging and depth == 0.045 and not planner.tried
+        return
+    assert depth == 0.0 and pose.joints["l_elbow"] == SPARE[0]["elbow"]
+    assert pose.joints["r_elbow"] == -1.0  # the reaching arm as the IK left it
+    assert planner.spare_arm(hanging, "l", 0.045) == (hanging, 0.045)  # not the reaching one

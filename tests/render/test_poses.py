@@ -94,3 +94,16 @@ def test_walk_cycle_bends_softly():
     assert min(knees) > 0.0 and 0.7 < max(knees) < 1.1  # never locked straight, no 90 deg
     elbows = [walk_cycle(base, p).joints["r_elbow"] for p in phases]
     assert all(-0.6 < e < -0.2 for e in elbows)
+
+
+def test_a_spared_arm_mirrors_roll_and_yaw_and_carrying_is_one_of_them():
+    from homesim.render.poses import CARRY, SPARE, carrying, spared
+
+    base = standing(AGENTS["male1"], (0, 0), 0.0)
+    for angles in SPARE:
+        left, right = spared(base, "l", angles), spared(base, "r", angles)
+        assert left.joints["l_elbow"] == right.joints["r_elbow"] == angles["elbow"]
+        assert left.joints["l_sh_roll"] == -right.joints["r_sh_roll"]
+        assert left.joints["l_sh_yaw"] == -right.joints["r_sh_yaw"]
+        assert left.joints["r_elbow"] == base.joints["r_elbow"]  # the other arm as it was
+    assert carrying(base, "r") == spared(base, "r", CARRY)

@@ -22,7 +22,7 @@ from homesim.render.gl import mujoco
 from homesim.render.ik import MAX_LEAN, ArmIK, Grasp, crouched
 from homesim.render.layout import Box, Layout
 from homesim.render.navigation import segment_hits, wall_boxes
-from homesim.render.poses import Pose, standing, write_qpos
+from homesim.render.poses import SPARE, Pose, spared, standing, write_qpos
 
 TOUCH = 0.01
 """Metres: a hand this close to an object's surface touches it (grab, press, open)."""
@@ -255,6 +255,9 @@ class ReachPlanner:
         takes or holds); set by the caller before `plan`."""
         self.max_lean = MAX_LEAN
         """Radians: how far the spine may bend forward in the reaches being weighed."""
+        self.spare: str | None = None
+        """The arm (side) that holds nothing and does not reach, which a reach whose body
+        passes into something may move out of the way (`SPARE`); set by the caller."""
 
     def inside(self, pose: Pose) -> float:
         """How deep (m) the body in `pose` passes into anything but what the hands may be
@@ -266,6 +269,23 @@ class ReachPlanner:
         mujoco.mj_kinematics(ik.model, ik.data)
         found = self.clearance.penetrations(ik.data, self.hands_in, CLEAR)
         return max((p.depth for p in found), default=0.0)
+
+    def spare_arm(self, pose: Pose, side: str, depth: float) -> tuple[Pose, float]:
+        """`pose` (whose body lies `depth` deep in something) with the spare arm (not
+        `side`'s) at the first of `SPARE` that brings the body clear, else the least deep
+        of them if less deep than `depth`; and how deep the body then is."""
+        other = self.spare
+        if other is None or other == side:
+            return pose, depth
+        best = (pose, depth)
+        for angles in SPARE:
+            tried = spared(pose, other, angles)
+            deep = self.inside(tried)
+            if deep < best[1] - 1e-3:
+                best = (tried, deep)
+            if deep <= CLEAR:
+                break
+        return best
 
     def fits(self, xy: np.ndarray) -> bool:
         """Whether the agent may stand at `xy`: the nearest cell of the floor model
@@ -311,7 +331,10 @@ class ReachPlanner:
             else:
                 reached, _ = self.ik.reach(low, side, point, grip, max_lean=self.max_lean)
                 gap = float(np.linalg.norm(self.ik.held_point(reached, side, grip) - point))
-            plan = ReachPlan(reached, gap, self.inside(reached) if gap <= TOUCH else 0.0, wrist)
+            inside = self.inside(reached) if gap <= TOUCH else 0.0
+            if inside > CLEAR:
+                reached, inside = self.spare_arm(reached, side, inside)
+            plan = ReachPlan(reached, gap, inside, wrist)
             if best is None or _better(plan, best):
                 best = plan
             if plan.touches and plan.clear:

@@ -90,10 +90,25 @@ CARRY = {"sh_pitch": -0.25, "sh_roll": 0.15, "elbow": -1.35, "sh_yaw": 0.2}
 
 
 def carrying(pose: Pose, side: str) -> Pose:
+    return spared(pose, side, CARRY)
+
+
+SPARE: tuple[dict[str, float], ...] = (
+    {"sh_pitch": -0.35, "sh_roll": 0.05, "elbow": -1.6, "sh_yaw": 0.45},
+    {"sh_pitch": -0.6, "sh_roll": 0.0, "elbow": -2.2, "sh_yaw": 0.3},
+    {"sh_pitch": 0.05, "sh_roll": 0.0, "elbow": -0.5, "sh_yaw": 0.0},
+)
+"""Arm angles (per side, roll and yaw mirrored as `CARRY`'s) a free arm may take out of
+the way of a wall or furniture beside the agent: the forearm across the belly, the hand
+before the chest, hanging close to the body."""
+
+
+def spared(pose: Pose, side: str, angles: dict[str, float]) -> Pose:
+    """`pose` with the `side` arm at `angles` (one of `SPARE`, or `CARRY`)."""
     sign = 1.0 if side == "l" else -1.0
     return pose.with_joints(**{
-        f"{side}_sh_pitch": CARRY["sh_pitch"], f"{side}_sh_roll": sign * CARRY["sh_roll"],
-        f"{side}_elbow": CARRY["elbow"], f"{side}_sh_yaw": -sign * CARRY["sh_yaw"]})
+        f"{side}_sh_pitch": angles["sh_pitch"], f"{side}_sh_roll": sign * angles["sh_roll"],
+        f"{side}_elbow": angles["elbow"], f"{side}_sh_yaw": -sign * angles["sh_yaw"]})
 
 
 def _swing_knee(phase: float) -> float:
