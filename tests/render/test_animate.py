@@ -506,3 +506,48 @@ def test_put_back_on_a_high_shelf_is_done_the_way_it_was_taken():
     tl = Animator(scene, g, AGENTS["male1"], fps=10).run(result)
     (took,), (put,) = tl.attaches, tl.releases
     assert took.gap <= 0.01 and put.gap <= 0.01  # let go where the hand brought it
+
+
+def test_a_carried_object_keeps_the_wrist_it_was_taken_with(animated):
+    """The carry pose keeps the wrist's turn of the grasp (a glass taken from the side
+    came back over the straightened wrist, the forearm 3 cm inside it: scene 1, #340)."""
+    from homesim.render.ik import wrist_joints
+
+    _, scene, tl = animated
+    grab = tl.attaches[0]
+    names = [scene.joint_qpos[j] for j in wrist_joints(grab.side)]
+    taken = tl.qpos[grab.frame][names]
+    assert np.any(np.abs(taken) > 1e-3)  # the grasp turned the wrist
+    for f in range(grab.frame + 1, tl.step_frames[6][0], 5):  # carried to the fridge
+        np.testing.assert_allclose(tl.qpos[f][names], taken, atol=1e-9)
+
+
+def test_washing_the_hands_brings_the_other_hand_before_the_body():
+    """Wash the hands: the free arm comes before the belly (not hanging into a wall beside
+    the sink: gen-4's bathroom) and the other hand goes to it; then it hangs again."""
+    from homesim.render.poses import SPARE
+    from homesim.world.graph import EnvironmentGraph
+
+    from .conftest import box_home_dict
+
+    d = box_home_dict()
+    d["nodes"].append({"id": 900, "class_name": "hands_both", "category": "Props",
+                       "properties": ["BODY_PART"]})
+    d["edges"] += [{"from_id": 900, "relation_type": "INSIDE", "to_id": 1},
+                   {"from_id": 10, "relation_type": "CLOSE", "to_id": 900},
+                   {"from_id": 900, "relation_type": "CLOSE", "to_id": 10}]
+    g = EnvironmentGraph.from_dict(d)
+    scene = build_scene(g, AGENTS["male1"], max_size=(64, 48))
+    result = homesim.execute(homesim.parse_program("[Wash] <hands_both> (900)"), g,
+                             trace=True, reference=True)
+    tl = Animator(scene, g, AGENTS["male1"], fps=10, seed=0).run(result)
+    it = tl.interactions[-1]
+    assert it.side == "r" and it.nodes == (900,)
+    elbow = scene.joint_qpos["l_elbow"]
+    assert tl.qpos[it.peak][elbow] == pytest.approx(SPARE[0]["elbow"])
+    assert tl.qpos[-1][elbow] == pytest.approx(tl.qpos[0][elbow])
+    data = mujoco.MjData(scene.model)
+    data.qpos[:] = tl.qpos[it.peak]
+    mujoco.mj_kinematics(scene.model, data)
+    left, right = data.site("l_palm").xpos, data.site("r_palm").xpos
+    assert np.linalg.norm(left - right) < 0.12

@@ -24,7 +24,7 @@ from homesim.program.actions import ACTIONS
 from homesim.render.agent import AgentShape
 from homesim.render.clearance import Clearance
 from homesim.render.gl import mujoco
-from homesim.render.ik import ArmIK, Grasp
+from homesim.render.ik import ArmIK, Grasp, wrist_joints
 from homesim.render.interact import (
     CLEAR,
     COMFORT_LEAN,
@@ -40,12 +40,14 @@ from homesim.render.interact import (
 from homesim.render.layout import SEAT_HEIGHT, Box, room_of_point
 from homesim.render.navigation import build_grid, plan_path, walled
 from homesim.render.poses import (
+    SPARE,
     Pose,
     blend,
     carrying,
     gripping,
     lying,
     sitting,
+    spared,
     standing,
     walk_cycle,
     write_qpos,
@@ -222,7 +224,7 @@ class Animator:
         props = self.props
         for side in props.held:
             if pose.tilt == 0.0 and side not in self.reaching:
-                pose = carrying(pose, side)
+                pose = self._carrying(pose, side)
         pose = gripping(pose, props.held)  # hands close on what they hold
         write_qpos(self.qpos, pose, self.scene.joint_qpos)
         for n, angle in props.hinge_angle.items():
@@ -251,8 +253,13 @@ class Animator:
         """`pose` as `emit` draws it when the `side` arm is not reaching: carrying what
         that hand holds (standing or sitting upright)."""
         if side in self.props.held and pose.tilt == 0.0:
-            return carrying(pose, side)
+            return self._carrying(pose, side)
         return pose
+
+    def _carrying(self, pose: Pose, side: str) -> Pose:
+        """`pose` with the `side` arm carrying (`CARRY`), its wrist turned as it took
+        what it holds."""
+        return carrying(pose, side).with_joints(**self.props.wrist.get(side, {}))
 
     def ray_test(self, skip: tuple[int, ...] = ()) -> Callable[[np.ndarray, np.ndarray,
                                                                   float], bool]:
@@ -420,6 +427,8 @@ class Animator:
                 if n in self.scene.mocap:
                     data.mocap_pos[self.scene.mocap[n]] = (0.0, 0.0, -50.0)
         self.planner.hands_in = {side: set(nodes) | {n for n in props.held.values()}}
+        other = "l" if side == "r" else "r"
+        self.planner.spare = None if other in props.held else other
 
     def note_interaction(self, nodes: tuple[int, ...], side: str, start: int,
                          peak: int) -> None:
@@ -942,6 +951,7 @@ def let_go(anim: Animator, rec: StepRecord) -> None:
     def release() -> None:
         del props.held[side]
         props.grip.pop(side, None)
+        props.wrist.pop(side, None)
     done = anim.reach(side, anim.forward(0.4) + np.r_[0, 0, 0.6], 0.5, at_peak=release,
                       back=False, step=False, nodes=(obj,), hold=0.0)
     start = props.mocap[anim.scene.mocap[obj]].copy() if obj in anim.scene.mocap else None
@@ -1013,6 +1023,7 @@ def _at_body(anim: Animator, node: int) -> None:
     else the body part (drawn as the agent)."""
     props = anim.props
     side = next(iter(props.held), None) or props.free_side()
+    held_out = _hold_out_hand(anim, node, side)
     point = _body_point(anim, node, side)
     tool = props.held.get(side)
     grip = props.grip.get(side) if tool is not None else None
@@ -1023,6 +1034,22 @@ def _at_body(anim: Animator, node: int) -> None:
     bent = {f"{side}_sh_pitch": -1.0, f"{side}_elbow": -2.0, f"{side}_sh_roll": 0.3 * sign}
     anim.reach(side, point, 0.7, step=False, hold=0.8, grip=grip, seed=bent,
                nodes=(tool, node) if tool is not None else (node,))
+    if held_out is not None:  # the other arm back as it was
+        anim.move_to(held_out, 0.3)
+
+
+def _hold_out_hand(anim: Animator, node: int, side: str) -> Pose | None:
+    """Before the `side` hand acts on the other hand or arm (wash the hands), that arm,
+    if it holds nothing, comes before the belly (`SPARE`'s first: not hanging into a wall
+    or counter beside the agent); the pose before it, to return to, or None."""
+    cls = anim.graph.node(node).class_name.lower()
+    other = "l" if side == "r" else "r"
+    word = next((w for w in BODY_POINTS if w in cls), "hand")  # as `_body_point`
+    if anim.posture != "stand" or other in anim.props.held or word not in ("hand", "arm"):
+        return None
+    before = anim.pose
+    anim.move_to(spared(before, other, SPARE[0]), 0.4)
+    return before
 
 
 def _touch(anim: Animator, node: int, states, nodes: tuple[int, ...] = ()) -> None:
@@ -1064,6 +1091,7 @@ def _grab(anim: Animator, ch: Changes) -> bool:
             props.move(obj, center)
         props.held[side] = obj
         props.grip[side] = rot.T @ (center - hand)
+        props.wrist[side] = {j: anim.pose.joints.get(j, 0.0) for j in wrist_joints(side)}
         props.taken_with[obj] = Grasp(palm + box.center - center,
                                       rot[:, 1] * (-1.0 if side == "l" else 1.0), -rot[:, 2])
         anim.timeline.attaches.append(Attach(len(anim.timeline) - 1, obj, side, gap))
@@ -1104,6 +1132,7 @@ def _put(anim: Animator, ch: Changes, nodes: tuple[int, ...]) -> bool:
             else final
         props.held.pop(side, None)
         props.grip.pop(side, None)
+        props.wrist.pop(side, None)
         landed = final.copy() if back is not None and lay is not None else \
             props.landing(obj, where, final, carried)
         props.move(obj, landed)

@@ -47,6 +47,9 @@ class Props:
         # side -> the held object's centre in the frame of the hand's body (set when it is
         # taken, so it rides where the hand touched it: no jump into the palm)
         self.grip: dict[str, np.ndarray] = {}
+        # side -> the wrist's hinge angles the hand took it with, kept while it is carried
+        # (the object rides where it was taken relative to the forearm too)
+        self.wrist: dict[str, dict[str, float]] = {}
         # node id -> where it lay when last taken, and the (relation, node) it was on or in
         self.taken_from: dict[int, tuple[np.ndarray, frozenset[tuple[str, int]]]] = {}
         # node id -> how the hand took it then (its palm's point and turn: `ik.Grasp`)
