@@ -226,7 +226,7 @@ def frame_labels(store: FrameStore, labels: C.Labels) -> FrameLabels:
         shown = store.step[ep.start:ep.start + ep.length].astype(np.int64)
         names = [C.step_class(t) for t in ep.steps]
         s_ids = np.array([s_index.get(n, -100) for n in names] + [-100])
-        a_ids = np.array([a_index.get(n.split("]")[0].strip("["), -100) for n in names]
+        a_ids = np.array([a_index.get(C.action_name(n), -100) for n in names]
                          + [-100])
         steps[ep.start:ep.start + ep.length] = s_ids[shown]  # -1 picks the last: -100
         actions[ep.start:ep.start + ep.length] = a_ids[shown]
