@@ -34,10 +34,10 @@ import numpy as np
 import torch
 
 from homesim.learn.video import clips as C
-from homesim.learn.video.hands import hand_context, with_hands
 from homesim.learn.video.pose import pose_descriptor
 from homesim.learn.video.table import (
     Run,
+    body_features,
     clip_config,
     pose_network,
     reopen_run,
@@ -102,22 +102,13 @@ def descriptors(run: Run, name: str) -> np.ndarray:
     if name == "seg+pose":
         return with_pose(np.load(features / "seg.npy"), pose_network(run), train_rows)
     if name == "seg+pose+hands":
-        joints = pose_network(run)
         maps = np.load(features / "segmaps.npy", mmap_mode="r")
-        return with_hands(with_pose(np.load(features / "seg.npy"), joints, train_rows),
-                          hands(run, maps, joints), train_rows)
+        return body_features(run, np.load(features / "seg.npy"), pose_network(run), maps)
     if name == "oracle+pose+hands":
-        joints = run.store.joints
-        return with_hands(with_pose(np.load(features / "oracle.npy"), joints, train_rows),
-                          hands(run, run.store.maps, joints), train_rows)
+        return body_features(run, np.load(features / "oracle.npy"), run.store.joints,
+                             run.store.maps)
     raise SystemExit(f"--probes {name}: choose box, pose, oracle+pose, predicted-pose, "
                      "seg+pose, seg+pose+hands or oracle+pose+hands")
-
-
-def hands(run: Run, maps: np.ndarray, joints: np.ndarray) -> np.ndarray:
-    """`hand_context` of `maps` round the wrists of `joints`, the agent left out."""
-    classes = run.store.classes
-    return hand_context(maps, joints, len(classes), classes.index("character"))
 
 
 def main() -> None:

@@ -367,17 +367,22 @@ def with_pose(features: np.ndarray, joints: np.ndarray, train_rows: np.ndarray
     return joined.astype(np.float16)
 
 
+def body_features(run: Run, features: np.ndarray, joints: np.ndarray, maps: np.ndarray
+                  ) -> np.ndarray:
+    """`features` joined with the `joints`' descriptor (`with_pose`) and the classes of
+    `maps` round their wrists, the agent's own left out (`with_hands`)."""
+    train_rows, classes = run.store.rows(run.episodes("train")), run.store.classes
+    hands = hand_context(maps, joints, len(classes), classes.index("character"))
+    return with_hands(with_pose(features, joints, train_rows), hands, train_rows)
+
+
 def _body_features(run: Run, seg: np.ndarray) -> np.ndarray:
-    """The `BODY` input: the predicted maps' feature `seg`, the predicted joints'
-    descriptor (`with_pose`) and the classes round the predicted wrists (`with_hands`),
-    cached in OUT/features/<BODY>.npy."""
+    """The `BODY` input: `body_features` of the predicted maps' feature `seg`, the
+    predicted joints and the predicted maps, cached in OUT/features/<BODY>.npy."""
     path = run.out / "features" / f"{BODY}.npy"
     if path.is_file():
         return np.load(path)
-    joints, train_rows = pose_network(run), run.store.rows(run.episodes("train"))
-    maps, classes = _segmentation(run), run.store.classes
-    hands = hand_context(maps, joints, len(classes), classes.index("character"))
-    joined = with_hands(with_pose(seg, joints, train_rows), hands, train_rows)
+    joined = body_features(run, seg, pose_network(run), _segmentation(run))
     np.save(path, joined)
     return joined
 
