@@ -11,13 +11,16 @@ clips (never a test part):
 - ``oracle+pose``: the oracle map features and the ground-truth joints;
 - ``predicted-pose``: the joints the run's pose network predicts (`table.pose_network`,
   trained first if the run has none), alone;
-- ``seg+pose``: the predicted maps' features and the predicted joints (the Table 2 row
-  of that name).
+- ``seg+pose``: the predicted maps' features and the predicted joints;
+- ``seg+pose+hands``: those and the classes of the predicted maps round the predicted
+  wrists (`hands.hand_context`; the Table 2 row of that name);
+- ``oracle+pose+hands``: the oracle map features, the ground-truth joints and the classes
+  of the ground-truth maps round their wrists.
 
 The ground-truth joints are the animation's, so ``pose`` and ``oracle+pose`` are upper
 bounds for a recogniser that sees the body perfectly, not Table 2 rows.
 
-    python tools/video_body_probe.py out/dev --probes box pose oracle+pose seg+pose
+    python tools/video_body_probe.py out/dev --probes box pose oracle+pose seg+pose+hands
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ from homesim.learn.video import clips as C
 from homesim.learn.video.pose import pose_descriptor
 from homesim.learn.video.table import (
     Run,
+    body_features,
     clip_config,
     pose_network,
     reopen_run,
@@ -97,8 +101,14 @@ def descriptors(run: Run, name: str) -> np.ndarray:
         return pose_descriptor(pose_network(run))
     if name == "seg+pose":
         return with_pose(np.load(features / "seg.npy"), pose_network(run), train_rows)
-    raise SystemExit(f"--probes {name}: choose box, pose, oracle+pose, predicted-pose or "
-                     "seg+pose")
+    if name == "seg+pose+hands":
+        maps = np.load(features / "segmaps.npy", mmap_mode="r")
+        return body_features(run, np.load(features / "seg.npy"), pose_network(run), maps)
+    if name == "oracle+pose+hands":
+        return body_features(run, np.load(features / "oracle.npy"), run.store.joints,
+                             run.store.maps)
+    raise SystemExit(f"--probes {name}: choose box, pose, oracle+pose, predicted-pose, "
+                     "seg+pose, seg+pose+hands or oracle+pose+hands")
 
 
 def main() -> None:

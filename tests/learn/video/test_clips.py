@@ -86,3 +86,29 @@ def test_an_end_to_end_clip_model_reads_maps_and_trains_its_backbone():
     moved = model.backbone.state_dict()
     assert any(not torch.equal(moved[k], start[k]) for k in start if k.endswith("weight"))
     assert ClipConfig(**cfg.to_dict()) == cfg
+
+
+def test_a_step_is_chosen_with_its_actions_probability():
+    import torch
+
+    from homesim.learn.video.clips import ClipSet, Labels, predict_clips
+
+    class FixedHeads(torch.nn.Module):
+        """Action logits favour Open; the step head slightly prefers a Close step."""
+
+        def __init__(self) -> None:
+            super().__init__()
+            self.unused = torch.nn.Parameter(torch.zeros(1))
+
+        def forward(self, clips: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+            n = len(clips)
+            return (torch.tensor([[0.0, 3.0]]).repeat(n, 1),  # Close, Open
+                    torch.tensor([[1.2, 1.0, 0.0]]).repeat(n, 1))  # steps below
+
+    labels = Labels(["Close", "Open"], ["[Close] <door>", "[Open] <door>", "[Open] <tv>"])
+    assert labels.step_actions().tolist() == [0, 1, 1]
+    data = ClipSet(np.zeros((2, 8), np.int64), ["a", "b"], ["Open"] * 2,
+                   ["[Open] <door>"] * 2)
+    actions, steps = predict_clips(FixedHeads(), np.zeros((1, 4), np.float32), data, labels)
+    assert actions == ["Open", "Open"]
+    assert steps == ["[Open] <door>", "[Open] <door>"]  # the step head alone: Close

@@ -47,7 +47,7 @@ def test_train_resume_and_eval_video2prog(tiny_plan, tmp_path):
     assert constrained["simulator"]["mean"] == 1.0  # executable by construction
     clips = result["clips"]["all"]
     assert {"Random retrieval", "TRN (RGB)", "Single frame (RGB)",
-            "TRN (predicted segmentation)", "TRN (predicted segmentation + pose)",
+            "TRN (predicted segmentation)", "TRN (predicted segmentation + pose + hands)",
             "TRN (ground-truth class maps: oracle)"} <= set(clips)
     assert all(0 <= row["step"]["lo"] <= row["step"]["hi"] <= 100 for row in clips.values())
     assert "all test" in result["segment"]["scores"]

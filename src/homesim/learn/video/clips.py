@@ -18,7 +18,11 @@ Glossary:
         the frames or class maps, fine-tuning the encoder with the TRN on the clips'
         labels, as TRN is trained (its backbone fine-tuned end to end); without it the
         descriptors are fixed features computed once.
-Two linear heads read the clip feature (class-weighted cross-entropy on both). Scores are
+Two linear heads read the clip feature (class-weighted cross-entropy on both). A clip's
+step is the one whose log-probability plus its action's (the action head's) is highest:
+the action head learns from every clip of an action, so it steers the step head among the
+~200 steps, most of them rare (validation steps on the development plan: predicted maps
+1.5 -> 2.1 %, true maps 5.6 -> 6.4 %; docs/learn.md). Scores are
 mean per-class accuracy (recall averaged over the test classes; a class never seen in
 training scores 0).
 """
@@ -158,6 +162,11 @@ class ClipSet:
     steps: list[str]
 
 
+def action_name(step: str) -> str:
+    """``[Grab] <cup>`` -> ``Grab``."""
+    return step.split("]")[0].strip("[")
+
+
 def step_class(step_text: str) -> str:
     """``[Grab] <cup> (1)`` -> ``[Grab] <cup>``."""
     import re
@@ -178,7 +187,7 @@ def clip_set(episodes: list, step: np.ndarray, hop: float | None = None) -> Clip
             label = step_class(ep.steps[middle])
             rows.append(ep.start + clip_rows(a, b))
             keys.append(ep.key)
-            actions.append(label.split("]")[0].strip("["))
+            actions.append(action_name(label))
             steps.append(label)
     stacked = np.stack(rows) if rows else np.zeros((0, FRAMES), np.int64)
     return ClipSet(stacked, keys, actions, steps)
@@ -194,6 +203,10 @@ class Labels:
     @classmethod
     def build(cls, data: ClipSet) -> Labels:
         return cls(sorted(set(data.actions)), sorted(set(data.steps)))
+
+    def step_actions(self) -> torch.Tensor:
+        """Each step's action as an index into `actions`."""
+        return torch.tensor([self.actions.index(action_name(s)) for s in self.steps])
 
     def ids(self, names: list[str], table: list[str]) -> np.ndarray:
         index = {n: i for i, n in enumerate(table)}
@@ -245,15 +258,18 @@ def train_clip_model(cfg: ClipConfig, features: np.ndarray, data: ClipSet, label
 @torch.no_grad()
 def predict_clips(model: ClipModel, features: np.ndarray, data: ClipSet, labels: Labels,
                   batch_size: int = 512) -> tuple[list[str], list[str]]:
-    """Predicted action and step names of every clip."""
+    """Predicted action and step names of every clip (a step scored with its action: see
+    the module)."""
     model.eval()
     device = next(model.parameters()).device
+    step_actions = labels.step_actions().to(device)
     actions: list[str] = []
     steps: list[str] = []
     for i in range(0, len(data.steps), batch_size):
         la, ls = model(clip_inputs(features, data.rows[i:i + batch_size]).to(device))
+        joint = F.log_softmax(ls, 1) + F.log_softmax(la, 1)[:, step_actions]
         actions += [labels.actions[j] for j in la.argmax(1).tolist()]
-        steps += [labels.steps[j] for j in ls.argmax(1).tolist()]
+        steps += [labels.steps[j] for j in joint.argmax(1).tolist()]
     return actions, steps
 
 

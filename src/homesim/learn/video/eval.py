@@ -3,8 +3,8 @@ seed of a run written by `homesim.learn.video.table.train_video`; mean and sampl
 the seeds and a 95 % bootstrap interval over test episodes.
 
 Left half (clips, mean per-class accuracy %): random retrieval, single frame (RGB), TRN on
-RGB, TRN on the predicted segmentation, TRN on the predicted segmentation and pose (`pose`),
-TRN on the ground-truth class maps (the oracle).
+RGB, TRN on the predicted segmentation, TRN on the predicted segmentation, pose (`pose`)
+and the classes round the hands (`hands`), TRN on the ground-truth class maps (the oracle).
 Right half (programs: LCS and Simulator %): random retrieval, MLE, PG (LCS),
 PG (LCS+Sim), each also with constrained decoding, and the ground truth as a reference.
 Each model predicts every test episode once; a row scores its episodes.
@@ -33,6 +33,7 @@ from homesim.learn.video import clips as C
 from homesim.learn.video.data import example
 from homesim.learn.video.store import StoredEpisode
 from homesim.learn.video.table import (
+    BODY,
     INPUTS,
     PROGRAM_MODELS,
     Run,
@@ -48,7 +49,7 @@ from homesim.program.model import Program
 
 CLIP_ROWS = {("rgb", "single"): "Single frame (RGB)", ("rgb", "trn"): "TRN (RGB)",
              ("seg", "trn"): "TRN (predicted segmentation)",
-             ("seg+pose", "trn"): "TRN (predicted segmentation + pose)",
+             (BODY, "trn"): "TRN (predicted segmentation + pose + hands)",
              ("oracle", "trn"): "TRN (ground-truth class maps: oracle)"}
 RANDOM = "Random retrieval"
 CONSTRAINED = " + constrained decoding"

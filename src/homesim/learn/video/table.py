@@ -9,9 +9,9 @@ video -> program models of every seed, each stage resumable.
    encoders on ground-truth and on predicted maps (`framecnn`); the pose network
    (`pose`; its joint error and PCK go to ``OUT/frames/pose.json``) and its predicted
    joints of every frame. Each encoder's 64-d feature of every frame goes to
-   ``OUT/features/<input>.npy``, and ``seg+pose.npy`` joins the predicted maps' feature
-   with the predicted joints' descriptor: the frame-feature cache every seed and clip
-   model reads.
+   ``OUT/features/<input>.npy``, and ``seg+pose+hands.npy`` joins the predicted maps'
+   feature with the predicted joints' descriptor and the predicted classes round the
+   predicted wrists (`hands`): the frame-feature cache every seed and clip model reads.
 2. per seed, ``OUT/seed-<seed>/``: the clip models (TRN on each input, single frame on
    RGB) and the video -> program models (MLE, PG (LCS), PG (LCS+Sim)) over the clip
    features of the TRN whose validation score is best among the inputs that are not the
@@ -49,6 +49,7 @@ from homesim.learn.video.framecnn import (
     frame_features,
     train_frame_cnn,
 )
+from homesim.learn.video.hands import hand_context, with_hands
 from homesim.learn.video.pose import (
     PoseConfig,
     pose_descriptor,
@@ -66,11 +67,14 @@ from homesim.learn.video.splits import Split
 from homesim.learn.video.store import FrameStore, StoredEpisode
 from homesim.learn.video.video2prog import Video2Prog, episode_features
 
-CLIP_MODELS = (("rgb", "trn"), ("rgb", "single"), ("seg", "trn"), ("seg+pose", "trn"),
+BODY = "seg+pose+hands"
+"""The predicted maps' feature joined with the predicted joints' descriptor and what the
+predicted maps show round the predicted wrists (`hands`)."""
+CLIP_MODELS = (("rgb", "trn"), ("rgb", "single"), ("seg", "trn"), (BODY, "trn"),
                ("oracle", "trn"))
-PERCEIVED = ("rgb", "seg", "seg+pose")
+PERCEIVED = ("rgb", "seg", BODY)
 """Inputs a model may read at test time (the oracle reads the ground truth)."""
-INPUTS = ("rgb", "seg", "seg+pose", "oracle")
+INPUTS = ("rgb", "seg", BODY, "oracle")
 """Every input's frame features (``OUT/features/<input>.npy``)."""
 ENCODED = ("rgb", "seg", "oracle")
 """The inputs read through one frame encoder (`framecnn`): those an end-to-end clip model
@@ -222,7 +226,7 @@ def frame_labels(store: FrameStore, labels: C.Labels) -> FrameLabels:
         shown = store.step[ep.start:ep.start + ep.length].astype(np.int64)
         names = [C.step_class(t) for t in ep.steps]
         s_ids = np.array([s_index.get(n, -100) for n in names] + [-100])
-        a_ids = np.array([a_index.get(n.split("]")[0].strip("["), -100) for n in names]
+        a_ids = np.array([a_index.get(C.action_name(n), -100) for n in names]
                          + [-100])
         steps[ep.start:ep.start + ep.length] = s_ids[shown]  # -1 picks the last: -100
         actions[ep.start:ep.start + ep.length] = a_ids[shown]
@@ -363,12 +367,22 @@ def with_pose(features: np.ndarray, joints: np.ndarray, train_rows: np.ndarray
     return joined.astype(np.float16)
 
 
-def _joined(run: Run, name: str, features: np.ndarray, joints: np.ndarray) -> np.ndarray:
-    """`with_pose` of the features and joints, cached in OUT/features/<name>.npy."""
-    path = run.out / "features" / f"{name}.npy"
+def body_features(run: Run, features: np.ndarray, joints: np.ndarray, maps: np.ndarray
+                  ) -> np.ndarray:
+    """`features` joined with the `joints`' descriptor (`with_pose`) and the classes of
+    `maps` round their wrists, the agent's own left out (`with_hands`)."""
+    train_rows, classes = run.store.rows(run.episodes("train")), run.store.classes
+    hands = hand_context(maps, joints, len(classes), classes.index("character"))
+    return with_hands(with_pose(features, joints, train_rows), hands, train_rows)
+
+
+def _body_features(run: Run, seg: np.ndarray) -> np.ndarray:
+    """The `BODY` input: `body_features` of the predicted maps' feature `seg`, the
+    predicted joints and the predicted maps, cached in OUT/features/<BODY>.npy."""
+    path = run.out / "features" / f"{BODY}.npy"
     if path.is_file():
         return np.load(path)
-    joined = with_pose(features, joints, run.store.rows(run.episodes("train")))
+    joined = body_features(run, seg, pose_network(run), _segmentation(run))
     np.save(path, joined)
     return joined
 
@@ -380,8 +394,7 @@ def frame_stage(run: Run, labels: C.Labels) -> dict[str, np.ndarray]:
     rgb = _frame_encoder(run, "rgb", run.store.frames, per_row, n)
     oracle = _frame_encoder(run, "oracle", run.store.maps, per_row, n)
     seg = _frame_encoder(run, "seg", _segmentation(run), per_row, n)
-    seg_pose = _joined(run, "seg+pose", seg, pose_network(run))
-    return {"rgb": rgb, "seg": seg, "seg+pose": seg_pose, "oracle": oracle}
+    return {"rgb": rgb, "seg": seg, BODY: _body_features(run, seg), "oracle": oracle}
 
 
 def raw_inputs(run: Run, inp: str) -> np.ndarray:
